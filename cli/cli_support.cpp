@@ -1,0 +1,100 @@
+#include "cli_support.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+
+namespace ncpost::cli {
+
+Options::Options(Args args, std::vector<std::string_view> value_options) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string_view arg = args[i];
+    if (arg.size() > 2 && arg.substr(0, 2) == "--") {
+      std::string_view name = arg.substr(2);
+      std::optional<std::string_view> inline_value;
+      if (auto eq = name.find('='); eq != std::string_view::npos) {
+        inline_value = name.substr(eq + 1);
+        name = name.substr(0, eq);
+      }
+      const bool takes_value =
+          std::find(value_options.begin(), value_options.end(), name) != value_options.end();
+      if (takes_value) {
+        if (inline_value) {
+          values_.emplace_back(name, *inline_value);
+        } else if (i + 1 < args.size()) {
+          values_.emplace_back(name, args[++i]);
+        } else {
+          error_ = "option --" + std::string(name) + " needs a value";
+        }
+      } else if (inline_value) {
+        error_ = "option --" + std::string(name) + " takes no value";
+      } else {
+        flags_.emplace_back(name);
+      }
+    } else {
+      positionals_.emplace_back(arg);
+    }
+  }
+}
+
+std::optional<std::string> Options::value(std::string_view name) const {
+  for (auto it = values_.rbegin(); it != values_.rend(); ++it)
+    if (it->first == name) return it->second;
+  return std::nullopt;
+}
+
+bool Options::flag(std::string_view name) const {
+  return std::find(flags_.begin(), flags_.end(), name) != flags_.end();
+}
+
+std::optional<Input> read_input(const std::string& path) {
+  Input input;
+  if (path == "-") {
+    input.name = "<stdin>";
+    std::ostringstream ss;
+    ss << std::cin.rdbuf();
+    input.bytes = std::move(ss).str();
+    return input;
+  }
+  input.name = path;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const diag::Diagnostic d = diag::make(diag::Code::IoCannotRead, 0, 0,
+                                          "cannot open '" + path + "': " + std::strerror(errno));
+    std::cerr << diag::format(d, path) << '\n';
+    return std::nullopt;
+  }
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size > 0) input.bytes.resize(static_cast<std::size_t>(size));
+  in.read(input.bytes.data(), static_cast<std::streamsize>(input.bytes.size()));
+  if (!in && !in.eof()) {
+    const diag::Diagnostic d =
+        diag::make(diag::Code::IoCannotRead, 0, 0, "cannot read '" + path + "'");
+    std::cerr << diag::format(d, path) << '\n';
+    return std::nullopt;
+  }
+  return input;
+}
+
+void print_diagnostics(const std::vector<diag::Diagnostic>& diagnostics, std::string_view file) {
+  for (const auto& d : diagnostics) std::cerr << diag::format(d, file) << '\n';
+}
+
+bool has_errors(const std::vector<diag::Diagnostic>& diagnostics) {
+  return std::any_of(diagnostics.begin(), diagnostics.end(),
+                     [](const auto& d) { return d.severity == diag::Severity::Error; });
+}
+
+int usage_error(std::string_view verb, std::string_view message) {
+  std::cerr << "ncpost " << verb << ": " << message << "\n(run 'ncpost help' for usage)\n";
+  return kExitUsage;
+}
+
+}  // namespace ncpost::cli

@@ -1,0 +1,46 @@
+#pragma once
+// Small helpers shared by the verbs: option parsing, reading FILE or stdin, printing diagnostics.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncpost/diag/diagnostic.hpp"
+#include "verbs.hpp"
+
+namespace ncpost::cli {
+
+// Options of the form `--name value` or `--name=value`, flags `--name`, and positionals.
+class Options {
+ public:
+  // `value_options` are the options that take a value; anything else starting with `--` is a flag.
+  Options(Args args, std::vector<std::string_view> value_options);
+
+  [[nodiscard]] std::optional<std::string> value(std::string_view name) const;
+  [[nodiscard]] bool flag(std::string_view name) const;
+  [[nodiscard]] const std::vector<std::string>& positionals() const { return positionals_; }
+  // Non-empty when the command line could not be parsed; a usage error.
+  [[nodiscard]] const std::string& error() const { return error_; }
+
+ private:
+  std::vector<std::pair<std::string, std::string>> values_;
+  std::vector<std::string> flags_;
+  std::vector<std::string> positionals_;
+  std::string error_;
+};
+
+struct Input {
+  std::string name;  // for diagnostics: the path, or "<stdin>"
+  std::string bytes;
+};
+
+// Reads a path, or stdin for "-". On failure returns nullopt and prints an IO-001 diagnostic.
+[[nodiscard]] std::optional<Input> read_input(const std::string& path);
+
+void print_diagnostics(const std::vector<diag::Diagnostic>& diagnostics, std::string_view file);
+[[nodiscard]] bool has_errors(const std::vector<diag::Diagnostic>& diagnostics);
+
+int usage_error(std::string_view verb, std::string_view message);
+
+}  // namespace ncpost::cli

@@ -1,0 +1,70 @@
+// `ncpost`: the command line. It parses the verb and hands the rest to that verb's function.
+
+#include <array>
+#include <iostream>
+#include <string_view>
+#include <vector>
+
+#include "verbs.hpp"
+
+namespace {
+
+using ncpost::cli::Args;
+
+constexpr std::string_view kUsage = R"(usage: ncpost <verb> [options] FILE|-
+
+verbs:
+  inspect [--format json|text] FILE       program information of a STEP-NC file (JSON by default)
+  convert --to p21|p28 [--binding late|early] FILE
+                                          re-write a P21 file (p28: not implemented yet)
+  schema --to xml FILE.exp                EXPRESS schema as EXPRESS-X XML
+  trace FILE                              canonical machining program (not implemented yet)
+  post --profile ID [--profiles DIR] FILE controller code for one machine (not implemented yet)
+  profiles [--profiles DIR]               list machine profiles (not implemented yet)
+  nc parse --dialect D FILE               read G-code (not implemented yet)
+  nc translate --from D --to PROFILE FILE translate G-code (not implemented yet)
+
+FILE may be '-' for standard input. Exit status: 0 ok, 1 input rejected, 2 usage error.
+)";
+
+struct Verb {
+  std::string_view name;
+  int (*run)(Args);
+};
+
+int not_implemented(std::string_view what, std::string_view issue) {
+  std::cerr << "ncpost: error: NCPOST-001: '" << what << "' is not implemented yet (" << issue
+            << ")\n";
+  return ncpost::cli::kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string_view> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+    (args.empty() ? std::cerr : std::cout) << kUsage;
+    return args.empty() ? ncpost::cli::kExitUsage : ncpost::cli::kExitOk;
+  }
+  if (args[0] == "--version") {
+    std::cout << "ncpost " << NCPOST_VERSION << '\n';
+    return ncpost::cli::kExitOk;
+  }
+
+  static constexpr std::array kVerbs = {
+      Verb{"inspect", ncpost::cli::run_inspect},
+      Verb{"convert", ncpost::cli::run_convert},
+      Verb{"schema", ncpost::cli::run_schema},
+  };
+  const std::string_view verb = args[0];
+  const Args rest = Args(args).subspan(1);
+  for (const auto& v : kVerbs)
+    if (v.name == verb) return v.run(rest);
+
+  if (verb == "trace") return not_implemented("ncpost trace", "issue 4");
+  if (verb == "post") return not_implemented("ncpost post", "issue 6");
+  if (verb == "profiles") return not_implemented("ncpost profiles", "issue 6");
+  if (verb == "nc") return not_implemented("ncpost nc", "G-code reader");
+  std::cerr << "ncpost: unknown verb '" << verb << "'\n" << kUsage;
+  return ncpost::cli::kExitUsage;
+}

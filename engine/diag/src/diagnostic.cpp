@@ -1,0 +1,59 @@
+#include "ncpost/diag/diagnostic.hpp"
+
+#include <array>
+
+namespace ncpost::diag {
+namespace {
+
+constexpr std::array kCodes = {
+#define NCPOST_DIAG(name, code, severity, meaning) \
+  CodeInfo{Code::name, code, Severity::severity, meaning},
+#include "ncpost/diag/codes.def"
+#undef NCPOST_DIAG
+};
+
+}  // namespace
+
+const CodeInfo& info(Code code) noexcept { return kCodes[static_cast<std::size_t>(code)]; }
+
+std::vector<CodeInfo> all_codes() { return {kCodes.begin(), kCodes.end()}; }
+
+std::string_view to_string(Severity severity) noexcept {
+  switch (severity) {
+    case Severity::Note:
+      return "note";
+    case Severity::Warning:
+      return "warning";
+    case Severity::Error:
+      return "error";
+  }
+  return "error";
+}
+
+Diagnostic make(Code code, std::uint32_t line, std::uint32_t column, std::string message) {
+  return Diagnostic{code, info(code).default_severity, line, column, std::move(message)};
+}
+
+std::string format(const Diagnostic& d, std::string_view file) {
+  std::string out;
+  out.reserve(file.size() + d.message.size() + 32);
+  out += file;
+  out += ':';
+  out += std::to_string(d.line);
+  out += ':';
+  out += std::to_string(d.column);
+  out += ": ";
+  out += to_string(d.severity);
+  out += ": ";
+  out += d.code_id();
+  out += ": ";
+  out += d.message;
+  return out;
+}
+
+void DiagnosticList::add(Diagnostic d) {
+  if (d.severity == Severity::Error) ++errors_;
+  items_.push_back(std::move(d));
+}
+
+}  // namespace ncpost::diag

@@ -1,0 +1,52 @@
+#pragma once
+// ISO 10303-21 (editions 2 and 3) → Model.
+//
+// In:  the whole file as one string (the Model keeps it; values are slices of it).
+// Out: a Model with everything that could be read, and the diagnostics. Errors never stop the
+//      reader early except at `max_errors`: a broken instance is reported once and skipped, and
+//      reading resumes at the next instance. References are resolved after the scan, and a
+//      dangling one is named ("#12 used by #7 attribute 3 is not defined").
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/p21/model.hpp"
+
+namespace ncpost::p21 {
+
+struct ReadOptions {
+  // Lists nested deeper than this are rejected; it bounds every walk over values.
+  std::uint32_t max_list_depth = 64;
+  // Reading stops after this many errors, so hostile input cannot grow the list without bound.
+  std::size_t max_errors = 1000;
+  // Resolve references and report dangling ones (turn off only for partial or streamed files).
+  bool check_references = true;
+};
+
+struct ReadResult {
+  Model model;
+  std::vector<diag::Diagnostic> diagnostics;
+
+  [[nodiscard]] bool ok() const;
+};
+
+[[nodiscard]] ReadResult read(std::string text, const ReadOptions& options = {});
+
+// Maps byte offsets of a text to 1-based line and column. Built on demand (one memchr pass),
+// for diagnostics found after the scan.
+class LineIndex {
+ public:
+  explicit LineIndex(std::string_view text);
+  struct Position {
+    std::uint32_t line;
+    std::uint32_t column;
+  };
+  [[nodiscard]] Position at(std::uint32_t offset) const;
+
+ private:
+  std::vector<std::uint32_t> line_starts_;
+};
+
+}  // namespace ncpost::p21

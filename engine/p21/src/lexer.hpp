@@ -1,0 +1,95 @@
+#pragma once
+// ISO 10303-21 lexer: turns the text into tokens that are offsets into it, and never allocates
+// per token. It validates every literal as it goes (numbers in range, escapes well formed), so
+// that the Model can convert values later without failing. Lexical errors are reported once,
+// to the diagnostic list, and the token comes back as `Error`.
+
+#include <cstdint>
+#include <string_view>
+
+#include "ncpost/diag/diagnostic.hpp"
+
+namespace ncpost::p21::detail {
+
+enum class Tok : std::uint8_t {
+  Eof,
+  Keyword,       // STANDARD or !USER_DEFINED keyword; slice is the name
+  InstanceName,  // #123; `id` holds the number
+  ConstantName,  // #NAME or @NAME; slice is the name without the sigil
+  ValueName,     // @123; slice is the digits
+  Integer,
+  Real,
+  String,        // slice is the body between the apostrophes
+  Binary,        // slice is the body between the quotes
+  Enumeration,   // slice is the name between the dots
+  Resource,      // <...>; slice is the body between the brackets
+  LParen,
+  RParen,
+  Comma,
+  Equals,
+  Semicolon,
+  Dollar,
+  Star,
+  LBrace,
+  RBrace,
+  Colon,
+  Magic,     // ISO-10303-21
+  EndMagic,  // END-ISO-10303-21
+  Error,     // already reported; `recoverable` says whether its extent is trustworthy
+};
+
+struct Token {
+  Tok kind = Tok::Eof;
+  bool needs_decoding = false;  // strings: more than a plain copy is needed to decode
+  bool recoverable = false;     // errors: the token's extent is sound, a placeholder may stand in
+  std::uint32_t offset = 0;
+  std::uint32_t length = 0;
+  std::uint32_t line = 1;
+  std::uint32_t column = 1;
+  std::uint64_t id = 0;
+};
+
+class Lexer {
+ public:
+  Lexer(std::string_view text, diag::DiagnosticList& diagnostics);
+
+  [[nodiscard]] Token next();
+  // While quiet, lexical errors are not reported: used while skipping the rest of a broken
+  // instance, so one broken instance gives one diagnostic.
+  void set_quiet(bool quiet) { quiet_ = quiet; }
+  // Skips raw text up to and including `terminator` (for SIGNATURE sections, whose base64
+  // content is not made of tokens). Returns false at end of input.
+  bool skip_raw_past(std::string_view terminator);
+  [[nodiscard]] bool at_end() const { return p_ >= end_; }
+  [[nodiscard]] std::uint32_t line() const { return line_; }
+  [[nodiscard]] std::uint32_t column_of(const char* at) const {
+    return static_cast<std::uint32_t>(at - line_start_) + 1;
+  }
+
+ private:
+  void skip_space_and_comments();
+  Token make(Tok kind, const char* start, const char* end);
+  Token error(diag::Code code, const char* at, const char* resume, std::string message,
+              bool recoverable);
+  Token lex_number(const char* start);
+  Token lex_string(const char* start);
+  Token lex_keyword(const char* start);
+  Token lex_hash_or_at(const char* start);
+  Token lex_enumeration(const char* start);
+  Token lex_binary(const char* start);
+  Token lex_resource(const char* start);
+  Token lex_garbage(const char* start);
+  void report(diag::Code code, std::uint32_t line, std::uint32_t column, std::string message);
+  [[nodiscard]] bool string_runs_away(const char* newline) const;
+  void validate_string(const Token& token);
+
+  const char* begin_;
+  const char* p_;
+  const char* end_;
+  const char* line_start_;
+  std::uint32_t line_ = 1;
+  diag::DiagnosticList& diagnostics_;
+  bool quiet_ = false;
+};
+
+}  // namespace ncpost::p21::detail

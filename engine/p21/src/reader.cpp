@@ -1,0 +1,782 @@
+#include "ncpost/p21/reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+#include <optional>
+
+#include "lexer.hpp"
+
+namespace ncpost::p21 {
+namespace {
+
+using detail::Lexer;
+using detail::Tok;
+using detail::Token;
+using diag::Code;
+
+constexpr std::uint32_t kMaxParameters = 0x0FFFFFFFu;  // what a Value's count can hold
+
+std::string describe(const Token& t, std::string_view text) {
+  switch (t.kind) {
+    case Tok::Eof: return "end of file";
+    case Tok::Keyword: return "keyword '" + std::string(text.substr(t.offset, t.length)) + "'";
+    case Tok::InstanceName: return "instance name '#" + std::to_string(t.id) + "'";
+    case Tok::ConstantName: return "constant name";
+    case Tok::ValueName: return "value instance name";
+    case Tok::Integer: return "integer";
+    case Tok::Real: return "real";
+    case Tok::String: return "string";
+    case Tok::Binary: return "binary";
+    case Tok::Enumeration: return "enumeration";
+    case Tok::Resource: return "resource name";
+    case Tok::LParen: return "'('";
+    case Tok::RParen: return "')'";
+    case Tok::Comma: return "','";
+    case Tok::Equals: return "'='";
+    case Tok::Semicolon: return "';'";
+    case Tok::Dollar: return "'$'";
+    case Tok::Star: return "'*'";
+    case Tok::LBrace: return "'{'";
+    case Tok::RBrace: return "'}'";
+    case Tok::Colon: return "':'";
+    case Tok::Magic: return "'ISO-10303-21'";
+    case Tok::EndMagic: return "'END-ISO-10303-21'";
+    case Tok::Error: return "malformed token";
+  }
+  return "token";
+}
+
+// Where a parameter list ended: normally at its ')'; otherwise the caller resynchronises.
+enum class ListEnd : std::uint8_t { Closed, Broken };
+
+class Parser {
+ public:
+  Parser(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const ReadOptions& options)
+      : builder_(builder),
+        text_(builder.text()),
+        lexer_(text_, diagnostics),
+        diagnostics_(diagnostics),
+        options_(options) {
+    advance();
+  }
+
+  void parse_file();
+
+ private:
+  // ---- tokens ----
+  void advance() {
+    previous_end_line_ = current_.line;
+    previous_end_column_ = current_.column + current_.length;
+    if (has_peeked_) {
+      current_ = peeked_;
+      has_peeked_ = false;
+    } else {
+      current_ = lexer_.next();
+    }
+  }
+  const Token& peek() {
+    if (!has_peeked_) {
+      peeked_ = lexer_.next();
+      has_peeked_ = true;
+    }
+    return peeked_;
+  }
+  [[nodiscard]] std::string_view slice(const Token& t) const {
+    return text_.substr(t.offset, t.length);
+  }
+  [[nodiscard]] bool at_keyword(std::string_view word) const {
+    return current_.kind == Tok::Keyword && slice(current_) == word;
+  }
+  [[nodiscard]] bool stopped() const { return diagnostics_.full(); }
+
+  void error(Code code, const Token& at, std::string message) {
+    diagnostics_.add(code, at.line, at.column, std::move(message));
+  }
+  void unexpected(const Token& at, std::string_view expected) {
+    if (at.kind == Tok::Error) return;  // the lexer has reported it
+    error(Code::P21UnexpectedToken, at,
+          "expected " + std::string(expected) + ", found " + describe(at, text_));
+  }
+  bool expect_semicolon(std::string_view after);
+
+  // Skips the rest of a broken instance: up to and including the next ';', or up to the next
+  // `#n =` or `ENDSEC;`, whichever comes first. Each token is looked at once: linear.
+  void resynchronise();
+
+  // ---- sections ----
+  void parse_header_section();
+  void parse_anchor_section();
+  void parse_reference_section();
+  void parse_data_section();
+  void parse_instance();
+  void check_header_order(std::uint32_t first_header);
+
+  // Parses the parameters after a '(' up to its ')', into the arena. On success `first` and
+  // `count` describe the top-level parameters.
+  ListEnd parse_parameters(std::uint32_t& first, std::uint32_t& count);
+  std::optional<Value> simple_value(const Token& t);
+
+  ModelBuilder& builder_;
+  std::string_view text_;
+  Lexer lexer_;
+  diag::DiagnosticList& diagnostics_;
+  const ReadOptions& options_;
+
+  Token current_;
+  Token peeked_;
+  bool has_peeked_ = false;
+  std::uint32_t previous_end_line_ = 1;
+  std::uint32_t previous_end_column_ = 1;
+
+  struct Frame {
+    std::uint32_t stack_base;  // where this list's items start on the scratch stack
+    KeywordId keyword;         // typed parameter keyword, or kListFrame
+  };
+  static constexpr KeywordId kListFrame = std::numeric_limits<KeywordId>::max();
+  std::vector<Value> stack_;  // scratch: values of the lists being parsed
+  std::vector<Frame> frames_;
+};
+
+bool Parser::expect_semicolon(std::string_view after) {
+  if (current_.kind == Tok::Semicolon) {
+    advance();
+    return true;
+  }
+  if (current_.kind == Tok::RParen) {
+    error(Code::P21UnbalancedParens, current_,
+          "')' closes a parenthesis that was never opened in " + std::string(after));
+    resynchronise();
+    return false;
+  }
+  // A forgotten ';' before the next instance or section: report it and go on from there.
+  diagnostics_.add(Code::P21MissingSemicolon, previous_end_line_, previous_end_column_,
+                   "missing ';' after " + std::string(after));
+  const bool next_starts_something =
+      (current_.kind == Tok::InstanceName && peek().kind == Tok::Equals) ||
+      current_.kind == Tok::Keyword || current_.kind == Tok::EndMagic;
+  if (!next_starts_something) resynchronise();
+  return false;
+}
+
+void Parser::resynchronise() {
+  lexer_.set_quiet(true);
+  while (current_.kind != Tok::Eof && current_.kind != Tok::EndMagic) {
+    if (current_.kind == Tok::Semicolon) {
+      // Speak again before the next token is lexed: errors after the ';' are new errors.
+      lexer_.set_quiet(false);
+      advance();
+      return;
+    }
+    if (current_.kind == Tok::InstanceName && peek().kind == Tok::Equals) break;
+    if (at_keyword("ENDSEC") && peek().kind == Tok::Semicolon) break;
+    advance();
+  }
+  lexer_.set_quiet(false);
+}
+
+std::optional<Value> Parser::simple_value(const Token& t) {
+  switch (t.kind) {
+    case Tok::Dollar: return Value::omitted();
+    case Tok::Star: return Value::derived();
+    case Tok::Integer: return Value::slice(ValueKind::Integer, t.offset, t.length);
+    case Tok::Real: return Value::slice(ValueKind::Real, t.offset, t.length);
+    case Tok::String:
+      return Value::slice(ValueKind::String, t.offset, t.length, t.needs_decoding);
+    case Tok::Enumeration: return Value::slice(ValueKind::Enumeration, t.offset, t.length);
+    case Tok::Binary: return Value::slice(ValueKind::Binary, t.offset, t.length);
+    case Tok::InstanceName: return Value::reference(t.id);
+    case Tok::ConstantName: return Value::slice(ValueKind::ConstantName, t.offset, t.length);
+    case Tok::ValueName: return Value::slice(ValueKind::ValueName, t.offset, t.length);
+    case Tok::Resource: return Value::slice(ValueKind::Resource, t.offset, t.length);
+    case Tok::Error:
+      // A malformed literal whose extent is sound: it was reported; `$` stands in so that the
+      // rest of the instance is still checked.
+      if (t.recoverable) return Value::omitted();
+      return std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+ListEnd Parser::parse_parameters(std::uint32_t& first, std::uint32_t& count) {
+  // An explicit stack instead of recursion: nesting depth is data, and data may be hostile.
+  frames_.clear();
+  stack_.clear();
+  frames_.push_back({static_cast<std::uint32_t>(stack_.size()), kListFrame});
+  bool expect_value = true;  // otherwise expect ',' or ')'
+  bool list_just_opened = true;
+  std::uint32_t depth_seen = 1;
+
+  const auto close_frame = [&]() -> bool {
+    const Frame frame = frames_.back();
+    frames_.pop_back();
+    const auto n = static_cast<std::uint32_t>(stack_.size()) - frame.stack_base;
+    if (n > kMaxParameters) {
+      error(Code::P21TooManyParameters, current_, "more parameters than supported in one list");
+      return false;
+    }
+    const std::uint32_t at =
+        builder_.push_values(std::span<const Value>(stack_.data() + frame.stack_base, n));
+    stack_.resize(frame.stack_base);
+    if (frames_.empty()) {
+      first = at;
+      count = n;
+      return true;
+    }
+    stack_.push_back(frame.keyword == kListFrame ? Value::list(at, n) : Value::typed(frame.keyword, at));
+    return true;
+  };
+
+  for (;;) {
+    if (expect_value) {
+      const Token t = current_;
+      if (auto v = simple_value(t)) {
+        stack_.push_back(*v);
+        advance();
+        expect_value = false;
+        continue;
+      }
+      switch (t.kind) {
+        case Tok::LParen:
+        case Tok::Keyword: {
+          KeywordId keyword = kListFrame;
+          if (t.kind == Tok::Keyword) {
+            advance();
+            if (current_.kind != Tok::LParen) {
+              unexpected(current_, "'(' after the type name of a typed parameter");
+              return ListEnd::Broken;
+            }
+            keyword = builder_.intern(slice(t));
+          }
+          if (frames_.size() >= options_.max_list_depth) {
+            error(Code::P21NestingTooDeep, current_,
+                  "lists nested deeper than " + std::to_string(options_.max_list_depth));
+            return ListEnd::Broken;
+          }
+          frames_.push_back({static_cast<std::uint32_t>(stack_.size()), keyword});
+          depth_seen = std::max(depth_seen, static_cast<std::uint32_t>(frames_.size()));
+          advance();
+          list_just_opened = keyword == kListFrame;  // a typed parameter needs its one value
+          continue;
+        }
+        case Tok::RParen:
+          if (list_just_opened) {  // empty list
+            advance();
+            if (!close_frame()) return ListEnd::Broken;
+            if (frames_.empty()) {
+              builder_.note_depth(depth_seen);
+              return ListEnd::Closed;
+            }
+            expect_value = false;
+            list_just_opened = false;
+            continue;
+          }
+          [[fallthrough]];
+        case Tok::Comma:
+          // `(,#12,)`: an empty parameter. Report it, let `$` stand in, and go on.
+          error(Code::P21EmptyParameter, t, "empty parameter; write $ for an unset value");
+          stack_.push_back(Value::omitted());
+          expect_value = false;
+          list_just_opened = false;
+          continue;
+        case Tok::Semicolon:
+          error(Code::P21UnbalancedParens, t,
+                "';' before ')' closes " + std::to_string(frames_.size()) + " open parenthes" +
+                    (frames_.size() == 1 ? "is" : "es"));
+          return ListEnd::Broken;
+        case Tok::Eof:
+          error(Code::P21UnbalancedParens, t, "file ends inside a parameter list");
+          return ListEnd::Broken;
+        default:
+          unexpected(t, "a parameter");
+          return ListEnd::Broken;
+      }
+    }
+    list_just_opened = false;
+    switch (current_.kind) {
+      case Tok::Comma:
+        if (frames_.back().keyword != kListFrame) {
+          unexpected(current_, "')' closing a typed parameter, which has exactly one value");
+          return ListEnd::Broken;
+        }
+        advance();
+        expect_value = true;
+        continue;
+      case Tok::RParen:
+        advance();
+        if (!close_frame()) return ListEnd::Broken;
+        if (frames_.empty()) {
+          builder_.note_depth(depth_seen);
+          return ListEnd::Closed;
+        }
+        continue;
+      case Tok::Semicolon:
+        error(Code::P21UnbalancedParens, current_,
+              "';' before ')' closes " + std::to_string(frames_.size()) + " open parenthes" +
+                  (frames_.size() == 1 ? "is" : "es"));
+        return ListEnd::Broken;
+      case Tok::Eof:
+        error(Code::P21UnbalancedParens, current_, "file ends inside a parameter list");
+        return ListEnd::Broken;
+      default:
+        unexpected(current_, "',' or ')'");
+        return ListEnd::Broken;
+    }
+  }
+}
+
+void Parser::parse_file() {
+  if (current_.kind != Tok::Magic) {
+    error(Code::P21MissingMagic, current_,
+          "the file must start with 'ISO-10303-21;', found " + describe(current_, text_));
+    // Go on if a HEADER follows anyway: more can be said about the file that way.
+    while (current_.kind != Tok::Eof && !at_keyword("HEADER") && !at_keyword("DATA")) advance();
+  } else {
+    advance();
+    expect_semicolon("'ISO-10303-21'");
+  }
+
+  bool seen_data = false;
+  while (!stopped()) {
+    if (current_.kind == Tok::Eof) {
+      error(Code::P21MissingEnd, current_, "the file ends without 'END-ISO-10303-21;'");
+      break;
+    }
+    if (current_.kind == Tok::EndMagic) {
+      advance();
+      expect_semicolon("'END-ISO-10303-21'");
+      // Ed.3 signatures follow the end; their base64 content is not tokens.
+      while (at_keyword("SIGNATURE")) {
+        error(Code::P21SectionSkipped, current_, "SIGNATURE section skipped; it is not verified");
+        lexer_.skip_raw_past("ENDSEC;");
+        has_peeked_ = false;
+        advance();
+      }
+      if (current_.kind != Tok::Eof)
+        error(Code::P21TrailingContent, current_,
+              "content after 'END-ISO-10303-21;' is ignored");
+      break;
+    }
+    if (current_.kind == Tok::Keyword) {
+      const std::string_view word = slice(current_);
+      if (word == "HEADER") {
+        parse_header_section();
+        continue;
+      }
+      if (word == "ANCHOR") {
+        parse_anchor_section();
+        continue;
+      }
+      if (word == "REFERENCE") {
+        parse_reference_section();
+        continue;
+      }
+      if (word == "DATA") {
+        seen_data = true;
+        parse_data_section();
+        continue;
+      }
+    }
+    unexpected(current_, "a section (HEADER, ANCHOR, REFERENCE, DATA) or 'END-ISO-10303-21;'");
+    advance();
+    resynchronise();
+  }
+  if (stopped())
+    diagnostics_.add(Code::P21TooManyErrors, current_.line, current_.column,
+                     "stopped after " + std::to_string(options_.max_errors) + " errors");
+  if (!seen_data && !stopped())
+    diagnostics_.add(Code::P21NoData, 1, 1, "the file has no DATA section");
+}
+
+void Parser::check_header_order(std::uint32_t first_header) {
+  static constexpr std::array<std::string_view, 3> kRequired = {"FILE_DESCRIPTION", "FILE_NAME",
+                                                                "FILE_SCHEMA"};
+  const auto& model = builder_.model();
+  const auto header = model.header().subspan(first_header);
+  for (std::size_t i = 0; i < kRequired.size(); ++i) {
+    const bool in_place = i < header.size() && model.type_name(header[i]) == kRequired[i];
+    if (in_place) continue;
+    const bool present = model.header_entity(kRequired[i]) != nullptr;
+    diagnostics_.add(Code::P21HeaderEntity, current_.line, current_.column,
+                     std::string(kRequired[i]) +
+                         (present ? " is out of order: the header must start with "
+                                    "FILE_DESCRIPTION, FILE_NAME, FILE_SCHEMA"
+                                  : " is missing from the header"));
+  }
+}
+
+void Parser::parse_header_section() {
+  advance();  // HEADER
+  expect_semicolon("'HEADER'");
+  const auto first_header = static_cast<std::uint32_t>(builder_.model().header().size());
+  while (!stopped()) {
+    if (at_keyword("ENDSEC")) {
+      check_header_order(first_header);
+      advance();
+      expect_semicolon("'ENDSEC'");
+      return;
+    }
+    if (current_.kind == Tok::Keyword) {
+      const Token keyword = current_;
+      const std::uint32_t values_before = builder_.value_count();
+      advance();
+      if (current_.kind != Tok::LParen) {
+        unexpected(current_, "'(' after header entity name");
+        resynchronise();
+        continue;
+      }
+      advance();
+      Instance entity;
+      entity.offset = keyword.offset;
+      entity.keyword = builder_.intern(slice(keyword));
+      if (parse_parameters(entity.first, entity.count) == ListEnd::Broken) {
+        builder_.truncate_values(values_before);
+        resynchronise();
+        continue;
+      }
+      builder_.add_header(entity);
+      expect_semicolon(std::string(slice(keyword)));
+      continue;
+    }
+    if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic ||
+        at_keyword("DATA")) {
+      error(Code::P21MissingEndsec, current_, "HEADER section is not closed by 'ENDSEC;'");
+      return;
+    }
+    unexpected(current_, "a header entity or 'ENDSEC;'");
+    advance();
+    resynchronise();
+  }
+}
+
+void Parser::parse_anchor_section() {
+  advance();  // ANCHOR
+  expect_semicolon("'ANCHOR'");
+  while (!stopped()) {
+    if (at_keyword("ENDSEC")) {
+      advance();
+      expect_semicolon("'ENDSEC'");
+      return;
+    }
+    if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic) {
+      error(Code::P21MissingEndsec, current_, "ANCHOR section is not closed by 'ENDSEC;'");
+      return;
+    }
+    if (current_.kind != Tok::Resource) {
+      unexpected(current_, "an anchor name '<name>'");
+      advance();
+      resynchronise();
+      continue;
+    }
+    Anchor anchor;
+    anchor.name_offset = current_.offset;
+    anchor.name_length = current_.length;
+    anchor.offset = current_.offset;
+    advance();
+    if (current_.kind != Tok::Equals) {
+      unexpected(current_, "'=' after the anchor name");
+      resynchronise();
+      continue;
+    }
+    advance();
+    if (auto v = simple_value(current_)) {
+      anchor.item = *v;
+      advance();
+    } else if (current_.kind == Tok::LParen) {
+      advance();
+      std::uint32_t first = 0;
+      std::uint32_t count = 0;
+      if (parse_parameters(first, count) == ListEnd::Broken) {
+        resynchronise();
+        continue;
+      }
+      anchor.item = Value::list(first, count);
+    } else {
+      unexpected(current_, "an anchor item");
+      resynchronise();
+      continue;
+    }
+    if (current_.kind == Tok::LBrace) {
+      error(Code::P21SectionSkipped, current_, "anchor tags are skipped");
+      while (current_.kind != Tok::Semicolon && current_.kind != Tok::Eof) advance();
+    }
+    builder_.add_anchor(anchor);
+    expect_semicolon("an anchor");
+  }
+}
+
+void Parser::parse_reference_section() {
+  advance();  // REFERENCE
+  expect_semicolon("'REFERENCE'");
+  while (!stopped()) {
+    if (at_keyword("ENDSEC")) {
+      advance();
+      expect_semicolon("'ENDSEC'");
+      return;
+    }
+    if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic) {
+      error(Code::P21MissingEndsec, current_, "REFERENCE section is not closed by 'ENDSEC;'");
+      return;
+    }
+    const Token name = current_;
+    if (name.kind != Tok::InstanceName) {
+      unexpected(name, "'#n = <uri>;' in the REFERENCE section");
+      advance();
+      resynchronise();
+      continue;
+    }
+    advance();
+    if (current_.kind != Tok::Equals) {
+      unexpected(current_, "'='");
+      resynchronise();
+      continue;
+    }
+    advance();
+    if (current_.kind != Tok::Resource) {
+      unexpected(current_, "a resource '<uri>'");
+      resynchronise();
+      continue;
+    }
+    // An external instance: it takes part in reference resolution like a local one.
+    const Value uri = Value::slice(ValueKind::Resource, current_.offset, current_.length);
+    Instance external;
+    external.id = name.id;
+    external.offset = name.offset;
+    external.keyword = Model::kExternalKeyword;
+    external.first = builder_.push_values(std::span<const Value>(&uri, 1));
+    external.count = 1;
+    builder_.add_instance(external);
+    advance();
+    expect_semicolon("a reference");
+  }
+}
+
+void Parser::parse_data_section() {
+  DataSection section;
+  section.offset = current_.offset;
+  advance();  // DATA
+  if (current_.kind == Tok::LParen) {
+    advance();
+    if (parse_parameters(section.first_param, section.param_count) == ListEnd::Broken)
+      resynchronise();
+  }
+  expect_semicolon("'DATA'");
+  section.first_instance = builder_.instance_count();
+  while (!stopped()) {
+    if (current_.kind == Tok::InstanceName) {
+      parse_instance();
+      continue;
+    }
+    if (at_keyword("ENDSEC")) {
+      advance();
+      expect_semicolon("'ENDSEC'");
+      break;
+    }
+    if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic ||
+        (current_.kind == Tok::Keyword && peek().kind == Tok::Semicolon)) {
+      error(Code::P21MissingEndsec, current_, "DATA section is not closed by 'ENDSEC;'");
+      break;
+    }
+    unexpected(current_, "an instance '#n = ...;' or 'ENDSEC;'");
+    advance();
+    resynchronise();
+  }
+  section.end_instance = builder_.instance_count();
+  builder_.add_section(section);
+}
+
+void Parser::parse_instance() {
+  const Token name = current_;
+  advance();
+  if (current_.kind != Tok::Equals) {
+    unexpected(current_, "'=' after " + describe(name, text_));
+    resynchronise();
+    return;
+  }
+  advance();
+  Instance instance;
+  instance.id = name.id;
+  instance.offset = name.offset;
+  // A broken instance leaves nothing behind in the arena.
+  const std::uint32_t values_before = builder_.value_count();
+  const auto drop = [&] {
+    builder_.truncate_values(values_before);
+    resynchronise();
+  };
+  const std::string what = "instance #" + std::to_string(name.id);
+
+  if (current_.kind == Tok::Keyword) {
+    instance.keyword = builder_.intern(slice(current_));
+    advance();
+    if (current_.kind != Tok::LParen) {
+      unexpected(current_, "'(' after the entity name of " + what);
+      drop();
+      return;
+    }
+    advance();
+    if (parse_parameters(instance.first, instance.count) == ListEnd::Broken) {
+      drop();
+      return;
+    }
+  } else if (current_.kind == Tok::LParen) {
+    // Complex instance: partial records, each kept as a typed value NAME((params)).
+    advance();
+    instance.keyword = Model::kComplexKeyword;
+    std::vector<Value> records;
+    while (current_.kind == Tok::Keyword) {
+      const KeywordId record = builder_.intern(slice(current_));
+      advance();
+      if (current_.kind != Tok::LParen) {
+        unexpected(current_, "'(' after a partial record name in " + what);
+        drop();
+        return;
+      }
+      advance();
+      std::uint32_t first = 0;
+      std::uint32_t count = 0;
+      if (parse_parameters(first, count) == ListEnd::Broken) {
+        drop();
+        return;
+      }
+      const Value list = Value::list(first, count);
+      records.push_back(Value::typed(record, builder_.push_values(std::span<const Value>(&list, 1))));
+    }
+    if (current_.kind != Tok::RParen) {
+      unexpected(current_, "a partial record name or ')' in complex " + what);
+      drop();
+      return;
+    }
+    if (records.empty()) {
+      error(Code::P21EmptyComplex, name, "complex " + what + " has no partial records");
+      advance();
+      drop();
+      return;
+    }
+    advance();
+    instance.first = builder_.push_values(records);
+    instance.count = static_cast<std::uint32_t>(records.size());
+  } else {
+    unexpected(current_, "an entity name or '(' for " + what);
+    resynchronise();
+    return;
+  }
+  builder_.add_instance(instance);
+  expect_semicolon(what);
+}
+
+// After the scan: ids, duplicates and references.
+void resolve(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const ReadOptions& options) {
+  const auto duplicates = builder.build_indexes();
+  const Model& model = builder.model();
+  std::optional<LineIndex> lines;
+  const auto position = [&](std::uint32_t offset) {
+    if (!lines) lines.emplace(model.text());
+    return lines->at(offset);
+  };
+  for (const auto& d : duplicates) {
+    const Instance& dup = model.instances()[d.duplicate_index];
+    const Instance& kept = model.instances()[d.first_index];
+    const auto at = position(dup.offset);
+    const auto first_at = position(kept.offset);
+    diagnostics.add(Code::P21DuplicateId, at.line, at.column,
+                    "#" + std::to_string(dup.id) + " is defined again (first at line " +
+                        std::to_string(first_at.line) + "); this one is ignored");
+  }
+  if (!options.check_references) return;
+
+  // Walk each instance's values with an explicit stack; depth is bounded by max_list_depth.
+  struct Pending {
+    std::span<const Value> values;
+    std::size_t next;
+  };
+  std::vector<Pending> work;
+  const auto check_instance = [&](const Instance& inst) {
+    const auto top = model.params(inst);
+    const bool complex = model.is_complex(inst);
+    for (std::size_t attribute = 0; attribute < top.size(); ++attribute) {
+      work.clear();
+      work.push_back({top.subspan(attribute, 1), 0});
+      std::string_view record_name;
+      if (complex) record_name = model.keyword(top[attribute].keyword_id());
+      while (!work.empty() && !diagnostics.full()) {
+        Pending& p = work.back();
+        if (p.next == p.values.size()) {
+          work.pop_back();
+          continue;
+        }
+        const Value v = p.values[p.next++];
+        if (v.is_list()) {
+          work.push_back({model.items(v), 0});
+        } else if (v.kind() == ValueKind::Typed) {
+          work.push_back({model.all_values().subspan(v.child(), 1), 0});
+        } else if (v.is_reference() && model.find(v.id()) == nullptr) {
+          const auto at = position(inst.offset);
+          std::string where = complex ? "#" + std::to_string(inst.id) + " (partial record " +
+                                            std::string(record_name) + ")"
+                                      : "#" + std::to_string(inst.id) + " attribute " +
+                                            std::to_string(attribute + 1);
+          diagnostics.add(Code::P21DanglingReference, at.line, at.column,
+                          "#" + std::to_string(v.id()) + " used by " + where + " is not defined");
+        }
+      }
+    }
+  };
+  for (const auto& inst : model.instances()) {
+    if (diagnostics.full()) break;
+    if (inst.keyword != Model::kExternalKeyword) check_instance(inst);
+  }
+  for (const auto& anchor : model.anchors()) {
+    if (anchor.item.is_reference() && model.find(anchor.item.id()) == nullptr) {
+      const auto at = position(anchor.offset);
+      diagnostics.add(Code::P21DanglingReference, at.line, at.column,
+                      "#" + std::to_string(anchor.item.id()) + " used by anchor <" +
+                          std::string(model.text().substr(anchor.name_offset, anchor.name_length)) +
+                          "> is not defined");
+    }
+  }
+}
+
+}  // namespace
+
+bool ReadResult::ok() const {
+  return std::none_of(diagnostics.begin(), diagnostics.end(),
+                      [](const auto& d) { return d.severity == diag::Severity::Error; });
+}
+
+ReadResult read(std::string text, const ReadOptions& options) {
+  diag::DiagnosticList diagnostics(options.max_errors);
+  if (text.size() >= std::numeric_limits<std::uint32_t>::max()) {
+    diagnostics.add(Code::P21FileTooLarge, 0, 0,
+                    "input of " + std::to_string(text.size()) +
+                        " bytes is larger than the reader's 4 GiB limit");
+    return {Model{}, std::move(diagnostics).take()};
+  }
+  // Upper bounds: every value takes at least two bytes of text ("1,"), every instance six
+  // ("#1=A();"). Reserving them avoids any reallocation copy while reading.
+  const std::size_t size = text.size();
+  ModelBuilder builder(std::move(text), size / 2 + 16, size / 6 + 16);
+  Parser parser(builder, diagnostics, options);
+  parser.parse_file();
+  resolve(builder, diagnostics, options);
+  return {std::move(builder).finish(), std::move(diagnostics).take()};
+}
+
+LineIndex::LineIndex(std::string_view text) {
+  line_starts_.push_back(0);
+  const char* base = text.data();
+  const char* p = base;
+  const char* end = base + text.size();
+  while (const void* hit = std::memchr(p, '\n', static_cast<std::size_t>(end - p))) {
+    p = static_cast<const char*>(hit) + 1;
+    line_starts_.push_back(static_cast<std::uint32_t>(p - base));
+  }
+}
+
+LineIndex::Position LineIndex::at(std::uint32_t offset) const {
+  auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+  const auto line = static_cast<std::uint32_t>(it - line_starts_.begin());
+  return {line, offset - line_starts_[line - 1] + 1};
+}
+
+}  // namespace ncpost::p21

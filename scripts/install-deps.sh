@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package that ncpost builds, tests and benchmarks with.
+# Called by the README's two commands, by .ci/run and by docker/Dockerfile, so that a fresh
+# machine and CI install exactly the same set. Safe to run again: it installs only what is missing.
+set -euo pipefail
+
+build_packages=(
+  build-essential cmake ninja-build pkg-config git ca-certificates curl
+  libboost-dev libboost-system-dev            # Asio + Beast 1.74 (header-only, system for errors)
+  libxml2-dev libxslt1-dev                    # libxml2, libxslt and libexslt
+  nlohmann-json3-dev libspdlog-dev libfmt-dev
+)
+test_packages=(
+  googletest libgtest-dev libgmock-dev libbenchmark-dev
+  python3 xsltproc
+)
+# rs274 (LinuxCNC's stand-alone interpreter) is used by tests/interop; recommends would pull in X11.
+interop_packages=(linuxcnc-uspace)
+bench_packages=(hyperfine wrk)
+
+want=("${build_packages[@]}")
+case "${1:-all}" in
+  build) ;;
+  all) want+=("${test_packages[@]}" "${bench_packages[@]}") ;;
+  *) echo "usage: $0 [build|all]" >&2; exit 2 ;;
+esac
+
+missing=()
+for p in "${want[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+interop_missing=()
+if [[ ${1:-all} == all ]]; then
+  for p in "${interop_packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || interop_missing+=("$p")
+  done
+fi
+
+if ((${#missing[@]} + ${#interop_missing[@]})); then
+  SUDO=""
+  [[ $(id -u) -eq 0 ]] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  if ((${#missing[@]})); then
+    $SUDO apt-get install -y -qq "${missing[@]}"
+  fi
+  if ((${#interop_missing[@]})); then
+    $SUDO apt-get install -y -qq --no-install-recommends "${interop_missing[@]}"
+  fi
+fi
