@@ -472,7 +472,7 @@ void Parser::parse_anchor_section() {
     Anchor anchor;
     anchor.name_offset = current_.offset;
     anchor.name_length = current_.length;
-    anchor.offset = current_.offset;
+    anchor.offset = current_.offset - 1;  // the "<"
     advance();
     if (current_.kind != Tok::Equals) {
       unexpected(current_, "'=' after the anchor name");

@@ -1,0 +1,174 @@
+// `inspect` (program-information extraction): golden JSON for real and own programs, and the
+// program-structure cases on small programs written here.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "corpus.hpp"
+#include "ncpost/p21/reader.hpp"
+#include "ncpost/stepnc/program_info.hpp"
+
+namespace ncpost::stepnc {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+ProgramInfo inspect_text(std::string text) {
+  p21::ReadResult r = p21::read(std::move(text));
+  EXPECT_TRUE(r.ok());
+  return inspect(r.model);
+}
+
+// Compares with tests/golden/inspect/<name>.json. NCPOST_UPDATE_GOLDEN=1 rewrites the file
+// instead; review the diff before committing it.
+void expect_golden(const ordered_json& actual, const std::string& name) {
+  const fs::path golden = test::source_dir() / "tests/golden/inspect" / (name + ".json");
+  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+    std::ofstream(golden) << actual.dump(2) << '\n';
+    return;
+  }
+  ASSERT_TRUE(fs::exists(golden)) << golden;
+  const ordered_json expected = ordered_json::parse(test::read_file(golden));
+  EXPECT_EQ(actual, expected) << "actual:\n" << actual.dump(2);
+}
+
+std::vector<std::uint64_t> element_ids(const ordered_json& workplan) {
+  std::vector<std::uint64_t> ids;
+  for (const auto& e : workplan["elements"]) ids.push_back(e["id"].get<std::uint64_t>());
+  return ids;
+}
+
+TEST(InspectCorpus, NistExample1Tree) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const ProgramInfo info = inspect_text(test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
+  EXPECT_TRUE(info.diagnostics.empty());
+  const auto& project = info.json["project"];
+  EXPECT_EQ(project["name"], "EXECUTE EXAMPLE1");
+  const auto& main = project["main_workplan"];
+  EXPECT_EQ(main["name"], "MAIN WORKPLAN");
+  EXPECT_EQ(element_ids(main), (std::vector<std::uint64_t>{10, 11, 12, 13, 14}));
+  const auto& drill = main["elements"][1];
+  EXPECT_EQ(drill["name"], "WS DRILL HOLE1");
+  EXPECT_EQ(drill["feature"]["type"], "ROUND_HOLE");
+  EXPECT_EQ(drill["operation"]["type"], "DRILLING");
+  EXPECT_EQ(drill["tool"]["name"], "SPIRAL_DRILL_20MM");
+  EXPECT_EQ(info.json["tools"].size(), 3u);
+  EXPECT_EQ(info.json["statistics"]["workingsteps"], 5);
+  EXPECT_EQ(info.json["statistics"]["by_type"]["CARTESIAN_POINT"], 13);
+  EXPECT_EQ(info.json["header"]["author"], (ordered_json{"YONG TAK HYUN", "JOCHEN WOLF"}));
+  expect_golden(info.json, "nist_toolkit_ex1");
+}
+
+TEST(InspectCorpus, NistExample1ExplicitToolpaths) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const ProgramInfo info = inspect_text(test::read_file(corpus / "p21/nist_toolkit_ex1E.stp"));
+  EXPECT_TRUE(info.diagnostics.empty());
+  expect_golden(info.json, "nist_toolkit_ex1E");
+}
+
+TEST(InspectCorpus, Ap238AimFileIsNamedAsSuch) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  p21::ReadResult r = p21::read(test::read_file(corpus / "p21/efrainrodriguez_exp2.stpnc"));
+  const ProgramInfo info = inspect(r.model);
+  ASSERT_EQ(info.diagnostics.size(), 1u);
+  EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-006");
+  EXPECT_TRUE(info.json["project"].is_null());
+  EXPECT_EQ(info.json["header"]["schemas"], (ordered_json{"INTEGRATED_CNC_SCHEMA"}));
+}
+
+TEST(InspectOwn, BracketExample) {
+  const ProgramInfo info = inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
+  EXPECT_TRUE(info.diagnostics.empty());
+  const auto& main = info.json["project"]["main_workplan"];
+  EXPECT_EQ(element_ids(main), (std::vector<std::uint64_t>{20, 21, 22, 23, 24}));
+  EXPECT_EQ(main["elements"][0]["text"], "Check that the blank is clamped at both ends");
+  EXPECT_EQ(element_ids(main["elements"][2]), (std::vector<std::uint64_t>{25, 26}));
+  expect_golden(info.json, "bracket");
+}
+
+std::string program(const std::string& data) {
+  return "ISO-10303-21;HEADER;FILE_DESCRIPTION(('t'),'2;1');"
+         "FILE_NAME('t','t',(''),(''),'','','');FILE_SCHEMA(('MACHINING_SCHEMA'));ENDSEC;DATA;\n" +
+         data + "\nENDSEC;END-ISO-10303-21;";
+}
+
+TEST(InspectOwn, ControlStructures) {
+  const ProgramInfo info = inspect_text(program(
+      "#1=PROJECT('P',#2,(),$,$,$);"
+      "#2=WORKPLAN('MAIN',(#3,#4,#5,#6,#7,#8),$,$,$);"
+      "#3=IF_STATEMENT('IF',#20,#9,#10);"
+      "#4=WHILE_STATEMENT('WHILE',#20,#11);"
+      "#5=PARALLEL('PAR',(#9,#10));"
+      "#6=NON_SEQUENTIAL('NONSEQ',(#9));"
+      "#7=SELECTIVE('SEL',(#10));"
+      "#8=LOAD_TOOL('LOAD',#30);"
+      "#9=PROGRAM_STOP('STOP');#10=SET_MARK('MARK');#11=EXCHANGE_PALLET('PALLET');"
+      "#20=COMPARISON_EQUAL(#21,#21);#21=NC_CONSTANT('C',1.);"
+      "#30=MILLING_CUTTING_TOOL('T1',$,(),$,$,$);"));
+  EXPECT_TRUE(info.diagnostics.empty());
+  const auto& e = info.json["project"]["main_workplan"]["elements"];
+  EXPECT_EQ(e[0]["true_branch"]["type"], "PROGRAM_STOP");
+  EXPECT_EQ(e[0]["false_branch"]["type"], "SET_MARK");
+  EXPECT_EQ(e[1]["body"]["type"], "EXCHANGE_PALLET");
+  EXPECT_EQ(e[2]["branches"].size(), 2u);
+  EXPECT_EQ(e[3]["elements"][0]["id"], 9);
+  EXPECT_EQ(e[4]["elements"][0]["id"], 10);
+  EXPECT_EQ(e[5]["tool"]["name"], "T1");
+  EXPECT_EQ(info.json["tools"][0]["used_by"], (ordered_json{8}));
+}
+
+TEST(InspectOwn, WorkplanThatContainsItself) {
+  const ProgramInfo info = inspect_text(program(
+      "#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
+      "#3=WORKPLAN('LOOP',(#2),$,$,$);"));
+  ASSERT_EQ(info.diagnostics.size(), 1u);
+  EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-005");
+  EXPECT_EQ(info.diagnostics[0].message, "#2 contains itself");
+}
+
+TEST(InspectOwn, DeepNestingIsBounded) {
+  std::string data = "#1=PROJECT('P',#2,(),$,$,$);";
+  const int depth = 5000;
+  for (int i = 2; i < depth; ++i)
+    data += "#" + std::to_string(i) + "=WORKPLAN('W',(#" + std::to_string(i + 1) + "),$,$,$);";
+  data += "#" + std::to_string(depth) + "=PROGRAM_STOP('S');";
+  const ProgramInfo info = inspect_text(program(data));
+  ASSERT_EQ(info.diagnostics.size(), 1u);
+  EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-008");
+}
+
+TEST(InspectOwn, MainWorkplanOfTheWrongType) {
+  const ProgramInfo info =
+      inspect_text(program("#1=PROJECT('P',#2,(),$,$,$);#2=CARTESIAN_POINT('X',(0.,0.,0.));"));
+  ASSERT_EQ(info.diagnostics.size(), 1u);
+  EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-003");
+  EXPECT_NE(info.diagnostics[0].message.find("#1"), std::string::npos);
+}
+
+TEST(InspectOwn, UnknownExecutableIsReportedNotDropped) {
+  const ProgramInfo info = inspect_text(
+      program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);#3=MYSTERY('M');"));
+  ASSERT_EQ(info.diagnostics.size(), 1u);
+  EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-007");
+  EXPECT_EQ(info.json["project"]["main_workplan"]["elements"][0]["type"], "MYSTERY");
+}
+
+TEST(InspectOwn, NotAStepNcFile) {
+  const ProgramInfo info = inspect_text(program("#1=CARTESIAN_POINT('X',(0.,0.,0.));"));
+  ASSERT_EQ(info.diagnostics.size(), 1u);
+  EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-001");
+  EXPECT_EQ(info.json["statistics"]["instances"], 1);
+}
+
+TEST(InspectOwn, TextFormatShowsTheTree) {
+  const ProgramInfo info = inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
+  const std::string text = format_text(info.json);
+  EXPECT_NE(text.find("project:     #1 'BRACKET'"), std::string::npos) << text;
+  EXPECT_NE(text.find("      #25 MACHINING_WORKINGSTEP 'DRILL HOLE'"), std::string::npos) << text;
+  EXPECT_LT(text.find("'DRILL HOLE'"), text.find("'REAM HOLE'"));
+}
+
+}  // namespace
+}  // namespace ncpost::stepnc
