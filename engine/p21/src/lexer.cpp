@@ -56,61 +56,55 @@ Lexer::Lexer(std::string_view text, diag::DiagnosticList& diagnostics)
     : begin_(text.data()),
       p_(text.data()),
       end_(text.data() + text.size()),
-      line_start_(text.data()),
       diagnostics_(diagnostics) {}
 
-void Lexer::report(Code code, std::uint32_t line, std::uint32_t column, std::string message) {
-  if (!quiet_) diagnostics_.add(code, line, column, std::move(message));
+LineIndex::Position Lexer::position(std::uint32_t offset) {
+  if (!lines_) lines_.emplace(std::string_view(begin_, static_cast<std::size_t>(end_ - begin_)));
+  return lines_->at(offset);
+}
+
+void Lexer::report(Code code, const char* at, std::string message) {
+  if (quiet_) return;
+  const auto pos = position(static_cast<std::uint32_t>(at - begin_));
+  diagnostics_.add(code, pos.line, pos.column, std::move(message));
+}
+
+Token Lexer::make(Tok kind, const char* start, const char* value, const char* value_end) {
+  Token t;
+  t.kind = kind;
+  t.start = static_cast<std::uint32_t>(start - begin_);
+  t.offset = static_cast<std::uint32_t>(value - begin_);
+  t.length = static_cast<std::uint32_t>(value_end - value);
+  return t;
 }
 
 Token Lexer::make(Tok kind, const char* start, const char* end) {
-  Token t;
-  t.kind = kind;
-  t.offset = static_cast<std::uint32_t>(start - begin_);
-  t.length = static_cast<std::uint32_t>(end - start);
-  t.line = line_;
-  t.column = column_of(start);
-  return t;
+  return make(kind, start, start, end);
 }
 
 Token Lexer::error(Code code, const char* at, const char* resume, std::string message,
                    bool recoverable) {
   Token t = make(Tok::Error, at, resume);
   t.recoverable = recoverable;
-  report(code, t.line, t.column, std::move(message));
+  report(code, at, std::move(message));
   p_ = resume;
   return t;
 }
 
 void Lexer::skip_space_and_comments() {
   for (;;) {
-    while (p_ < end_ && is(*p_, kSpace)) {
-      if (*p_ == '\n') {
-        ++line_;
-        line_start_ = p_ + 1;
-      }
-      ++p_;
-    }
+    while (p_ < end_ && is(*p_, kSpace)) ++p_;
     if (p_ + 1 < end_ && p_[0] == '/' && p_[1] == '*') {
       const char* start = p_;
-      const std::uint32_t start_line = line_;
-      const std::uint32_t start_column = column_of(start);
       p_ += 2;
       for (;;) {
         const void* hit = std::memchr(p_, '*', static_cast<std::size_t>(end_ - p_));
-        const char* star = hit ? static_cast<const char*>(hit) : end_;
-        for (const char* q = p_; q < star; ++q) {
-          if (*q == '\n') {
-            ++line_;
-            line_start_ = q + 1;
-          }
-        }
         if (!hit) {
           p_ = end_;
-          report(Code::P21UnterminatedComment, start_line, start_column,
-                 "comment opened here is never closed by '*/'");
+          report(Code::P21UnterminatedComment, start, "comment opened here is never closed by '*/'");
           return;
         }
+        const char* star = static_cast<const char*>(hit);
         p_ = star + 1;
         if (p_ < end_ && *p_ == '/') {
           ++p_;
@@ -126,14 +120,7 @@ void Lexer::skip_space_and_comments() {
 bool Lexer::skip_raw_past(std::string_view terminator) {
   const std::string_view rest(p_, static_cast<std::size_t>(end_ - p_));
   const std::size_t at = rest.find(terminator);
-  const char* stop = at == std::string_view::npos ? end_ : p_ + at + terminator.size();
-  for (const char* q = p_; q < stop; ++q) {
-    if (*q == '\n') {
-      ++line_;
-      line_start_ = q + 1;
-    }
-  }
-  p_ = stop;
+  p_ = at == std::string_view::npos ? end_ : p_ + at + terminator.size();
   return at != std::string_view::npos;
 }
 
@@ -265,22 +252,14 @@ bool Lexer::string_runs_away(const char* newline) const {
 
 Token Lexer::lex_string(const char* start) {
   const char* q = start + 1;
-  const std::uint32_t start_line = line_;
-  const std::uint32_t start_column = column_of(start);
   bool needs_decoding = false;
-  bool has_nul = false;
-  std::uint32_t nul_line = 0;
-  std::uint32_t nul_column = 0;
+  const char* nul_at = nullptr;
   for (;;) {
     while (q < end_ && !is(*q, kStringStop)) ++q;
     if (q >= end_) {
-      Token t = make(Tok::Error, start, end_);
-      t.line = start_line;
-      t.column = start_column;
-      report(Code::P21UnterminatedString, start_line, start_column,
-             "string is never closed by an apostrophe");
+      report(Code::P21UnterminatedString, start, "string is never closed by an apostrophe");
       p_ = end_;
-      return t;
+      return make(Tok::Error, start, end_);
     }
     const char c = *q;
     if (c == '\'') {
@@ -299,44 +278,30 @@ Token Lexer::lex_string(const char* start) {
     }
     if (c == '\n') {
       if (string_runs_away(q)) {
-        Token t = make(Tok::Error, start, q);
-        t.line = start_line;
-        t.column = start_column;
-        report(Code::P21UnterminatedString, start_line, start_column,
+        report(Code::P21UnterminatedString, start,
                "string is not closed before the next line, which starts a new instance");
         p_ = q;  // the next token starts on the following line
-        return t;
+        return make(Tok::Error, start, q);
       }
-      ++line_;
-      line_start_ = q + 1;
       ++q;
       continue;
     }
-    if (c == '\0' && !has_nul) {
-      has_nul = true;
-      nul_line = line_;
-      nul_column = column_of(q);
-    }
+    if (c == '\0' && nul_at == nullptr) nul_at = q;
     ++q;  // other control characters and non-ASCII bytes: checked below
   }
   const char* body = start + 1;
   p_ = q + 1;
-  if (has_nul) {
-    Token t = make(Tok::Error, start, p_);
-    t.line = start_line;
-    t.column = start_column;
-    report(Code::P21NulByte, nul_line, nul_column, "NUL byte inside a string");
-    return t;
+  if (nul_at != nullptr) {
+    report(Code::P21NulByte, nul_at, "NUL byte inside a string");
+    return make(Tok::Error, start, p_);
   }
   if (q - body > static_cast<std::ptrdiff_t>(Value::kMaxSliceLength)) {
     Token t = make(Tok::Error, start, p_);
     t.recoverable = true;
-    report(Code::P21TokenTooLong, start_line, start_column, "string literal is too long");
+    report(Code::P21TokenTooLong, start, "string literal is too long");
     return t;
   }
-  Token t = make(Tok::String, body, q);
-  t.line = start_line;
-  t.column = start_column;
+  Token t = make(Tok::String, start, body, q);
   t.needs_decoding = needs_decoding;
   if (needs_decoding) validate_string(t);
   return t;
@@ -346,20 +311,10 @@ void Lexer::validate_string(const Token& token) {
   const std::string_view raw(begin_ + token.offset, token.length);
   const StringProblem problem = check_string(raw);
   if (problem.kind == StringProblem::None) return;
-  const std::size_t bad = problem.offset;
-  // Position of the problem: count lines from the token's start.
-  std::uint32_t line = token.line;
-  std::uint32_t column = token.column + 1 + static_cast<std::uint32_t>(bad);
-  for (std::size_t i = 0; i < bad; ++i) {
-    if (raw[i] == '\n') {
-      ++line;
-      column = static_cast<std::uint32_t>(bad - i);
-    }
-  }
   const Code code = problem.kind == StringProblem::Malformed       ? Code::P21BadEscape
                     : problem.kind == StringProblem::LoneBackslash ? Code::P21LoneBackslash
                                                                    : Code::P21StringEncoding;
-  report(code, line, column, problem.message);
+  report(code, begin_ + token.offset + problem.offset, problem.message);
 }
 
 Token Lexer::lex_keyword(const char* start) {
@@ -402,7 +357,7 @@ Token Lexer::lex_hash_or_at(const char* start) {
                    false);
     if (*start == '@') {
       p_ = q;
-      return make(Tok::ValueName, start + 1, q);
+      return make(Tok::ValueName, start, start + 1, q);
     }
     p_ = q;
     Token t = make(Tok::InstanceName, start, q);
@@ -412,9 +367,7 @@ Token Lexer::lex_hash_or_at(const char* start) {
   if (q < end_ && is(*q, kLetter)) {
     while (q < end_ && (is(*q, kLetter) || is(*q, kDigit))) ++q;
     p_ = q;
-    Token t = make(Tok::ConstantName, start + 1, q);
-    t.column = column_of(start);
-    return t;
+    return make(Tok::ConstantName, start, start + 1, q);
   }
   return error(Code::P21InvalidCharacter, start, q,
                std::string("'") + *start + "' must be followed by digits or a name", false);
@@ -435,9 +388,7 @@ Token Lexer::lex_enumeration(const char* start) {
                  "malformed enumeration " + quoted(start, q) + " (expected .NAME.)", true);
   }
   p_ = q + 1;
-  Token t = make(Tok::Enumeration, start + 1, q);
-  t.column = column_of(start);
-  return t;
+  return make(Tok::Enumeration, start, start + 1, q);
 }
 
 Token Lexer::lex_binary(const char* start) {
@@ -454,9 +405,7 @@ Token Lexer::lex_binary(const char* start) {
                  true);
   }
   p_ = q + 1;
-  Token t = make(Tok::Binary, start + 1, q);
-  t.column = column_of(start);
-  return t;
+  return make(Tok::Binary, start, start + 1, q);
 }
 
 Token Lexer::lex_resource(const char* start) {
@@ -466,9 +415,7 @@ Token Lexer::lex_resource(const char* start) {
     return error(Code::P21UnexpectedToken, start, q, "'<' opens a name that '>' never closes",
                  false);
   p_ = q + 1;
-  Token t = make(Tok::Resource, start + 1, q);
-  t.column = column_of(start);
-  return t;
+  return make(Tok::Resource, start, start + 1, q);
 }
 
 }  // namespace ncpost::p21::detail

@@ -5,9 +5,11 @@
 // to the diagnostic list, and the token comes back as `Error`.
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/p21/reader.hpp"
 
 namespace ncpost::p21::detail {
 
@@ -38,15 +40,16 @@ enum class Tok : std::uint8_t {
   Error,     // already reported; `recoverable` says whether its extent is trustworthy
 };
 
+// Positions are byte offsets only: line and column are worked out when a diagnostic needs
+// them, so the hot path never counts newlines.
 struct Token {
   Tok kind = Tok::Eof;
   bool needs_decoding = false;  // strings: more than a plain copy is needed to decode
   bool recoverable = false;     // errors: the token's extent is sound, a placeholder may stand in
-  std::uint32_t offset = 0;
+  std::uint32_t start = 0;      // first byte of the token, delimiters included
+  std::uint32_t offset = 0;     // the token's value: the slice without delimiters
   std::uint32_t length = 0;
-  std::uint32_t line = 1;
-  std::uint32_t column = 1;
-  std::uint64_t id = 0;
+  std::uint64_t id = 0;         // instance names only
 };
 
 class Lexer {
@@ -61,14 +64,13 @@ class Lexer {
   // content is not made of tokens). Returns false at end of input.
   bool skip_raw_past(std::string_view terminator);
   [[nodiscard]] bool at_end() const { return p_ >= end_; }
-  [[nodiscard]] std::uint32_t line() const { return line_; }
-  [[nodiscard]] std::uint32_t column_of(const char* at) const {
-    return static_cast<std::uint32_t>(at - line_start_) + 1;
-  }
+  // Line and column of a byte offset; the line table is built on the first call.
+  [[nodiscard]] LineIndex::Position position(std::uint32_t offset);
 
  private:
   void skip_space_and_comments();
   Token make(Tok kind, const char* start, const char* end);
+  Token make(Tok kind, const char* start, const char* value, const char* value_end);
   Token error(diag::Code code, const char* at, const char* resume, std::string message,
               bool recoverable);
   Token lex_number(const char* start);
@@ -79,15 +81,14 @@ class Lexer {
   Token lex_binary(const char* start);
   Token lex_resource(const char* start);
   Token lex_garbage(const char* start);
-  void report(diag::Code code, std::uint32_t line, std::uint32_t column, std::string message);
+  void report(diag::Code code, const char* at, std::string message);
   [[nodiscard]] bool string_runs_away(const char* newline) const;
   void validate_string(const Token& token);
 
   const char* begin_;
   const char* p_;
   const char* end_;
-  const char* line_start_;
-  std::uint32_t line_ = 1;
+  std::optional<LineIndex> lines_;
   diag::DiagnosticList& diagnostics_;
   bool quiet_ = false;
 };

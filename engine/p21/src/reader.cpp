@@ -67,8 +67,7 @@ class Parser {
  private:
   // ---- tokens ----
   void advance() {
-    previous_end_line_ = current_.line;
-    previous_end_column_ = current_.column + current_.length;
+    previous_end_ = current_.offset + current_.length;
     if (has_peeked_) {
       current_ = peeked_;
       has_peeked_ = false;
@@ -91,8 +90,10 @@ class Parser {
   }
   [[nodiscard]] bool stopped() const { return diagnostics_.full(); }
 
-  void error(Code code, const Token& at, std::string message) {
-    diagnostics_.add(code, at.line, at.column, std::move(message));
+  void error(Code code, const Token& at, std::string message) { error_at(code, at.start, std::move(message)); }
+  void error_at(Code code, std::uint32_t offset, std::string message) {
+    const auto pos = lexer_.position(offset);
+    diagnostics_.add(code, pos.line, pos.column, std::move(message));
   }
   void unexpected(const Token& at, std::string_view expected) {
     if (at.kind == Tok::Error) return;  // the lexer has reported it
@@ -118,6 +119,30 @@ class Parser {
   ListEnd parse_parameters(std::uint32_t& first, std::uint32_t& count);
   std::optional<Value> simple_value(const Token& t);
 
+  // Entity names repeat on almost every line, so a small direct-mapped cache of exact spellings
+  // saves the case-insensitive hash look-up for nearly all of them.
+  KeywordId intern(const Token& t) {
+    const std::string_view name = slice(t);
+    const std::size_t h = (name.size() * 31u + static_cast<unsigned char>(name.front()) * 7u +
+                           static_cast<unsigned char>(name.back()) +
+                           static_cast<unsigned char>(name[name.size() / 2]) * 131u) &
+                          (kKeywordCacheSize - 1);
+    KeywordCacheEntry& entry = keyword_cache_[h];
+    if (entry.length == name.size() && entry.length != 0 &&
+        std::memcmp(text_.data() + entry.offset, name.data(), name.size()) == 0)
+      return entry.id;
+    const KeywordId id = builder_.intern(name);
+    entry = {t.offset, t.length, id};
+    return id;
+  }
+  struct KeywordCacheEntry {
+    std::uint32_t offset = 0;
+    std::uint32_t length = 0;
+    KeywordId id = 0;
+  };
+  static constexpr std::size_t kKeywordCacheSize = 512;
+  std::array<KeywordCacheEntry, kKeywordCacheSize> keyword_cache_{};
+
   ModelBuilder& builder_;
   std::string_view text_;
   Lexer lexer_;
@@ -127,8 +152,7 @@ class Parser {
   Token current_;
   Token peeked_;
   bool has_peeked_ = false;
-  std::uint32_t previous_end_line_ = 1;
-  std::uint32_t previous_end_column_ = 1;
+  std::uint32_t previous_end_ = 0;  // just past the previous token, for "missing ';'"
 
   struct Frame {
     std::uint32_t stack_base;  // where this list's items start on the scratch stack
@@ -151,8 +175,7 @@ bool Parser::expect_semicolon(std::string_view after) {
     return false;
   }
   // A forgotten ';' before the next instance or section: report it and go on from there.
-  diagnostics_.add(Code::P21MissingSemicolon, previous_end_line_, previous_end_column_,
-                   "missing ';' after " + std::string(after));
+  error_at(Code::P21MissingSemicolon, previous_end_, "missing ';' after " + std::string(after));
   const bool next_starts_something =
       (current_.kind == Tok::InstanceName && peek().kind == Tok::Equals) ||
       current_.kind == Tok::Keyword || current_.kind == Tok::EndMagic;
@@ -247,7 +270,7 @@ ListEnd Parser::parse_parameters(std::uint32_t& first, std::uint32_t& count) {
               unexpected(current_, "'(' after the type name of a typed parameter");
               return ListEnd::Broken;
             }
-            keyword = builder_.intern(slice(t));
+            keyword = intern(t);
           }
           if (frames_.size() >= options_.max_list_depth) {
             error(Code::P21NestingTooDeep, current_,
@@ -383,7 +406,7 @@ void Parser::parse_file() {
     resynchronise();
   }
   if (stopped())
-    diagnostics_.add(Code::P21TooManyErrors, current_.line, current_.column,
+    error_at(Code::P21TooManyErrors, current_.start,
                      "stopped after " + std::to_string(options_.max_errors) + " errors");
   if (!seen_data && !stopped())
     diagnostics_.add(Code::P21NoData, 1, 1, "the file has no DATA section");
@@ -398,7 +421,7 @@ void Parser::check_header_order(std::uint32_t first_header) {
     const bool in_place = i < header.size() && model.type_name(header[i]) == kRequired[i];
     if (in_place) continue;
     const bool present = model.header_entity(kRequired[i]) != nullptr;
-    diagnostics_.add(Code::P21HeaderEntity, current_.line, current_.column,
+    error_at(Code::P21HeaderEntity, current_.start,
                      std::string(kRequired[i]) +
                          (present ? " is out of order: the header must start with "
                                     "FILE_DESCRIPTION, FILE_NAME, FILE_SCHEMA"
@@ -428,7 +451,7 @@ void Parser::parse_header_section() {
       }
       advance();
       Instance entity;
-      entity.offset = keyword.offset;
+      entity.offset = keyword.start;
       entity.keyword = builder_.intern(slice(keyword));
       if (parse_parameters(entity.first, entity.count) == ListEnd::Broken) {
         builder_.truncate_values(values_before);
@@ -472,7 +495,7 @@ void Parser::parse_anchor_section() {
     Anchor anchor;
     anchor.name_offset = current_.offset;
     anchor.name_length = current_.length;
-    anchor.offset = current_.offset - 1;  // the "<"
+    anchor.offset = current_.start;
     advance();
     if (current_.kind != Tok::Equals) {
       unexpected(current_, "'=' after the anchor name");
@@ -542,7 +565,7 @@ void Parser::parse_reference_section() {
     const Value uri = Value::slice(ValueKind::Resource, current_.offset, current_.length);
     Instance external;
     external.id = name.id;
-    external.offset = name.offset;
+    external.offset = name.start;
     external.keyword = Model::kExternalKeyword;
     external.first = builder_.push_values(std::span<const Value>(&uri, 1));
     external.count = 1;
@@ -554,7 +577,7 @@ void Parser::parse_reference_section() {
 
 void Parser::parse_data_section() {
   DataSection section;
-  section.offset = current_.offset;
+  section.offset = current_.start;
   advance();  // DATA
   if (current_.kind == Tok::LParen) {
     advance();
@@ -597,20 +620,21 @@ void Parser::parse_instance() {
   advance();
   Instance instance;
   instance.id = name.id;
-  instance.offset = name.offset;
+  instance.offset = name.start;
   // A broken instance leaves nothing behind in the arena.
   const std::uint32_t values_before = builder_.value_count();
   const auto drop = [&] {
     builder_.truncate_values(values_before);
     resynchronise();
   };
-  const std::string what = "instance #" + std::to_string(name.id);
+  // Built only when a message needs it: this runs once per instance.
+  const auto what = [&] { return "instance #" + std::to_string(name.id); };
 
   if (current_.kind == Tok::Keyword) {
-    instance.keyword = builder_.intern(slice(current_));
+    instance.keyword = intern(current_);
     advance();
     if (current_.kind != Tok::LParen) {
-      unexpected(current_, "'(' after the entity name of " + what);
+      unexpected(current_, "'(' after the entity name of " + what());
       drop();
       return;
     }
@@ -625,10 +649,10 @@ void Parser::parse_instance() {
     instance.keyword = Model::kComplexKeyword;
     std::vector<Value> records;
     while (current_.kind == Tok::Keyword) {
-      const KeywordId record = builder_.intern(slice(current_));
+      const KeywordId record = intern(current_);
       advance();
       if (current_.kind != Tok::LParen) {
-        unexpected(current_, "'(' after a partial record name in " + what);
+        unexpected(current_, "'(' after a partial record name in " + what());
         drop();
         return;
       }
@@ -643,12 +667,12 @@ void Parser::parse_instance() {
       records.push_back(Value::typed(record, builder_.push_values(std::span<const Value>(&list, 1))));
     }
     if (current_.kind != Tok::RParen) {
-      unexpected(current_, "a partial record name or ')' in complex " + what);
+      unexpected(current_, "a partial record name or ')' in complex " + what());
       drop();
       return;
     }
     if (records.empty()) {
-      error(Code::P21EmptyComplex, name, "complex " + what + " has no partial records");
+      error(Code::P21EmptyComplex, name, "complex " + what() + " has no partial records");
       advance();
       drop();
       return;
@@ -657,12 +681,12 @@ void Parser::parse_instance() {
     instance.first = builder_.push_values(records);
     instance.count = static_cast<std::uint32_t>(records.size());
   } else {
-    unexpected(current_, "an entity name or '(' for " + what);
+    unexpected(current_, "an entity name or '(' for " + what());
     resynchronise();
     return;
   }
   builder_.add_instance(instance);
-  expect_semicolon(what);
+  expect_semicolon(what());
 }
 
 // After the scan: ids, duplicates and references.
