@@ -17,12 +17,15 @@ test_packages=(
 # rs274 (LinuxCNC's stand-alone interpreter) is used by tests/interop; recommends would pull in X11.
 interop_packages=(linuxcnc-uspace)
 bench_packages=(hyperfine wrk)
+# Peers that benchmarks compare against; large, so only `install-deps.sh peers` installs them.
+peer_packages=(libocct-data-exchange-dev libtbb-dev)  # OCCT's CMake config names libtbb.so
 
 want=("${build_packages[@]}")
 case "${1:-all}" in
   build) ;;
   all) want+=("${test_packages[@]}" "${bench_packages[@]}") ;;
-  *) echo "usage: $0 [build|all]" >&2; exit 2 ;;
+  peers) want+=("${test_packages[@]}" "${bench_packages[@]}" "${peer_packages[@]}") ;;
+  *) echo "usage: $0 [build|all|peers]" >&2; exit 2 ;;
 esac
 
 missing=()
@@ -30,7 +33,7 @@ for p in "${want[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
 done
 interop_missing=()
-if [[ ${1:-all} == all ]]; then
+if [[ ${1:-all} != build ]]; then
   for p in "${interop_packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || interop_missing+=("$p")
   done
