@@ -360,9 +360,7 @@ Token Lexer::lex_hash_or_at(const char* start) {
       return make(Tok::ValueName, start, start + 1, q);
     }
     p_ = q;
-    Token t = make(Tok::InstanceName, start, q);
-    t.id = id;
-    return t;
+    return make(Tok::InstanceName, start, start + 1, q);
   }
   if (q < end_ && is(*q, kLetter)) {
     while (q < end_ && (is(*q, kLetter) || is(*q, kDigit))) ++q;

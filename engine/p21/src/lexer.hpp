@@ -41,7 +41,9 @@ enum class Tok : std::uint8_t {
 };
 
 // Positions are byte offsets only: line and column are worked out when a diagnostic needs
-// them, so the hot path never counts newlines.
+// them, so the hot path never counts newlines. The token is 16 bytes so that it comes back
+// from next() in registers; an instance name's number is re-read from its (validated) digits
+// with instance_id().
 struct Token {
   Tok kind = Tok::Eof;
   bool needs_decoding = false;  // strings: more than a plain copy is needed to decode
@@ -49,8 +51,16 @@ struct Token {
   std::uint32_t start = 0;      // first byte of the token, delimiters included
   std::uint32_t offset = 0;     // the token's value: the slice without delimiters
   std::uint32_t length = 0;
-  std::uint64_t id = 0;         // instance names only
 };
+static_assert(sizeof(Token) == 16);
+
+// The number of an InstanceName token; the lexer has checked that it is in range.
+[[nodiscard]] inline std::uint64_t instance_id(std::string_view text, const Token& t) {
+  std::uint64_t id = 0;
+  for (std::uint32_t i = 0; i < t.length; ++i)
+    id = id * 10 + static_cast<std::uint64_t>(text[t.offset + i] - '0');
+  return id;
+}
 
 class Lexer {
  public:

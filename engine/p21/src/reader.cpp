@@ -22,7 +22,7 @@ std::string describe(const Token& t, std::string_view text) {
   switch (t.kind) {
     case Tok::Eof: return "end of file";
     case Tok::Keyword: return "keyword '" + std::string(text.substr(t.offset, t.length)) + "'";
-    case Tok::InstanceName: return "instance name '#" + std::to_string(t.id) + "'";
+    case Tok::InstanceName: return "instance name '#" + std::to_string(detail::instance_id(text, t)) + "'";
     case Tok::ConstantName: return "constant name";
     case Tok::ValueName: return "value instance name";
     case Tok::Integer: return "integer";
@@ -209,7 +209,7 @@ std::optional<Value> Parser::simple_value(const Token& t) {
       return Value::slice(ValueKind::String, t.offset, t.length, t.needs_decoding);
     case Tok::Enumeration: return Value::slice(ValueKind::Enumeration, t.offset, t.length);
     case Tok::Binary: return Value::slice(ValueKind::Binary, t.offset, t.length);
-    case Tok::InstanceName: return Value::reference(t.id);
+    case Tok::InstanceName: return Value::reference(detail::instance_id(text_, t));
     case Tok::ConstantName: return Value::slice(ValueKind::ConstantName, t.offset, t.length);
     case Tok::ValueName: return Value::slice(ValueKind::ValueName, t.offset, t.length);
     case Tok::Resource: return Value::slice(ValueKind::Resource, t.offset, t.length);
@@ -564,7 +564,7 @@ void Parser::parse_reference_section() {
     // An external instance: it takes part in reference resolution like a local one.
     const Value uri = Value::slice(ValueKind::Resource, current_.offset, current_.length);
     Instance external;
-    external.id = name.id;
+    external.id = detail::instance_id(text_, name);
     external.offset = name.start;
     external.keyword = Model::kExternalKeyword;
     external.first = builder_.push_values(std::span<const Value>(&uri, 1));
@@ -619,7 +619,7 @@ void Parser::parse_instance() {
   }
   advance();
   Instance instance;
-  instance.id = name.id;
+  instance.id = detail::instance_id(text_, name);
   instance.offset = name.start;
   // A broken instance leaves nothing behind in the arena.
   const std::uint32_t values_before = builder_.value_count();
@@ -628,7 +628,7 @@ void Parser::parse_instance() {
     resynchronise();
   };
   // Built only when a message needs it: this runs once per instance.
-  const auto what = [&] { return "instance #" + std::to_string(name.id); };
+  const auto what = [&] { return "instance #" + std::to_string(instance.id); };
 
   if (current_.kind == Tok::Keyword) {
     instance.keyword = intern(current_);
