@@ -25,6 +25,9 @@ struct Expectation {
   std::string diagnostics;  // "line:column:code ..." or "clean"
 };
 
+// Names the case in gtest's output instead of dumping its bytes.
+void PrintTo(const Expectation& e, std::ostream* os) { *os << e.file; }
+
 std::vector<Expectation> load_expectations() {
   std::vector<Expectation> out;
   std::ifstream in(test::source_dir() / "tests/golden/p21/corpus.tsv");
