@@ -86,8 +86,21 @@ class Writer {
     out_.append(digits.data(), end);
   }
 
+  // Lower-case entity names and plans, cached per keyword: looked up once per distinct entity,
+  // not once per instance or reference.
+  const std::string& lower_name(p21::KeywordId keyword) {
+    if (keyword >= lower_names_.size()) lower_names_.resize(model_.keyword_count());
+    std::string& name = lower_names_[keyword];
+    if (name.empty()) name = detail::lower(model_.keyword(keyword));
+    return name;
+  }
+
   const EntityPlan& plan_of(const Instance& inst) {
-    const EntityPlan& plan = binding_.entity(model_.type_name(inst), inst.count);
+    if (inst.keyword >= plans_.size()) plans_.resize(model_.keyword_count(), nullptr);
+    const EntityPlan*& cached = plans_[inst.keyword];
+    if (cached != nullptr && cached->attributes.size() >= inst.count) return *cached;
+    cached = &binding_.entity(model_.type_name(inst), inst.count);
+    const EntityPlan& plan = *cached;
     if (!plan.known && binding_.has_schema() && noted_.insert(plan.name).second)
       notes_.push_back(diag::make(diag::Code::P28NoSchemaEntity, 0, 0,
                                   "entity " + plan.name +
@@ -501,11 +514,9 @@ class Writer {
     switch (v.kind()) {
       case ValueKind::Reference: {
         const Instance* target = model_.find(v.id());
-        const std::string name =
-            target && !model_.is_complex(*target) ? detail::lower(model_.type_name(*target))
-                                                  : std::string("ex:entity");
         put("<");
-        put(name);
+        put(target && !model_.is_complex(*target) ? std::string_view(lower_name(target->keyword))
+                                                  : std::string_view("ex:entity"));
         put(" ref=\"i");
         id_number(v.id());
         put("\" xsi:nil=\"true\"");
@@ -593,6 +604,8 @@ class Writer {
   std::string out_;
   std::string decoded_;
   std::vector<diag::Diagnostic> notes_;
+  std::vector<std::string> lower_names_;
+  std::vector<const EntityPlan*> plans_;
   std::unordered_set<std::string> noted_;
   std::unordered_set<std::string> short_;
 };
