@@ -1,0 +1,86 @@
+#pragma once
+// The XML form of the canonical program, which profile stylesheets read. In: chunks of calls
+// (sink.hpp). Out: XML text, streamed (no DOM), well-formed whatever the calls hold.
+// The grammar is engine/canon/canon.rng (RELAX NG); docs/canon.md explains it.
+//
+// Each chunk is one standalone element, `<chunk seq="N">...</chunk>`, that an XSLT can
+// transform on its own. The whole program is
+//     <?xml version="1.0" encoding="UTF-8"?>\n<program format="ncpost-canon" version="1">\n
+//     ...the chunks, byte for byte as XmlChunkWriter writes them...
+//     </program>\n
+// Calls are elements named as in the trace (`<STRAIGHT_FEED x="1" y="2" z="-0.5"/>`), with
+// numbers as attributes in the shortest form that reads back to the same double. A
+// workingstep is a container, `<workingstep id="10" type="MACHINING_WORKINGSTEP" name="..">`
+// holding its calls; program, setup and workplan markers are empty begin/end elements
+// (`<WORKPLAN_BEGIN .../>`), because their begin and end lie in different chunks.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "ncpost/canon/call.hpp"
+#include "ncpost/canon/sink.hpp"
+#include "ncpost/canon/trace.hpp"
+
+namespace ncpost::canon {
+
+inline constexpr std::string_view kXmlPrologue =
+    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<program format=\"ncpost-canon\" version=\"1\">\n";
+inline constexpr std::string_view kXmlEpilogue = "</program>\n";
+
+// A number as the XML form writes it: std::to_chars shortest round-trip form, C locale,
+// -0 as "0", NaN and infinities as xsd:double spells them ("NaN", "INF", "-INF").
+void append_xml_number(std::string& out, double value);
+
+// Writes chunks one by one. It remembers one thing between chunks: a workingstep split over
+// several chunks (ChunkLimits::max_calls) is closed at the end of each and reopened, with
+// continued="true", at the start of the next, so every chunk stays well-formed on its own.
+class XmlChunkWriter {
+ public:
+  // Appends `<chunk seq="N">\n ... </chunk>\n`.
+  void append_chunk(std::string& out, const ChunkView& chunk);
+
+ private:
+  void append_calls(std::string& out, std::span<const Call> calls);
+  std::optional<Entity> open_workingstep_;
+};
+
+// A ChunkSink that hands the XML text of each chunk to a callback (for rendering chunk by
+// chunk). The string_view is valid during the callback only.
+class XmlChunkSink final : public ChunkSink {
+ public:
+  using Callback = std::function<void(std::uint64_t seq, std::string_view xml)>;
+  explicit XmlChunkSink(Callback out) : out_(std::move(out)) {}
+  void chunk(const ChunkView& chunk) override;
+
+ private:
+  Callback out_;
+  XmlChunkWriter writer_;
+  std::string text_;
+};
+
+// A ChunkSink that streams the whole program as one document to `out`: the prologue before
+// the first chunk, each chunk as it comes, the epilogue on finish().
+class XmlDocumentWriter final : public ChunkSink {
+ public:
+  explicit XmlDocumentWriter(TextSink out) : out_(std::move(out)) {}
+  void chunk(const ChunkView& chunk) override;
+  // Writes the epilogue (and the prologue, for a program without chunks). Once only.
+  void finish();
+
+ private:
+  void start();
+  TextSink out_;
+  XmlChunkWriter writer_;
+  std::string text_;
+  bool started_ = false;
+  bool finished_ = false;
+};
+
+// The whole program as one document, chunked as Chunker cuts it.
+[[nodiscard]] std::string to_xml_document(std::span<const Call> calls, ChunkLimits limits = {});
+
+}  // namespace ncpost::canon

@@ -1,0 +1,303 @@
+#include "ncpost/canon/xml.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <type_traits>
+
+#include "format.hpp"
+#include "ncpost/xmltext/escape.hpp"
+
+namespace ncpost::canon {
+namespace {
+
+using detail::append_integer;
+
+std::string_view xml_units(Units u) {
+  switch (u) {
+    case Units::Inches: return "inch";
+    case Units::Millimetres: return "mm";
+    case Units::Centimetres: return "cm";
+  }
+  return "mm";
+}
+
+std::string_view xml_plane(Plane p) {
+  switch (p) {
+    case Plane::Xy: return "xy";
+    case Plane::Yz: return "yz";
+    case Plane::Xz: return "xz";
+  }
+  return "xy";
+}
+
+// The element name without building a Call (which would copy strings and NURBS vectors).
+template <class T>
+std::string_view element_name(const T& c) {
+  if constexpr (std::is_same_v<T, Begin>) return marker_name(c.scope, true);
+  else if constexpr (std::is_same_v<T, End>) return marker_name(c.scope, false);
+  else if constexpr (std::is_same_v<T, Cycle>) return name(c.kind);
+  else if constexpr (std::is_same_v<T, NurbsFeed>) return "NURBS_FEED";
+  else if constexpr (std::is_same_v<T, Comment>) return "COMMENT";
+  else if constexpr (std::is_same_v<T, Message>) return "MESSAGE";
+  else return name(Call{c});  // the rest are a few numbers at most
+}
+
+// Writes one call as one element (a NURBS as an element with children), on its own line.
+class ElementWriter {
+ public:
+  ElementWriter(std::string& out, int indent) : out_(out), indent_(indent) {}
+
+  void operator()(const UseLengthUnits& c) { open(c), text("units", xml_units(c.units)), empty(); }
+  void operator()(const SetOriginOffsets& c) {
+    open(c);
+    number("x", c.offset.x), number("y", c.offset.y), number("z", c.offset.z);
+    rotary(c.rotary);
+    empty();
+  }
+  void operator()(const SetFeedReference& c) {
+    open(c);
+    text("reference", c.reference == FeedReference::Workpiece ? "workpiece" : "xyz");
+    empty();
+  }
+  void operator()(const SelectPlane& c) { open(c), text("plane", xml_plane(c.plane)), empty(); }
+  void operator()(const StraightTraverse& c) { open(c), pose(c.to), empty(); }
+  void operator()(const StraightFeed& c) { open(c), pose(c.to), empty(); }
+  void operator()(const ArcFeed& c) {
+    open(c);
+    number("x", c.end.x), number("y", c.end.y), number("z", c.end.z);
+    number("cx", c.centre.x), number("cy", c.centre.y), number("cz", c.centre.z);
+    number("ni", c.normal.i), number("nj", c.normal.j), number("nk", c.normal.k);
+    integer("turns", c.turns);
+    if (const auto p = plane_arc(c)) {
+      text("plane", xml_plane(p->plane));
+      number("first_end", p->first_end), number("second_end", p->second_end);
+      number("first_axis", p->first_axis), number("second_axis", p->second_axis);
+      integer("rotation", p->rotation);
+      number("axis_end_point", p->axis_end_point);
+    }
+    rotary(c.end.rotary);
+    tool_axis(c.end.tool_axis);
+    empty();
+  }
+  void operator()(const NurbsFeed& c) {
+    open(c);
+    integer("degree", c.degree);
+    rotary(c.rotary);
+    tool_axis(c.tool_axis);
+    out_ += ">\n";
+    for (const auto& p : c.points) {
+      indent(indent_ + 2);
+      out_ += "<point";
+      number("x", p.x), number("y", p.y), number("z", p.z), number("w", p.weight);
+      out_ += "/>\n";
+    }
+    for (const double k : c.knots) {
+      indent(indent_ + 2);
+      out_ += "<knot";
+      number("value", k);
+      out_ += "/>\n";
+    }
+    indent(indent_);
+    out_ += "</NURBS_FEED>\n";
+  }
+  void operator()(const SetFeedRate& c) { open(c), number("rate", c.rate), empty(); }
+  void operator()(const SetSpindleSpeed& c) { open(c), number("rpm", c.rpm), empty(); }
+  void operator()(const SelectTool& c) { open(c), integer("slot", c.slot), empty(); }
+  void operator()(const ChangeTool& c) { open(c), integer("slot", c.slot), empty(); }
+  void operator()(const UseToolLengthOffset& c) { open(c), number("length", c.length), empty(); }
+  void operator()(const Dwell& c) { open(c), number("seconds", c.seconds), empty(); }
+  void operator()(const Comment& c) { with_content(c, c.text); }
+  void operator()(const Message& c) { with_content(c, c.text); }
+  void operator()(const Begin& c) { open(c), entity(c.entity), empty(); }
+  void operator()(const End& c) { open(c), entity(c.entity), empty(); }
+  void operator()(const Cycle& c) {
+    open(c);
+    number("x", c.x), number("y", c.y);
+    number("safe_z", c.safe_z), number("r_z", c.r_z), number("bottom_z", c.bottom_z);
+    number("feed", c.feed), number("dwell", c.dwell);
+    switch (c.kind) {
+      case CycleKind::PeckDrill:
+        number("peck", c.peck), number("peck_retract", c.peck_retract);
+        number("peck_clearance", c.peck_clearance);
+        break;
+      case CycleKind::Tap:
+        number("pitch", c.pitch), number("spindle_speed", c.spindle_speed);
+        text("hand", c.left_hand ? "left" : "right");
+        break;
+      case CycleKind::Bore: text("spindle_stop", c.spindle_stop ? "true" : "false"); break;
+      case CycleKind::Drill:
+      case CycleKind::Ream: break;
+    }
+    rotary(c.rotary);
+    tool_axis(c.tool_axis);
+    empty();
+  }
+  // The calls without arguments; a new call with arguments does not compile until handled.
+  template <class T>
+    requires std::is_empty_v<T>
+  void operator()(const T& c) {
+    open(c), empty();
+  }
+
+  // The attributes of a structure marker (also used for <workingstep>).
+  void entity(const Entity& e) {
+    if (e.id != 0) {
+      out_ += " id=\"";
+      append_integer(out_, e.id);
+      out_ += '"';
+    }
+    if (!e.type.empty()) text("type", e.type);
+    text("name", e.name);
+  }
+
+ private:
+  void indent(int n) { out_.append(static_cast<std::size_t>(n), ' '); }
+  template <class T>
+  void open(const T& c) {
+    indent(indent_);
+    out_ += '<';
+    out_ += element_name(c);
+  }
+  void empty() { out_ += "/>\n"; }
+  template <class T>
+  void with_content(const T& c, std::string_view content) {
+    open(c);
+    out_ += '>';
+    xmltext::append_escaped(out_, content, false);
+    out_ += "</";
+    out_ += element_name(c);
+    out_ += ">\n";
+  }
+  void attribute_start(std::string_view attribute) {
+    out_ += ' ';
+    out_ += attribute;
+    out_ += "=\"";
+  }
+  void number(std::string_view attribute, double v) {
+    attribute_start(attribute);
+    append_xml_number(out_, v);
+    out_ += '"';
+  }
+  void integer(std::string_view attribute, long long v) {
+    attribute_start(attribute);
+    append_integer(out_, v);
+    out_ += '"';
+  }
+  void text(std::string_view attribute, std::string_view v) {
+    attribute_start(attribute);
+    xmltext::append_escaped(out_, v, true);
+    out_ += '"';
+  }
+  void rotary(const std::optional<Rotary>& r) {
+    if (r) number("a", r->a), number("b", r->b), number("c", r->c);
+  }
+  void tool_axis(const std::optional<Direction>& d) {
+    if (d) number("i", d->i), number("j", d->j), number("k", d->k);
+  }
+  void pose(const Pose& p) {
+    number("x", p.x), number("y", p.y), number("z", p.z);
+    rotary(p.rotary);
+    tool_axis(p.tool_axis);
+  }
+
+  std::string& out_;
+  int indent_;
+};
+
+void open_workingstep(std::string& out, const Entity& e, bool continued) {
+  out += "  <workingstep";
+  ElementWriter(out, 0).entity(e);
+  if (continued) out += " continued=\"true\"";
+  out += ">\n";
+}
+
+}  // namespace
+
+void append_xml_number(std::string& out, double value) {
+  if (std::isnan(value)) {
+    out += "NaN";
+    return;
+  }
+  if (std::isinf(value)) {
+    out += value > 0 ? "INF" : "-INF";
+    return;
+  }
+  if (value == 0) {  // also -0
+    out += '0';
+    return;
+  }
+  char buffer[32];  // the shortest round-trip form of a double needs at most 24
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+void XmlChunkWriter::append_chunk(std::string& out, const ChunkView& chunk) {
+  out += "<chunk seq=\"";
+  append_integer(out, chunk.seq);
+  out += "\">\n";
+  // A workingstep left open by the previous chunk (split at the size limit) goes on here.
+  bool open_here = false;
+  if (open_workingstep_) {
+    open_workingstep(out, *open_workingstep_, true);
+    open_here = true;
+  }
+  for (const Call& call : chunk.calls) {
+    if (const auto* b = std::get_if<Begin>(&call); b != nullptr && b->scope == Scope::Workingstep) {
+      // Workingsteps do not nest; a second begin closes the first so the XML stays well-formed.
+      if (open_here) out += "  </workingstep>\n";
+      open_workingstep(out, b->entity, false);
+      open_workingstep_ = b->entity;
+      open_here = true;
+      continue;
+    }
+    if (const auto* e = std::get_if<End>(&call);
+        e != nullptr && e->scope == Scope::Workingstep && open_here) {
+      out += "  </workingstep>\n";
+      open_workingstep_.reset();
+      open_here = false;
+      continue;
+    }
+    // Everything else, including a WORKINGSTEP_END without its begin, is an element.
+    std::visit(ElementWriter(out, open_here ? 4 : 2), call);
+  }
+  if (open_here) out += "  </workingstep>\n";
+  out += "</chunk>\n";
+}
+
+void XmlChunkSink::chunk(const ChunkView& chunk) {
+  text_.clear();
+  writer_.append_chunk(text_, chunk);
+  out_(chunk.seq, text_);
+}
+
+void XmlDocumentWriter::start() {
+  if (started_) return;
+  started_ = true;
+  out_(kXmlPrologue);
+}
+
+void XmlDocumentWriter::chunk(const ChunkView& chunk) {
+  start();
+  text_.clear();
+  writer_.append_chunk(text_, chunk);
+  out_(text_);
+}
+
+void XmlDocumentWriter::finish() {
+  if (finished_) return;
+  start();
+  finished_ = true;
+  out_(kXmlEpilogue);
+}
+
+std::string to_xml_document(std::span<const Call> calls, ChunkLimits limits) {
+  std::string out;
+  XmlDocumentWriter document([&out](std::string_view text) { out += text; });
+  Chunker chunker(document, limits);
+  for (const auto& call : calls) chunker.call(call);
+  chunker.finish();
+  document.finish();
+  return out;
+}
+
+}  // namespace ncpost::canon
