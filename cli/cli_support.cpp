@@ -97,4 +97,19 @@ int usage_error(std::string_view verb, std::string_view message) {
   return kExitUsage;
 }
 
+LoadedSchemas load_schemas(const std::optional<std::string>& directory) {
+  LoadedSchemas loaded;
+  if (directory) loaded.reports = loaded.registry.add_directory(*directory);
+  return loaded;
+}
+
+void print_schema_reports(const std::vector<express::SchemaFileReport>& reports) {
+  for (const auto& report : reports) print_diagnostics(report.diagnostics, report.file.string());
+}
+
+bool has_errors(const std::vector<express::SchemaFileReport>& reports) {
+  return std::any_of(reports.begin(), reports.end(),
+                     [](const auto& report) { return has_errors(report.diagnostics); });
+}
+
 }  // namespace ncpost::cli

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/express/registry.hpp"
 #include "verbs.hpp"
 
 namespace ncpost::cli {
@@ -42,5 +43,18 @@ void print_diagnostics(const std::vector<diag::Diagnostic>& diagnostics, std::st
 [[nodiscard]] bool has_errors(const std::vector<diag::Diagnostic>& diagnostics);
 
 int usage_error(std::string_view verb, std::string_view message);
+
+// The schemas a verb reads models with: the built-in ISO 14649 schema and, with `--schemas DIR`,
+// every .exp file of DIR (parsed once each). `reports` holds the schema files' diagnostics, each
+// with its file: a file with errors is left out and the others are still used, but the errors
+// are printed and make the exit status 1, so that a typo in --schemas does not go unnoticed.
+struct LoadedSchemas {
+  express::SchemaRegistry registry;
+  std::vector<express::SchemaFileReport> reports;
+};
+[[nodiscard]] LoadedSchemas load_schemas(const std::optional<std::string>& directory);
+// Prints each report's diagnostics with its file name.
+void print_schema_reports(const std::vector<express::SchemaFileReport>& reports);
+[[nodiscard]] bool has_errors(const std::vector<express::SchemaFileReport>& reports);
 
 }  // namespace ncpost::cli

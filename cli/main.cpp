@@ -14,9 +14,10 @@ using ncpost::cli::Args;
 constexpr std::string_view kUsage = R"(usage: ncpost <verb> [options] FILE|-
 
 verbs:
-  inspect [--format json|text] FILE       program information of a STEP-NC file (JSON by default)
-  convert --to p21|p28 [--binding late|early] FILE
-                                          re-write a P21 file (p28: not implemented yet)
+  inspect [--format json|text] [--schemas DIR] FILE
+                                          program information of a STEP-NC file (JSON by default)
+  convert --to p21|p28 [--binding late|early] [--schemas DIR] FILE
+                                          P21 or P28 in, P21 or P28 (late or early binding) out
   schema --to xml FILE.exp                EXPRESS schema as EXPRESS-X XML
   trace FILE                              canonical machining program (not implemented yet)
   post --profile ID [--profiles DIR] FILE controller code for one machine (not implemented yet)

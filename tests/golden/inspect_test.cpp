@@ -6,6 +6,8 @@
 #include <fstream>
 
 #include "corpus.hpp"
+#include "ncpost/express/parse.hpp"
+#include "ncpost/express/registry.hpp"
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/stepnc/program_info.hpp"
 
@@ -15,10 +17,22 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
+// The built-in schema only, as `ncpost inspect` without --schemas.
+const express::SchemaRegistry& registry() {
+  static const express::SchemaRegistry instance;
+  return instance;
+}
+
 ProgramInfo inspect_text(std::string text) {
   p21::ReadResult r = p21::read(std::move(text));
   EXPECT_TRUE(r.ok());
-  return inspect(r.model);
+  return inspect(r.model, registry());
+}
+
+std::vector<std::string> codes(const std::vector<diag::Diagnostic>& diagnostics) {
+  std::vector<std::string> out;
+  for (const auto& d : diagnostics) out.emplace_back(d.code_id());
+  return out;
 }
 
 // Compares with tests/golden/inspect/<name>.json. NCPOST_UPDATE_GOLDEN=1 rewrites the file
@@ -71,11 +85,29 @@ TEST(InspectCorpus, NistExample1ExplicitToolpaths) {
 TEST(InspectCorpus, Ap238AimFileIsNamedAsSuch) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
   p21::ReadResult r = p21::read(test::read_file(corpus / "p21/efrainrodriguez_exp2.stpnc"));
-  const ProgramInfo info = inspect(r.model);
-  ASSERT_EQ(info.diagnostics.size(), 1u);
-  EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-006");
+  const ProgramInfo info = inspect(r.model, registry());
+  // No schema for INTEGRATED_CNC_SCHEMA among the built-in ones: the built-in is used instead.
+  EXPECT_EQ(codes(info.diagnostics),
+            (std::vector<std::string>{"EXP-050", "EXP-052", "STEPNC-006"}));
+  EXPECT_EQ(info.diagnostics[0].message,
+            "no schema for FILE_SCHEMA 'INTEGRATED_CNC_SCHEMA'; known: machining_schema, "
+            "milling_schema");
+  EXPECT_EQ(info.diagnostics[1].severity, diag::Severity::Note);
   EXPECT_TRUE(info.json["project"].is_null());
   EXPECT_EQ(info.json["header"]["schemas"], (ordered_json{"INTEGRATED_CNC_SCHEMA"}));
+}
+
+// The attribute positions come from the schema: the corpus's combined ISO 14649 schema (NIST's,
+// one SCHEMA with other entity names here and there) gives the same program information.
+TEST(InspectCorpus, NistExample1WithTheCombinedSchema) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const express::ParseResult combined = express::parse_express(test::read_file(
+      corpus / "express/michaloski_STEPNCpp_combined_schema_14649-10-11-12-111-121.exp"));
+  ASSERT_TRUE(combined.ok());
+  p21::ReadResult r = p21::read(test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
+  const ProgramInfo info = inspect(r.model, combined.schemas);
+  EXPECT_TRUE(info.diagnostics.empty());
+  expect_golden(info.json, "nist_toolkit_ex1");
 }
 
 TEST(InspectOwn, BracketExample) {
@@ -153,6 +185,51 @@ TEST(InspectOwn, UnknownExecutableIsReportedNotDropped) {
   ASSERT_EQ(info.diagnostics.size(), 1u);
   EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-007");
   EXPECT_EQ(info.json["project"]["main_workplan"]["elements"][0]["type"], "MYSTERY");
+}
+
+// Executables are whatever the schema makes a subtype of EXECUTABLE, not a list in the code:
+// ISO 14649-10's touch probing and a schema of one's own.
+TEST(InspectOwn, ExecutablesComeFromTheSchema) {
+  const ProgramInfo builtin = inspect_text(program(
+      "#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
+      "#3=TOOL_LENGTH_PROBING('PROBE',$,$,$,#4,0.,1.,#5);#4=NC_VARIABLE('V',0.);"
+      "#5=MILLING_CUTTING_TOOL('T1',$,(),$,$,$);"));
+  EXPECT_TRUE(builtin.diagnostics.empty());
+  EXPECT_EQ(builtin.json["project"]["main_workplan"]["elements"][0]["name"], "PROBE");
+
+  const express::ParseResult own = express::parse_express(
+      "SCHEMA shop_floor;"
+      "ENTITY project; its_id : STRING; main_workplan : workplan; END_ENTITY;"
+      "ENTITY executable ABSTRACT SUPERTYPE; its_id : STRING; END_ENTITY;"
+      "ENTITY workplan SUBTYPE OF (executable); its_elements : LIST [0:?] OF executable; "
+      "END_ENTITY;"
+      "ENTITY coolant_check SUBTYPE OF (executable); pressure : REAL; END_ENTITY;"
+      "ENTITY note; its_id : STRING; END_ENTITY;"
+      "END_SCHEMA;");
+  ASSERT_TRUE(own.ok());
+  p21::ReadResult r = p21::read(
+      "ISO-10303-21;HEADER;FILE_DESCRIPTION((''),'2;1');FILE_NAME('','',(''),(''),'','','');"
+      "FILE_SCHEMA(('SHOP_FLOOR'));ENDSEC;DATA;\n"
+      "#1=PROJECT('P',#2);#2=WORKPLAN('MAIN',(#3,#4));#3=COOLANT_CHECK('CHECK',5.);\n"
+      "#4=NOTE('N');\nENDSEC;END-ISO-10303-21;");
+  ASSERT_TRUE(r.ok());
+  const ProgramInfo info = inspect(r.model, own.schemas);
+  const auto& elements = info.json["project"]["main_workplan"]["elements"];
+  EXPECT_EQ(elements[0]["name"], "CHECK");
+  EXPECT_EQ(elements[1]["name"], "N");
+  ASSERT_EQ(codes(info.diagnostics), std::vector<std::string>{"STEPNC-007"});
+  EXPECT_EQ(info.diagnostics[0].line, 3u);
+}
+
+// A file that names a schema the registry does not have is read with the built-in schema, and
+// the diagnostics say so.
+TEST(InspectOwn, UnknownSchemaFallsBackToTheBuiltin) {
+  std::string text = program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(),$,$,$);");
+  text.replace(text.find("'MACHINING_SCHEMA'"), 18, "'SOMETHING_ELSE { 1 2 3 }'");
+  const ProgramInfo info = inspect_text(text);
+  EXPECT_EQ(codes(info.diagnostics), (std::vector<std::string>{"EXP-050", "EXP-052"}));
+  EXPECT_EQ(info.diagnostics[0].line, 1u);
+  EXPECT_EQ(info.json["project"]["main_workplan"]["name"], "MAIN");
 }
 
 TEST(InspectOwn, NotAStepNcFile) {

@@ -61,6 +61,9 @@ class Binding {
   const TypePlan* named_type(std::string_view name);
   const TypePlan* unknown() const { return &unknown_; }
   [[nodiscard]] bool has_schema() const { return schemas_ != nullptr; }
+  // Only before the first entity or type is planned (the reader learns the schema from the
+  // header, which comes first).
+  void set_schemas(const express::SchemaSet* schemas) { schemas_ = schemas; }
 
  private:
   const TypePlan* plan(const express::TypeSpec& spec, int depth);

@@ -291,6 +291,7 @@ class Reader {
   // ed.2 header fields of foreign documents (no ex:header_entity): name → values.
   std::vector<std::pair<std::string, std::string>> ed2_header_;
   bool saw_header_entities_ = false;
+  bool schema_chosen_ = false;
   std::string last_xml_error_;
 };
 
@@ -493,6 +494,9 @@ void Reader::start_element() {
       } else if (local == "header" && !early_) {
         f.kind = FrameKind::Header;
       } else if (local == "data_section" || local == "uos") {
+        if (!schema_chosen_ && options_.schema_for_header && !binding_.has_schema())
+          binding_.set_schemas(options_.schema_for_header(builder_.model()));
+        schema_chosen_ = true;
         if (section_) {
           section_->end_instance = builder_.instance_count();
           builder_.add_section(*section_);

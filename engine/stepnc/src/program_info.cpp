@@ -16,12 +16,6 @@ using p21::Model;
 using p21::Value;
 using p21::ValueKind;
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 // JSON for a header or attribute value that is a string, a list of strings, or unset.
 ordered_json text_value(const Model& model, Value v) {
   if (v.kind() == ValueKind::String) return model.as_string(v);
@@ -36,8 +30,8 @@ ordered_json text_value(const Model& model, Value v) {
 
 class Inspector {
  public:
-  Inspector(const Model& model, const InspectOptions& options)
-      : model_(model), options_(options), lines_(model.text()) {}
+  Inspector(const Model& model, const express::SchemaSet& schema, const InspectOptions& options)
+      : model_(model), attributes_(model, schema), options_(options), lines_(model.text()) {}
 
   ProgramInfo run() {
     ordered_json out;
@@ -83,17 +77,21 @@ class Inspector {
     if (!v || !v->is_reference()) return nullptr;
     return model_.find(v->id());
   }
-  std::optional<std::string> string_attribute(const Instance& inst, std::string_view name,
-                                              Role role = Role::Exact) const {
-    auto v = attribute(model_, inst, name, role);
+  std::optional<Value> attribute(const Instance& inst, std::string_view name) const {
+    return attributes_.get(inst, name);
+  }
+  std::optional<std::string> string_attribute(const Instance& inst, std::string_view name) const {
+    auto v = attribute(inst, name);
     if (!v || v->kind() != ValueKind::String) return std::nullopt;
     return model_.as_string(*v);
   }
-  ordered_json ref_summary(const Instance& inst, Role role) const {
+  // id, entity and its_id: every ISO 14649 executable, feature, operation, tool and workpiece
+  // has an its_id, wherever its entity's layout puts it.
+  ordered_json ref_summary(const Instance& inst) const {
     ordered_json j;
     j["id"] = inst.id;
     j["type"] = std::string(model_.type_name(inst));
-    auto name = string_attribute(inst, "its_id", role);
+    auto name = string_attribute(inst, "its_id");
     j["name"] = name ? ordered_json(*name) : ordered_json(nullptr);
     return j;
   }
@@ -121,20 +119,20 @@ class Inspector {
     ordered_json j;
     j["id"] = p.id;
     j["name"] = string_attribute(p, "its_id").value_or("");
-    if (auto ws = attribute(model_, p, "its_workpieces"); ws && ws->is_list()) {
+    if (auto ws = attribute(p, "its_workpieces"); ws && ws->is_list()) {
       for (Value w : model_.items(*ws)) {
         const Instance* wp = model_.find(w.is_reference() ? w.id() : 0);
         if (wp == nullptr) continue;
-        ordered_json wj = ref_summary(*wp, Role::Exact);
-        if (const Instance* mat = deref(attribute(model_, *wp, "its_material")))
+        ordered_json wj = ref_summary(*wp);
+        if (const Instance* mat = deref(attribute(*wp, "its_material")))
           wj["material"] = string_attribute(*mat, "material_identifier").value_or("");
-        if (auto cp = attribute(model_, *wp, "clamping_positions"); cp && cp->is_list())
+        if (auto cp = attribute(*wp, "clamping_positions"); cp && cp->is_list())
           wj["clamping_positions"] = cp->count();
         workpieces_.push_back(std::move(wj));
       }
     }
-    const Instance* main = deref(attribute(model_, p, "main_workplan"));
-    if (main == nullptr || !model_.has_type(*main, "WORKPLAN")) {
+    const Instance* main = deref(attribute(p, "main_workplan"));
+    if (main == nullptr || !attributes_.is_a(*main, "workplan")) {
       report(diag::Code::StepncWrongType, p,
              "PROJECT " + name_of(p) + " attribute main_workplan does not refer to a WORKPLAN");
       j["main_workplan"] = nullptr;
@@ -165,9 +163,8 @@ class Inspector {
   }
 
   ordered_json executable(const Instance& e, unsigned depth) {
-    ordered_json j = ref_summary(e, Role::Exact);
-    const std::string type = lower(model_.type_name(e));
-    if (!is_executable(type)) {
+    ordered_json j = ref_summary(e);
+    if (!attributes_.is_executable(e)) {
       report(diag::Code::StepncUnknownExecutable, e,
              name_of(e) + " (" + std::string(model_.type_name(e)) +
                  ") is not an executable that this version understands");
@@ -183,37 +180,38 @@ class Inspector {
       report(diag::Code::StepncCycle, e, name_of(e) + " contains itself");
       return j;
     }
-    if (type == "machining_workingstep") {
+    // Subtypes count: the schema decides what is a workplan, a workingstep, a tool change.
+    const auto is = [&](std::string_view entity) { return attributes_.is_a(e, entity); };
+    if (is("machining_workingstep")) {
       ++workingsteps_;
-      if (const Instance* f = deref(attribute(model_, e, "its_feature")))
-        j["feature"] = ref_summary(*f, Role::ManufacturingFeature);
-      if (const Instance* op = deref(attribute(model_, e, "its_operation"))) {
-        j["operation"] = ref_summary(*op, Role::MachiningOperation);
-        if (const Instance* tool = deref(attribute(model_, *op, "its_tool", Role::MachiningOperation))) {
-          j["tool"] = ref_summary(*tool, Role::MachiningTool);
+      if (const Instance* f = deref(attribute(e, "its_feature"))) j["feature"] = ref_summary(*f);
+      if (const Instance* op = deref(attribute(e, "its_operation"))) {
+        j["operation"] = ref_summary(*op);
+        if (const Instance* tool = deref(attribute(*op, "its_tool"))) {
+          j["tool"] = ref_summary(*tool);
           note_tool(*tool, e);
         }
       } else {
         report(diag::Code::StepncBadAttribute, e,
                name_of(e) + " attribute its_operation does not refer to an instance");
       }
-    } else if (type == "workplan" || type == "non_sequential" || type == "selective") {
-      j["elements"] = elements(e, attribute(model_, e, "its_elements"), depth);
-    } else if (type == "parallel") {
-      j["branches"] = elements(e, attribute(model_, e, "branches"), depth);
-    } else if (type == "if_statement") {
+    } else if (is("workplan") || is("non_sequential") || is("selective")) {
+      j["elements"] = elements(e, attribute(e, "its_elements"), depth);
+    } else if (is("parallel")) {
+      j["branches"] = elements(e, attribute(e, "branches"), depth);
+    } else if (is("if_statement")) {
       for (std::string_view branch : {"true_branch", "false_branch"}) {
-        const Instance* b = deref(attribute(model_, e, branch));
+        const Instance* b = deref(attribute(e, branch));
         j[std::string(branch)] = b ? executable(*b, depth + 1) : ordered_json(nullptr);
       }
-    } else if (type == "while_statement") {
-      const Instance* body = deref(attribute(model_, e, "body"));
+    } else if (is("while_statement")) {
+      const Instance* body = deref(attribute(e, "body"));
       j["body"] = body ? executable(*body, depth + 1) : ordered_json(nullptr);
-    } else if (type == "display_message") {
+    } else if (is("display_message")) {
       if (auto text = string_attribute(e, "its_text")) j["text"] = *text;
-    } else if (type == "load_tool" || type == "unload_tool") {
-      if (const Instance* tool = deref(attribute(model_, e, "its_tool"))) {
-        j["tool"] = ref_summary(*tool, Role::MachiningTool);
+    } else if (is("load_tool") || is("unload_tool")) {
+      if (const Instance* tool = deref(attribute(e, "its_tool"))) {
+        j["tool"] = ref_summary(*tool);
         note_tool(*tool, e);
       }
     }
@@ -234,7 +232,7 @@ class Inspector {
   ordered_json tools() const {
     ordered_json out = ordered_json::array();
     for (const auto& [tool, users] : tools_) {
-      ordered_json j = ref_summary(*tool, Role::MachiningTool);
+      ordered_json j = ref_summary(*tool);
       j["used_by"] = users;
       out.push_back(std::move(j));
     }
@@ -271,6 +269,7 @@ class Inspector {
   }
 
   const Model& model_;
+  AttributeReader attributes_;
   const InspectOptions& options_;
   p21::LineIndex lines_;
   std::vector<diag::Diagnostic> diagnostics_;
@@ -282,8 +281,19 @@ class Inspector {
 
 }  // namespace
 
-ProgramInfo inspect(const p21::Model& model, const InspectOptions& options) {
-  return Inspector(model, options).run();
+ProgramInfo inspect(const p21::Model& model, const express::SchemaSet& schema,
+                    const InspectOptions& options) {
+  return Inspector(model, schema, options).run();
+}
+
+ProgramInfo inspect(const p21::Model& model, const express::SchemaRegistry& schemas,
+                    const InspectOptions& options) {
+  express::SchemaSelection selection = schemas.select_or_builtin(model);
+  ProgramInfo info = inspect(model, *selection.set(), options);
+  selection.diagnostics.insert(selection.diagnostics.end(), info.diagnostics.begin(),
+                               info.diagnostics.end());
+  info.diagnostics = std::move(selection.diagnostics);
+  return info;
 }
 
 nlohmann::ordered_json diagnostics_json(const std::vector<diag::Diagnostic>& list,

@@ -13,6 +13,7 @@
 // written by position, which still reads back to the same model.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,6 +35,9 @@ enum class Binding : std::uint8_t { Late, Early };
                                                   Binding binding, const p21::TextSink& sink);
 
 struct ReadOptions {
+  // Chooses the schema from the document's header once it has been read (FILE_SCHEMA), when
+  // `read` is given no schema. Called at most once, before the first data section.
+  std::function<const express::SchemaSet*(const p21::Model& header_only)> schema_for_header;
   // Element nesting deeper than this is rejected (libxml2's own limit, 256, also applies).
   std::uint32_t max_depth = 128;
   // Documents larger than this are rejected before parsing.

@@ -1,39 +1,59 @@
 #pragma once
-// Reading ISO 14649 attributes by name.
+// Reading ISO 14649 attributes by name, through the EXPRESS schema.
 //
-// Until the EXPRESS stage supplies a schema, attribute positions come from one table
-// (src/attribute_table.cpp), transcribed from ISO 14649-10/-11 with supertype attributes first,
-// as ISO 10303-21 orders them. Callers only ever ask by name, so replacing the table with schema
-// look-ups changes nothing for them.
+// The position of an attribute comes from the schema's flattened attribute list of the
+// instance's own entity (supertype attributes first, as ISO 10303-21 orders them), so callers ask
+// `reader.get(op, "its_tool")` whatever the operation's entity is. Nothing here knows a position.
 
 #include <optional>
 #include <string_view>
+#include <vector>
 
+#include "ncpost/express/schema.hpp"
 #include "ncpost/p21/model.hpp"
 
 namespace ncpost::stepnc {
 
-// The attribute layouts that the table knows. A role is an entity or an abstract supertype
-// whose subtypes share its leading attributes (every machining operation starts with the
-// attributes of MACHINING_OPERATION, for example).
-enum class Role : std::uint8_t {
-  Exact,  // look the entity up by its own name
-  MachiningOperation,
-  ManufacturingFeature,
-  MachiningTool,
+// Attribute access for one model and one schema. Built once per model (it resolves every
+// keyword of the model to its entity); read-only afterwards, so it may be shared by threads.
+// The model and the schema must outlive it.
+class AttributeReader {
+ public:
+  AttributeReader(const p21::Model& model, const express::SchemaSet& schema);
+
+  // The value of attribute `name` (any case) of `instance`, or nullopt when the schema does not
+  // know the instance's entity, the entity has no such attribute, or the instance has fewer
+  // parameters than the schema gives it. For a complex instance, the partial record of the
+  // entity that declares the attribute.
+  [[nodiscard]] std::optional<p21::Value> get(const p21::Instance& instance,
+                                              std::string_view name) const;
+
+  // The schema entity of a simple instance; null for complex instances and unknown entities.
+  [[nodiscard]] const express::Entity* entity(const p21::Instance& instance) const;
+
+  // True when the instance's entity (for a complex instance: one of its partial records) is
+  // `entity` or a subtype of it.
+  [[nodiscard]] bool is_a(const p21::Instance& instance, std::string_view entity) const;
+  [[nodiscard]] bool is_a(const p21::Instance& instance, const express::Entity* entity) const;
+
+  // ISO 14649-10 EXECUTABLE and its subtypes: what a workplan's element list may hold.
+  [[nodiscard]] bool is_executable(const p21::Instance& instance) const {
+    return is_a(instance, executable_);
+  }
+
+  [[nodiscard]] const express::SchemaSet& schema() const noexcept { return schema_; }
+
+ private:
+  const p21::Model& model_;
+  const express::SchemaSet& schema_;
+  std::vector<const express::Entity*> by_keyword_;  // keyword id → entity, null when unknown
+  const express::Entity* executable_ = nullptr;
 };
 
-// The value of attribute `name` of `instance`, or nullopt when the table does not know the
-// entity (or role) or the instance has fewer parameters than the table expects.
+// One look-up without keeping a reader (resolves the entity by name each time).
 [[nodiscard]] std::optional<p21::Value> attribute(const p21::Model& model,
+                                                  const express::SchemaSet& schema,
                                                   const p21::Instance& instance,
-                                                  std::string_view name,
-                                                  Role role = Role::Exact);
-
-// True when the table has a layout for this entity name (any case).
-[[nodiscard]] bool is_known_entity(std::string_view entity);
-
-// Entities that may appear in a workplan's element list (ISO 14649-10 EXECUTABLE subtypes).
-[[nodiscard]] bool is_executable(std::string_view entity);
+                                                  std::string_view name);
 
 }  // namespace ncpost::stepnc

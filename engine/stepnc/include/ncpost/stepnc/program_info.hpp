@@ -1,7 +1,9 @@
 #pragma once
 // Program-information extraction: what a STEP-NC controller shows before it runs a program.
 //
-// In:  a Model (read from P21 or P28).
+// In:  a Model (read from P21 or P28) and the EXPRESS schema that describes it: every attribute
+//      is read by name through the schema (attributes.hpp), and "executable" means a subtype of
+//      ISO 14649-10 EXECUTABLE in that schema.
 // Out: JSON with the header, the PROJECT → main WORKPLAN → executables tree (recursively), the
 //      workpieces and tools, instance counts by entity type, and diagnostics about the program
 //      structure. The JSON shape is a contract shared by `ncpost inspect` and the HTTP service;
@@ -12,12 +14,14 @@
 #include <vector>
 
 #include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/express/schema.hpp"
 #include "ncpost/p21/model.hpp"
 
 namespace ncpost::stepnc {
 
 struct ProgramInfo {
-  nlohmann::ordered_json json;               // without the "diagnostics" member
+  nlohmann::ordered_json json;                // without the "diagnostics" member
   std::vector<diag::Diagnostic> diagnostics;  // about the program structure
 };
 
@@ -26,7 +30,13 @@ struct InspectOptions {
   unsigned max_nesting = 64;
 };
 
-[[nodiscard]] ProgramInfo inspect(const p21::Model& model, const InspectOptions& options = {});
+// With the schema given: no check that it is the model's.
+[[nodiscard]] ProgramInfo inspect(const p21::Model& model, const express::SchemaSet& schema,
+                                  const InspectOptions& options = {});
+// With the schema the registry selects for the model's FILE_SCHEMA; when it has none, the
+// built-in ISO 14649 schema, and the diagnostics say so (EXP-050 warning, EXP-052 note).
+[[nodiscard]] ProgramInfo inspect(const p21::Model& model, const express::SchemaRegistry& schemas,
+                                  const InspectOptions& options = {});
 
 // Diagnostics as JSON objects {file, line, column, severity, code, message}.
 [[nodiscard]] nlohmann::ordered_json diagnostics_json(const std::vector<diag::Diagnostic>& list,

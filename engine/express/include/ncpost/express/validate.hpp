@@ -1,0 +1,53 @@
+#pragma once
+// Checks a Model (read from P21 or P28) against an EXPRESS schema.
+//
+// In:  a Model and the SchemaSet that describes it (SchemaRegistry::select_for picks it).
+// Out: diagnostics EXP-058 .. EXP-069, each at the instance's line:column, naming `#id`, the
+//      entity and the attribute. An empty list means every instance fits the schema as far as
+//      these checks go:
+//
+//  - the entity is declared (EXP-060, a warning, once per entity name), and not ABSTRACT (EXP-059);
+//  - the parameter count is the flattened explicit attribute count (EXP-061);
+//  - `$` only for OPTIONAL attributes and OPTIONAL aggregate elements (EXP-062);
+//  - each value is of a kind the declared type allows (EXP-063): integers are accepted for REAL
+//    and NUMBER; a SELECT value that is not an entity is written typed, `LENGTH_MEASURE(5.)`;
+//  - a reference names an instance of the declared entity or a subtype, or of an entity of the
+//    declared SELECT (EXP-064; a complex instance fits when one of its partial records does);
+//  - aggregate sizes are within the declared bounds (EXP-065): integer bounds, and bounds that
+//    are an INTEGER attribute of the same instance (`ARRAY [1:SELF\mesh.index_count]`); other
+//    expressions are not evaluated; an ARRAY has exactly hi - lo + 1 elements;
+//  - enumeration values belong to the enumeration (with its extensions), BOOLEAN takes .T./.F.,
+//    LOGICAL also .U. (EXP-066);
+//  - `*` exactly where a subtype re-declares the attribute as DERIVE (EXP-067 for a `*`
+//    elsewhere, an error; EXP-068 for a value or `$` where `*` belongs, a warning);
+//  - a typed parameter names a member of the declared SELECT (EXP-069).
+//
+// Complex instances `(A(...) B(...))`: each partial record is checked against the explicit
+// attributes its own entity declares (ISO 10303-21 external mapping), with redeclarations by the
+// other records' entities applied; bounds that are attribute expressions are not evaluated there.
+// Instances of undeclared entities, ed.3 references, constants and value instances are skipped.
+//
+// Cost: one pass over the instances and their values; types, SELECT closures and enumeration
+// items are resolved once per declaration and cached for the pass.
+
+#include <cstddef>
+#include <vector>
+
+#include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/express/schema.hpp"
+#include "ncpost/p21/model.hpp"
+
+namespace ncpost::express {
+
+struct ValidateOptions {
+  // At most this many diagnostics are returned; after them one EXP-058 says how many more
+  // problems there were. A large file that was written for another schema would otherwise give
+  // a diagnostic per instance.
+  std::size_t max_diagnostics = 1000;
+};
+
+[[nodiscard]] std::vector<diag::Diagnostic> validate(const p21::Model& model,
+                                                     const SchemaSet& schema,
+                                                     const ValidateOptions& options = {});
+
+}  // namespace ncpost::express
