@@ -112,4 +112,11 @@ bool has_errors(const std::vector<express::SchemaFileReport>& reports) {
                      [](const auto& report) { return has_errors(report.diagnostics); });
 }
 
+void add_builtin_report(LoadedSchemas& schemas, const pipeline::LoadedModel& loaded) {
+  const express::SchemaSource& builtin = schemas.registry.builtin();
+  if (loaded.schema != &builtin.set()) return;
+  auto problems = schemas.registry.builtin_diagnostics();
+  if (!problems.empty()) schemas.reports.push_back({builtin.origin, std::move(problems)});
+}
+
 }  // namespace ncpost::cli

@@ -8,6 +8,7 @@
 
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/express/registry.hpp"
+#include "ncpost/pipeline/load.hpp"
 #include "verbs.hpp"
 
 namespace ncpost::cli {
@@ -53,6 +54,9 @@ struct LoadedSchemas {
   std::vector<express::SchemaFileReport> reports;
 };
 [[nodiscard]] LoadedSchemas load_schemas(const std::optional<std::string>& directory);
+// When the model's schema is the built-in, its own problems (EXP-054: a build problem) are added
+// to the reports.
+void add_builtin_report(LoadedSchemas& schemas, const pipeline::LoadedModel& loaded);
 // Prints each report's diagnostics with its file name.
 void print_schema_reports(const std::vector<express::SchemaFileReport>& reports);
 [[nodiscard]] bool has_errors(const std::vector<express::SchemaFileReport>& reports);

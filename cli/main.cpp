@@ -19,7 +19,8 @@ verbs:
   convert --to p21|p28 [--binding late|early] [--schemas DIR] FILE
                                           P21 or P28 in, P21 or P28 (late or early binding) out
   schema --to xml FILE.exp                EXPRESS schema as EXPRESS-X XML
-  trace FILE                              canonical machining program (not implemented yet)
+  trace [--format text|xml] [--tools TABLE] [--schemas DIR] FILE
+                                          canonical machining program (explicit toolpaths)
   post --profile ID [--profiles DIR] FILE controller code for one machine (not implemented yet)
   profiles [--profiles DIR]               list machine profiles (not implemented yet)
   nc parse --dialect D FILE               read G-code (not implemented yet)
@@ -56,13 +57,13 @@ int main(int argc, char** argv) {
       Verb{"inspect", ncpost::cli::run_inspect},
       Verb{"convert", ncpost::cli::run_convert},
       Verb{"schema", ncpost::cli::run_schema},
+      Verb{"trace", ncpost::cli::run_trace},
   };
   const std::string_view verb = args[0];
   const Args rest = Args(args).subspan(1);
   for (const auto& v : kVerbs)
     if (v.name == verb) return v.run(rest);
 
-  if (verb == "trace") return not_implemented("ncpost trace", "issue 4");
   if (verb == "post") return not_implemented("ncpost post", "issue 6");
   if (verb == "profiles") return not_implemented("ncpost profiles", "issue 6");
   if (verb == "nc") return not_implemented("ncpost nc", "G-code reader");

@@ -7,7 +7,7 @@
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/p21/writer.hpp"
 #include "ncpost/p28/p28.hpp"
-#include "ncpost/pipeline/detect.hpp"
+#include "ncpost/pipeline/load.hpp"
 
 namespace ncpost::cli {
 namespace {
@@ -37,22 +37,10 @@ int run_convert(Args args) {
   LoadedSchemas schemas = load_schemas(options.value("schemas"));
   print_schema_reports(schemas.reports);
 
-  p21::ReadResult read;
-  std::vector<diag::Diagnostic> diagnostics;
-  const pipeline::InputFormat format = pipeline::detect_format(input->bytes);
-  if (format == pipeline::InputFormat::P28) {
-    // Which schema: the one the document's own header names, else the built-in.
-    p28::initialise_xml();
-    p28::ReadOptions read_options;
-    read_options.schema_for_header = [&](const p21::Model& header) {
-      return schemas.registry.select_or_builtin(header).set();
-    };
-    read = p28::read(input->bytes, nullptr, read_options);
-  } else {
-    read = p21::read(std::move(input->bytes));
-  }
-  diagnostics = std::move(read.diagnostics);
-  const express::SchemaSelection selection = schemas.registry.select_or_builtin(read.model);
+  // Conversion is lossless whatever the schema says of the data, so the model is not checked
+  // against it here (`ncpost inspect` does that).
+  pipeline::LoadedModel loaded = pipeline::load(std::move(input->bytes), schemas.registry, false);
+  std::vector<diag::Diagnostic> diagnostics = std::move(loaded.diagnostics);
   // A rejected input produces no output: a partial program must never look like a whole one.
   if (has_errors(diagnostics)) {
     print_diagnostics(diagnostics, name);
@@ -60,10 +48,9 @@ int run_convert(Args args) {
   }
   std::ios::sync_with_stdio(false);
   if (*to == "p21") {
-    p21::write(read.model, write_stdout);
+    p21::write(loaded.model, write_stdout);
   } else {
-    diagnostics.insert(diagnostics.end(), selection.diagnostics.begin(), selection.diagnostics.end());
-    const auto notes = p28::write(read.model, selection.set(),
+    const auto notes = p28::write(loaded.model, loaded.schema,
                                   binding_name == "early" ? p28::Binding::Early : p28::Binding::Late,
                                   write_stdout);
     diagnostics.insert(diagnostics.end(), notes.begin(), notes.end());

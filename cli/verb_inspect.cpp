@@ -2,7 +2,7 @@
 
 #include "cli_support.hpp"
 #include "ncpost/express/validate.hpp"
-#include "ncpost/p21/reader.hpp"
+#include "ncpost/pipeline/load.hpp"
 #include "ncpost/stepnc/program_info.hpp"
 
 namespace ncpost::cli {
@@ -32,20 +32,14 @@ int run_inspect(Args args) {
   }
   const std::string name = input->name;
 
-  p21::ReadResult read = p21::read(std::move(input->bytes));
-  express::SchemaSelection selection = schemas.registry.select_or_builtin(read.model);
-  if (selection.source->builtin) {
-    auto builtin = schemas.registry.builtin_diagnostics();  // EXP-054: a build problem
-    if (!builtin.empty()) schemas.reports.push_back({selection.source->origin, std::move(builtin)});
-  }
-  std::vector<diag::Diagnostic> diagnostics = std::move(read.diagnostics);
+  pipeline::LoadedModel loaded = pipeline::load(std::move(input->bytes), schemas.registry);
+  add_builtin_report(schemas, loaded);
+  std::vector<diag::Diagnostic> diagnostics = std::move(loaded.diagnostics);
   const auto append = [&](std::vector<diag::Diagnostic> more) {
     diagnostics.insert(diagnostics.end(), std::make_move_iterator(more.begin()),
                        std::make_move_iterator(more.end()));
   };
-  append(std::move(selection.diagnostics));
-  if (!selection.fallback) append(express::validate(read.model, *selection.set()));
-  stepnc::ProgramInfo info = stepnc::inspect(read.model, *selection.set());
+  stepnc::ProgramInfo info = stepnc::inspect(loaded.model, *loaded.schema);
   append(std::move(info.diagnostics));
 
   if (format == "json") {

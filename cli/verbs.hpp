@@ -16,5 +16,6 @@ using Args = std::span<const std::string_view>;
 int run_inspect(Args args);
 int run_convert(Args args);
 int run_schema(Args args);
+int run_trace(Args args);
 
 }  // namespace ncpost::cli

@@ -1,0 +1,138 @@
+#include "geometry.hpp"
+
+#include "ncpost/p21/reader.hpp"
+
+namespace ncpost::stepnc::detail {
+
+namespace {
+constexpr double kUnitTolerance = 1e-9;
+}
+
+bool Frame::identity() const {
+  const auto same = [](Vec3 a, Vec3 b) { return (a - b).length() < 1e-12; };
+  return same(origin, {}) && same(x, {1, 0, 0}) && same(y, {0, 1, 0}) && same(z, {0, 0, 1});
+}
+
+std::string describe(const p21::Model& model, const p21::Instance& instance) {
+  return "#" + std::to_string(instance.id) + " (" + std::string(model.type_name(instance)) + ")";
+}
+
+GeometryReader::GeometryReader(const p21::Model& model, const AttributeReader& attributes,
+                               std::vector<diag::Diagnostic>& diagnostics)
+    : model_(model), attributes_(attributes), diagnostics_(diagnostics) {}
+
+void GeometryReader::error(diag::Code code, const p21::Instance& at, std::string message) {
+  if (!lines_) lines_.emplace(model_.text());
+  const auto pos = lines_->at(at.offset);
+  diagnostics_.push_back(diag::make(code, pos.line, pos.column, std::move(message)));
+}
+
+const p21::Instance* GeometryReader::instance(std::optional<p21::Value> reference,
+                                              std::string_view expected,
+                                              const p21::Instance* owner,
+                                              std::string_view attribute) {
+  const p21::Instance* target =
+      reference && reference->is_reference() ? model_.find(reference->id()) : nullptr;
+  const std::string where =
+      owner ? describe(model_, *owner) + " attribute " + std::string(attribute) : std::string("a reference");
+  if (target == nullptr) {
+    if (owner) error(diag::Code::StepncBadAttribute, *owner, where + " does not refer to an instance");
+    return nullptr;
+  }
+  if (!expected.empty() && !attributes_.is_a(*target, expected)) {
+    error(diag::Code::StepncWrongType, owner ? *owner : *target,
+          where + " refers to " + describe(model_, *target) + ", which is not a " +
+              std::string(expected));
+    return nullptr;
+  }
+  return target;
+}
+
+std::optional<double> GeometryReader::number(const p21::Instance& owner, std::string_view name) {
+  const auto v = attributes_.get(owner, name);
+  if (!v || !v->is_number()) return std::nullopt;
+  const double d = model_.as_real(*v);
+  if (!std::isfinite(d)) {
+    error(diag::Code::StepncBadGeometry, owner,
+          describe(model_, owner) + " attribute " + std::string(name) + " is not a finite number");
+    return std::nullopt;
+  }
+  return d;
+}
+
+std::optional<Vec3> GeometryReader::point(std::optional<p21::Value> reference) {
+  const p21::Instance* p = instance(reference, "cartesian_point");
+  if (p == nullptr) return std::nullopt;
+  const auto coordinates = attributes_.get(*p, "coordinates");
+  if (!coordinates || !coordinates->is_list() || coordinates->count() < 2 || coordinates->count() > 3) {
+    error(diag::Code::StepncBadGeometry, *p, describe(model_, *p) + " needs two or three coordinates");
+    return std::nullopt;
+  }
+  const auto items = model_.items(*coordinates);
+  std::array<double, 3> xyz{0, 0, 0};
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const p21::Value c = items[i].kind() == p21::ValueKind::Typed ? model_.typed_child(items[i]) : items[i];
+    xyz[i] = c.is_number() ? model_.as_real(c) : std::nan("");
+    if (!std::isfinite(xyz[i])) {
+      error(diag::Code::StepncBadGeometry, *p,
+            describe(model_, *p) + " coordinate " + std::to_string(i + 1) + " is not a finite number");
+      return std::nullopt;
+    }
+  }
+  return Vec3{xyz[0], xyz[1], xyz[2]};
+}
+
+std::optional<Vec3> GeometryReader::direction(std::optional<p21::Value> reference) {
+  const p21::Instance* d = instance(reference, "direction");
+  if (d == nullptr) return std::nullopt;
+  const auto ratios = attributes_.get(*d, "direction_ratios");
+  if (!ratios || !ratios->is_list() || ratios->count() < 2 || ratios->count() > 3) {
+    error(diag::Code::StepncBadGeometry, *d, describe(model_, *d) + " needs two or three ratios");
+    return std::nullopt;
+  }
+  const auto items = model_.items(*ratios);
+  Vec3 v{model_.as_real(items[0]), model_.as_real(items[1]),
+         items.size() > 2 ? model_.as_real(items[2]) : 0.0};
+  const double length = v.length();
+  if (!v.finite() || length < kUnitTolerance) {
+    error(diag::Code::StepncBadGeometry, *d, describe(model_, *d) + " has no direction (zero or non-finite ratios)");
+    return std::nullopt;
+  }
+  return v * (1.0 / length);
+}
+
+std::optional<Frame> GeometryReader::placement(std::optional<p21::Value> reference) {
+  const p21::Instance* a = instance(reference, "axis2_placement_3d");
+  if (a == nullptr) return std::nullopt;
+  const auto location = point(attributes_.get(*a, "location"));
+  if (!location) return std::nullopt;
+  Vec3 z{0, 0, 1};
+  Vec3 ref{1, 0, 0};
+  if (const auto axis = attributes_.get(*a, "axis"); axis && !axis->is_omitted()) {
+    const auto d = direction(axis);
+    if (!d) return std::nullopt;
+    z = *d;
+  }
+  if (const auto r = attributes_.get(*a, "ref_direction"); r && !r->is_omitted()) {
+    const auto d = direction(r);
+    if (!d) return std::nullopt;
+    ref = *d;
+  } else if (std::abs(z.dot(ref)) > 1 - 1e-9) {
+    ref = {0, 0, 1};  // ISO 10303-42's default when +X is parallel to the axis
+  }
+  // x is the projection of ref_direction onto the plane normal to the axis.
+  const Vec3 projected = ref - z * ref.dot(z);
+  if (projected.length() < 1e-9) {
+    error(diag::Code::StepncBadGeometry, *a,
+          describe(model_, *a) + " has a ref_direction parallel to its axis");
+    return std::nullopt;
+  }
+  Frame f;
+  f.origin = *location;
+  f.z = z;
+  f.x = projected * (1.0 / projected.length());
+  f.y = f.z.cross(f.x);
+  return f;
+}
+
+}  // namespace ncpost::stepnc::detail

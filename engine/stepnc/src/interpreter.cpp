@@ -1,0 +1,576 @@
+// The ISO 14649 interpreter. See interpreter.hpp, and docs/interpreter.md for the decisions.
+
+#include "ncpost/stepnc/interpreter.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <unordered_set>
+
+#include "curves.hpp"
+#include "geometry.hpp"
+
+namespace ncpost::stepnc {
+namespace {
+
+using detail::Frame;
+using detail::Segment;
+using detail::Vec3;
+using p21::Instance;
+using p21::Value;
+
+constexpr double kSamePoint = 1e-6;  // mm: positions closer than this are the same
+
+// ISO 14649 states feed rates in m/s (speed_measure) and spindle speeds in revolutions per
+// second (rot_speed_measure); the canonical program uses mm/min and rpm like RS274.
+constexpr double kFeedToMmPerMin = 60000.0;
+constexpr double kSpindleToRpm = 60.0;
+
+canon::Pose pose(Vec3 p, const std::optional<Vec3>& axis = std::nullopt) {
+  canon::Pose out{p.x, p.y, p.z, std::nullopt, std::nullopt};
+  if (axis) out.tool_axis = canon::Direction{axis->x, axis->y, axis->z};
+  return out;
+}
+
+class CountingSink final : public canon::Sink {
+ public:
+  explicit CountingSink(canon::Sink& inner) : inner_(inner) {}
+  void call(const canon::Call& c) override {
+    ++count_;
+    inner_.call(c);
+  }
+  [[nodiscard]] std::size_t count() const { return count_; }
+
+ private:
+  canon::Sink& inner_;
+  std::size_t count_ = 0;
+};
+
+class Interpreter {
+ public:
+  Interpreter(const p21::Model& model, const AttributeReader& attributes, canon::Sink& sink,
+              const InterpretOptions& options)
+      : m_(model),
+        a_(attributes),
+        out_(sink),
+        options_(options),
+        geometry_(model, attributes, diagnostics_),
+        curves_(geometry_, options.arc_tolerance) {}
+
+  InterpretResult run();
+
+ private:
+  // ---- helpers ----
+  void emit(canon::Call c) { out_.call(c); }
+  std::string name(const Instance& i) {
+    const auto v = a_.get(i, "its_id");
+    return v && v->kind() == p21::ValueKind::String ? m_.as_string(*v) : std::string();
+  }
+  canon::Entity entity(const Instance& i) {
+    return {i.id, std::string(m_.type_name(i)), name(i)};
+  }
+  const Instance* ref(const Instance& owner, std::string_view attribute, std::string_view type,
+                      bool optional = false) {
+    const auto v = a_.get(owner, attribute);
+    if (optional && (!v || v->is_omitted())) return nullptr;
+    return geometry_.instance(v, type, &owner, attribute);
+  }
+  void note(const Instance& at, std::string message) {
+    geometry_.error(diag::Code::StepncNote, at, std::move(message));
+  }
+  void not_implemented(const Instance& at, const std::string& what) {
+    geometry_.error(diag::Code::StepncNotImplemented, at,
+                    detail::describe(m_, at) + ": " + what + " is not implemented");
+  }
+
+  // ---- program ----
+  void executable(const Instance& e, unsigned depth);
+  void elements(const Instance& owner, std::string_view attribute, unsigned depth);
+  void workingstep(const Instance& ws);
+  void rapid_movement(const Instance& rm);
+  void nc_function(const Instance& f);
+  void set_up(const Instance& setup);
+
+  // ---- machine state ----
+  bool tool(const Instance& tool_instance);
+  void technology(const Instance* tech);
+  void machine_functions(const Instance* functions);
+  void retract_to_security_plane();
+  void approach(Vec3 start, bool rapid_only);
+  void toolpaths(const Instance* list, const Frame& frame, bool rapid);
+  void motion(const std::vector<Segment>& segments, const Frame& frame, bool rapid);
+
+  const p21::Model& m_;
+  const AttributeReader& a_;
+  CountingSink out_;
+  const InterpretOptions& options_;
+  std::vector<diag::Diagnostic> diagnostics_;
+  detail::GeometryReader geometry_;
+  detail::CurveReader curves_;
+
+  Frame workpiece_;                      // machine ← workpiece (setup ∘ workpiece setup)
+  std::vector<Frame> workpiece_origins_; // workpiece setups of the current setup
+  std::vector<const Instance*> workpiece_setups_;
+  std::optional<double> security_z_;     // in machine coordinates
+  std::optional<Vec3> position_;         // unknown until the first move
+  std::optional<std::uint64_t> tool_id_;
+  std::optional<double> feed_;
+  std::optional<double> spindle_;
+  bool flood_ = false;
+  bool mist_ = false;
+  std::unordered_set<std::uint64_t> on_path_;
+};
+
+InterpretResult Interpreter::run() {
+  InterpretResult result;
+  const auto projects = m_.instances_of("PROJECT");
+  if (projects.empty()) {
+    diagnostics_.push_back(diag::make(diag::Code::StepncNoProject, 0, 0,
+                                      "no PROJECT instance: there is no program to interpret"));
+    diagnostics_.back().severity = diag::Severity::Error;
+  } else {
+    const Instance& project = *projects.front();
+    emit(canon::Begin{canon::Scope::Project, entity(project)});
+    emit(canon::UseLengthUnits{canon::Units::Millimetres});
+    emit(canon::SetOriginOffsets{{0, 0, 0}, std::nullopt});
+    emit(canon::SetFeedReference{canon::FeedReference::Xyz});
+    emit(canon::SelectPlane{canon::Plane::Xy});
+    const Instance* main = ref(project, "main_workplan", "workplan");
+    if (main != nullptr) executable(*main, 0);
+    retract_to_security_plane();
+    if (spindle_ && *spindle_ != 0) emit(canon::StopSpindleTurning{});
+    if (flood_) emit(canon::FloodOff{});
+    if (mist_) emit(canon::MistOff{});
+    emit(canon::ProgramEnd{});
+    emit(canon::End{canon::Scope::Project, entity(project)});
+  }
+  result.diagnostics = std::move(diagnostics_);
+  result.calls = out_.count();
+  return result;
+}
+
+void Interpreter::set_up(const Instance& setup) {
+  // Machine ← setup origin ← workpiece origin: the setup places the workpiece set-ups on the
+  // machine table; each workpiece set-up places a workpiece. Toolpaths of a feature are in the
+  // feature's placement, which sits in the workpiece (docs/interpreter.md, "Placements").
+  Frame setup_frame;
+  if (const auto origin = a_.get(setup, "its_origin"); origin && !origin->is_omitted()) {
+    if (auto f = geometry_.placement(origin)) setup_frame = *f;
+  }
+  workpiece_origins_.clear();
+  workpiece_setups_.clear();
+  if (const auto list = a_.get(setup, "its_workpiece_setup"); list && list->is_list()) {
+    for (Value v : m_.items(*list)) {
+      const Instance* ws = geometry_.instance(v, "workpiece_setup", &setup, "its_workpiece_setup");
+      if (ws == nullptr) continue;
+      const auto origin = geometry_.placement(a_.get(*ws, "its_origin"));
+      workpiece_origins_.push_back(setup_frame.then(origin.value_or(Frame{})));
+      workpiece_setups_.push_back(ws);
+    }
+  }
+  workpiece_ = workpiece_origins_.empty() ? setup_frame : workpiece_origins_.front();
+  if (workpiece_origins_.size() > 1)
+    note(setup, detail::describe(m_, setup) + " has " + std::to_string(workpiece_origins_.size()) +
+                    " workpiece set-ups; each workingstep uses the one of its feature's workpiece");
+  // The setup's security plane until a workingstep names its own.
+  if (const Instance* plane = ref(setup, "its_secplane", "elementary_surface", true)) {
+    if (auto f = geometry_.placement(a_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+  }
+}
+
+void Interpreter::executable(const Instance& e, unsigned depth) {
+  if (depth > options_.max_nesting) {
+    geometry_.error(diag::Code::StepncTooDeep, e,
+                    detail::describe(m_, e) + " is nested more than " +
+                        std::to_string(options_.max_nesting) + " workplans deep");
+    return;
+  }
+  if (!a_.is_executable(e)) {
+    geometry_.error(diag::Code::StepncWrongType, e,
+                    detail::describe(m_, e) + " is not an ISO 14649 executable");
+    return;
+  }
+  if (!on_path_.insert(e.id).second) {
+    geometry_.error(diag::Code::StepncCycle, e, "#" + std::to_string(e.id) + " contains itself");
+    return;
+  }
+  if (a_.is_a(e, "workplan")) {
+    emit(canon::Begin{canon::Scope::Workplan, entity(e)});
+    const Instance* setup = ref(e, "its_setup", "setup", true);
+    if (setup) {
+      emit(canon::Begin{canon::Scope::Setup, entity(*setup)});
+      set_up(*setup);
+    }
+    elements(e, "its_elements", depth);
+    if (setup) emit(canon::End{canon::Scope::Setup, entity(*setup)});
+    emit(canon::End{canon::Scope::Workplan, entity(e)});
+  } else if (a_.is_a(e, "machining_workingstep")) {
+    workingstep(e);
+  } else if (a_.is_a(e, "rapid_movement")) {
+    rapid_movement(e);
+  } else if (a_.is_a(e, "nc_function")) {
+    nc_function(e);
+  } else if (a_.is_a(e, "non_sequential")) {
+    note(e, detail::describe(m_, e) + ": NON_SEQUENTIAL elements run in file order");
+    elements(e, "its_elements", depth);
+  } else if (a_.is_a(e, "parallel")) {
+    note(e, detail::describe(m_, e) + ": PARALLEL branches run one after another on this "
+                                      "single-channel machine");
+    elements(e, "branches", depth);
+  } else if (a_.is_a(e, "selective")) {
+    const auto list = a_.get(e, "its_elements");
+    if (list && list->is_list() && list->count() > 0) {
+      note(e, detail::describe(m_, e) + ": SELECTIVE runs its first element; the other " +
+                  std::to_string(list->count() - 1) + " are alternatives for the operator");
+      if (const Instance* first = geometry_.instance(m_.items(*list)[0], "executable", &e, "its_elements"))
+        executable(*first, depth + 1);
+    }
+  } else if (a_.is_a(e, "if_statement") || a_.is_a(e, "while_statement")) {
+    geometry_.error(diag::Code::StepncCondition, e,
+                    detail::describe(m_, e) +
+                        ": its condition depends on NC variables set while the program runs, "
+                        "which a post-processor cannot evaluate; the statement is not executed");
+  } else {
+    not_implemented(e, "this executable");
+  }
+  on_path_.erase(e.id);
+}
+
+void Interpreter::elements(const Instance& owner, std::string_view attribute, unsigned depth) {
+  const auto list = a_.get(owner, attribute);
+  if (!list || !list->is_list()) return;
+  for (Value v : m_.items(*list))
+    if (const Instance* e = geometry_.instance(v, "executable", &owner, attribute)) executable(*e, depth + 1);
+}
+
+void Interpreter::nc_function(const Instance& f) {
+  if (a_.is_a(f, "program_stop")) {
+    emit(canon::ProgramStop{});
+  } else if (a_.is_a(f, "optional_stop")) {
+    emit(canon::OptionalProgramStop{});
+  } else if (a_.is_a(f, "display_message")) {
+    const auto text = a_.get(f, "its_text");
+    emit(canon::Message{text && text->kind() == p21::ValueKind::String ? m_.as_string(*text) : name(f)});
+  } else if (a_.is_a(f, "load_tool")) {
+    if (const Instance* t = ref(f, "its_tool", "machining_tool")) tool(*t);
+  } else if (a_.is_a(f, "unload_tool")) {
+    emit(canon::ChangeTool{0});
+    tool_id_.reset();
+  } else if (a_.is_a(f, "exchange_pallet") || a_.is_a(f, "index_pallet") || a_.is_a(f, "index_table")) {
+    // RS274 has no pallet or table call: the operator is told, and the program stops for it.
+    std::string what = std::string(m_.type_name(f));
+    if (const auto index = a_.get(f, "its_index"); index && index->is_number())
+      what += " " + std::to_string(m_.as_integer(*index));
+    emit(canon::Message{what});
+    emit(canon::ProgramStop{});
+  } else if (a_.is_a(f, "set_mark") || a_.is_a(f, "wait_for_mark")) {
+    emit(canon::Comment{std::string(m_.type_name(f)) + " " + name(f)});
+    note(f, detail::describe(m_, f) + ": channel synchronisation has no effect on one channel");
+  } else {
+    not_implemented(f, "this NC function");
+  }
+}
+
+bool Interpreter::tool(const Instance& t) {
+  if (tool_id_ == t.id) return true;
+  const std::string tool_name = name(t);
+  int pocket = static_cast<int>(std::min<std::uint64_t>(t.id, 2147483647));
+  double length = 0;
+  if (options_.tools) {
+    const ToolTableEntry* entry = options_.tools->find(tool_name);
+    if (entry == nullptr) {
+      geometry_.error(diag::Code::StepncToolTable, t,
+                      detail::describe(m_, t) + " '" + tool_name + "' is not in the tool table");
+      return false;
+    }
+    pocket = entry->pocket;
+    length = entry->length_offset;
+  } else if (const auto l = a_.get(t, "overall_assembly_length"); l && l->is_number()) {
+    length = m_.as_real(*l);
+  }
+  retract_to_security_plane();
+  if (spindle_ && *spindle_ != 0) {
+    emit(canon::StopSpindleTurning{});
+    spindle_ = 0.0;
+  }
+  emit(canon::Comment{"TOOL " + tool_name});
+  emit(canon::SelectTool{pocket});
+  emit(canon::ChangeTool{pocket});
+  emit(canon::UseToolLengthOffset{length});
+  tool_id_ = t.id;
+  return true;
+}
+
+void Interpreter::technology(const Instance* tech) {
+  if (tech == nullptr) return;
+  if (const auto f = geometry_.number(*tech, "feedrate")) {
+    const double rate = *f * kFeedToMmPerMin;
+    if (!feed_ || *feed_ != rate) emit(canon::SetFeedRate{rate});
+    feed_ = rate;
+  }
+  if (!a_.is_a(*tech, "milling_technology")) return;
+  if (const auto s = geometry_.number(*tech, "spindle")) {
+    // NIST's convention (ex1.stp's notes): a negative speed turns clockwise.
+    const double rpm = std::abs(*s) * kSpindleToRpm;
+    if (!spindle_ || *spindle_ != *s) {
+      if (*s == 0) {
+        emit(canon::StopSpindleTurning{});
+      } else {
+        emit(canon::SetSpindleSpeed{rpm});
+        if (*s < 0) emit(canon::StartSpindleClockwise{});
+        else emit(canon::StartSpindleCounterclockwise{});
+      }
+    }
+    spindle_ = *s;
+  }
+}
+
+void Interpreter::machine_functions(const Instance* functions) {
+  if (functions == nullptr) return;
+  const auto flag = [&](std::string_view attribute) -> std::optional<bool> {
+    const auto v = a_.get(*functions, attribute);
+    if (!v || v->is_omitted()) return std::nullopt;
+    const auto l = m_.as_logical(*v);
+    if (!l) return std::nullopt;
+    return *l == p21::Logical::True;
+  };
+  if (const auto coolant = flag("coolant"); coolant && *coolant != flood_) {
+    if (*coolant) emit(canon::FloodOn{});
+    else emit(canon::FloodOff{});
+    flood_ = *coolant;
+  }
+  if (const auto mist = flag("mist"); mist && *mist != mist_) {
+    if (*mist) emit(canon::MistOn{});
+    else emit(canon::MistOff{});
+    mist_ = *mist;
+  }
+}
+
+void Interpreter::retract_to_security_plane() {
+  if (!position_ || !security_z_ || position_->z >= *security_z_ - kSamePoint) return;
+  position_->z = *security_z_;
+  emit(canon::StraightTraverse{pose(*position_)});
+}
+
+// Positions the tool at `start`: nothing when it is already there; otherwise up to the
+// security plane, across, and down, all at rapid.
+void Interpreter::approach(Vec3 start, bool rapid_only) {
+  if (position_ && (*position_ - start).length() < kSamePoint) return;
+  if (!rapid_only) retract_to_security_plane();
+  if (security_z_ && !rapid_only && start.z < *security_z_) {
+    const Vec3 above{start.x, start.y, *security_z_};
+    if (!position_ || (*position_ - above).length() >= kSamePoint) emit(canon::StraightTraverse{pose(above)});
+  }
+  emit(canon::StraightTraverse{pose(start)});
+  position_ = start;
+}
+
+void Interpreter::motion(const std::vector<Segment>& segments, const Frame& frame, bool rapid) {
+  bool selected_xy = true;
+  for (const Segment& s : segments) {
+    const Vec3 end = frame.point(s.end);
+    const auto axis = s.tool_axis ? std::optional<Vec3>(frame.direction(*s.tool_axis)) : std::nullopt;
+    switch (s.kind) {
+      case Segment::Kind::Line:
+        if (rapid) emit(canon::StraightTraverse{pose(end, axis)});
+        else emit(canon::StraightFeed{pose(end, axis)});
+        break;
+      case Segment::Kind::Arc: {
+        const Vec3 normal = frame.direction(s.normal);
+        const Vec3 centre = frame.point(s.centre);
+        const canon::Plane plane = std::abs(normal.x) > 1 - 1e-9   ? canon::Plane::Yz
+                                   : std::abs(normal.y) > 1 - 1e-9 ? canon::Plane::Xz
+                                                                   : canon::Plane::Xy;
+        if ((plane == canon::Plane::Xy) != selected_xy || plane != canon::Plane::Xy) {
+          emit(canon::SelectPlane{plane});
+          selected_xy = plane == canon::Plane::Xy;
+        }
+        emit(canon::ArcFeed{pose(end, axis), {centre.x, centre.y, centre.z},
+                            {normal.x, normal.y, normal.z}, s.turns});
+        break;
+      }
+      case Segment::Kind::Nurbs: {
+        canon::NurbsFeed n;
+        n.degree = s.degree;
+        for (std::size_t i = 0; i < s.control_points.size(); ++i) {
+          const Vec3 p = frame.point(s.control_points[i]);
+          n.points.push_back({p.x, p.y, p.z, s.weights[i]});
+        }
+        n.knots = s.knots;
+        emit(n);
+        break;
+      }
+    }
+    position_ = end;
+  }
+  if (!selected_xy) emit(canon::SelectPlane{canon::Plane::Xy});
+}
+
+void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid) {
+  if (list == nullptr) return;
+  const auto items = a_.get(*list, "its_list");
+  if (!items || !items->is_list()) return;
+  for (Value v : m_.items(*items)) {
+    const Instance* path = geometry_.instance(v, "toolpath", list, "its_list");
+    if (path == nullptr) continue;
+    if (!a_.is_a(*path, "cutter_location_trajectory")) {
+      not_implemented(*path, "this kind of toolpath (CUTTER_LOCATION_TRAJECTORY is)");
+      continue;
+    }
+    if (const auto speed = a_.get(*path, "its_speed"); speed && !speed->is_omitted())
+      not_implemented(*path, "a toolpath speed profile (its_speed)");
+    technology(ref(*path, "its_technology", "technology", true));
+    machine_functions(ref(*path, "its_machine_functions", "machine_functions", true));
+    const Instance* curve = ref(*path, "basiccurve", "bounded_curve");
+    if (curve == nullptr) continue;
+    auto segments = curves_.segments(*curve);
+    if (!segments || segments->empty()) continue;
+    if (const Instance* axis_curve = ref(*path, "its_toolaxis", "bounded_curve", true)) {
+      // A tool-axis curve: one axis vector per point of a polyline path.
+      const auto axes = a_.is_a(*axis_curve, "polyline") ? curves_.polyline_points(*axis_curve) : std::nullopt;
+      if (!axes || axes->size() != segments->size() + 1 ||
+          std::any_of(segments->begin(), segments->end(),
+                      [](const Segment& s) { return s.kind != Segment::Kind::Line; })) {
+        not_implemented(*path, "a tool-axis curve other than a polyline matching a polyline path");
+      } else {
+        for (std::size_t i = 0; i < segments->size(); ++i) {
+          const Vec3 d = (*axes)[i + 1];
+          (*segments)[i].tool_axis = d * (1.0 / std::max(d.length(), 1e-12));
+        }
+      }
+    }
+    const auto type = a_.get(*path, "its_type");
+    const bool non_contact = type && m_.enumeration(*type) == "NON_CONTACT";
+    const Vec3 start = frame.point(segments->front().start);
+    const bool first_of_list = v == m_.items(*items)[0];
+    if (first_of_list || !position_) {
+      approach(start, rapid);
+    } else if ((*position_ - start).length() >= kSamePoint) {
+      geometry_.error(diag::Code::StepncDiscontinuous, *path,
+                      detail::describe(m_, *path) +
+                          " starts away from where the previous toolpath ended; the tool " +
+                          (rapid ? "moves" : "feeds") + " across");
+      if (rapid) emit(canon::StraightTraverse{pose(start)});
+      else emit(canon::StraightFeed{pose(start)});
+      position_ = start;
+    }
+    motion(*segments, frame, rapid || non_contact);
+  }
+}
+
+void Interpreter::workingstep(const Instance& ws) {
+  emit(canon::Begin{canon::Scope::Workingstep, entity(ws)});
+  const Instance* operation = ref(ws, "its_operation", "machining_operation");
+  const Instance* feature = ref(ws, "its_feature", "manufacturing_feature", true);
+  if (const Instance* plane = ref(ws, "its_secplane", "elementary_surface", true)) {
+    if (auto f = geometry_.placement(a_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+  }
+  // The feature's workpiece picks the workpiece set-up; its placement is the toolpaths' frame.
+  Frame frame = workpiece_;
+  if (feature != nullptr) {
+    if (const auto wp = a_.get(*feature, "its_workpiece"); wp && wp->is_reference()) {
+      for (std::size_t i = 0; i < workpiece_setups_.size(); ++i) {
+        const auto w = a_.get(*workpiece_setups_[i], "its_workpiece");
+        if (w && w->is_reference() && w->id() == wp->id()) frame = workpiece_origins_[i];
+      }
+    }
+    if (const auto placement = a_.get(*feature, "feature_placement"); placement && !placement->is_omitted()) {
+      if (auto f = geometry_.placement(placement)) frame = frame.then(*f);
+    }
+  }
+  if (operation != nullptr) {
+    const Instance* tool_instance = ref(*operation, "its_tool", "machining_tool");
+    if (tool_instance != nullptr && tool(*tool_instance)) {
+      technology(ref(*operation, "its_technology", "technology"));
+      machine_functions(ref(*operation, "its_machine_functions", "machine_functions"));
+      const Instance* list = ref(*operation, "its_toolpath", "toolpath_list", true);
+      if (list == nullptr) {
+        geometry_.error(diag::Code::StepncNotImplemented, ws,
+                        detail::describe(m_, ws) + ": " + detail::describe(m_, *operation) +
+                            (feature ? " on " + detail::describe(m_, *feature) : std::string()) +
+                            " has no explicit toolpath; generating toolpaths from features "
+                            "(conformance class 3) is not implemented yet");
+      } else {
+        toolpaths(list, frame, false);
+      }
+    }
+  }
+  emit(canon::End{canon::Scope::Workingstep, entity(ws)});
+}
+
+void Interpreter::rapid_movement(const Instance& rm) {
+  emit(canon::Begin{canon::Scope::Workingstep, entity(rm)});
+  if (const Instance* plane = ref(rm, "its_secplane", "elementary_surface", true)) {
+    if (auto f = geometry_.placement(a_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+  }
+  // A rapid movement has no feature: its toolpath is in the workpiece's coordinates.
+  toolpaths(ref(rm, "its_toolpath", "toolpath_list", true), workpiece_, true);
+  emit(canon::End{canon::Scope::Workingstep, entity(rm)});
+}
+
+}  // namespace
+
+bool InterpretResult::ok() const {
+  return std::none_of(diagnostics.begin(), diagnostics.end(),
+                      [](const auto& d) { return d.severity == diag::Severity::Error; });
+}
+
+const ToolTableEntry* ToolTable::find(std::string_view name) const {
+  for (const auto& e : entries)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+ToolTable read_tool_table(std::string_view text, std::vector<diag::Diagnostic>& diagnostics) {
+  ToolTable table;
+  std::uint32_t line_number = 0;
+  while (!text.empty()) {
+    const std::size_t eol = text.find('\n');
+    std::string_view line = text.substr(0, eol);
+    text = eol == std::string_view::npos ? std::string_view() : text.substr(eol + 1);
+    ++line_number;
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+    if (line.empty() || !std::isdigit(static_cast<unsigned char>(line.front()))) continue;  // heading
+    // POCKET  FMS  TLO  DIAM  [HOLDER  DESCRIPTION...]; FMS may be quoted with ' or ".
+    ToolTableEntry e;
+    auto [p, ec] = std::from_chars(line.data(), line.data() + line.size(), e.pocket);
+    line.remove_prefix(static_cast<std::size_t>(p - line.data()));
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+    if (!line.empty() && (line.front() == '\'' || line.front() == '"')) {
+      const char quote = line.front();
+      const std::size_t close = line.find(quote, 1);
+      if (close == std::string_view::npos) {
+        diagnostics.push_back(diag::make(diag::Code::StepncToolTable, line_number, 1, "unclosed quote in the tool name"));
+        continue;
+      }
+      e.name = std::string(line.substr(1, close - 1));
+      line.remove_prefix(close + 1);
+    } else {
+      const std::size_t end = line.find_first_of(" \t");
+      e.name = std::string(line.substr(0, end));
+      line.remove_prefix(end == std::string_view::npos ? line.size() : end);
+    }
+    double numbers[2] = {0, 0};
+    for (double& n : numbers) {
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+      auto [q, ec2] = std::from_chars(line.data(), line.data() + line.size(), n);
+      if (ec2 != std::errc()) {
+        diagnostics.push_back(diag::make(diag::Code::StepncToolTable, line_number, 1,
+                                         "expected the length offset and diameter of tool '" + e.name + "'"));
+        break;
+      }
+      line.remove_prefix(static_cast<std::size_t>(q - line.data()));
+    }
+    e.length_offset = numbers[0];
+    e.diameter = numbers[1];
+    if (ec == std::errc() && !e.name.empty()) table.entries.push_back(std::move(e));
+  }
+  return table;
+}
+
+InterpretResult interpret(const p21::Model& model, const AttributeReader& attributes,
+                          canon::Sink& sink, const InterpretOptions& options) {
+  return Interpreter(model, attributes, sink, options).run();
+}
+
+}  // namespace ncpost::stepnc
