@@ -201,10 +201,13 @@ std::optional<std::vector<Segment>> CurveReader::trimmed(const p21::Instance& cu
     return std::nullopt;
   }
   // The helix rises |pitch| per turn; its angular travel must end where the end point is.
+  // rs274 counts |turns| - 1 full turns before the last, partial one; when the end is at the
+  // start's angle that last part is itself a full turn.
   const double rise = std::abs((*end - *start).dot(frame->z));
   const double total = kTwoPi * rise / std::abs(*pitch);
-  const double full_turns = std::floor((total - sweep) / kTwoPi + 0.5);
-  const double mismatch = std::abs(full_turns * kTwoPi + sweep - total) * *radius;
+  const double partial = sweep < 1e-9 ? kTwoPi : sweep;
+  const double full_turns = std::floor((total - partial) / kTwoPi + 0.5);
+  const double mismatch = std::abs(full_turns * kTwoPi + partial - total) * *radius;
   if (mismatch > std::max(arc_tolerance_, 1e-3 * total * *radius)) {
     geometry_.error(diag::Code::StepncArcMismatch, curve,
                     describe(m, curve) + ": a rise of " + std::to_string(rise) + " at pitch " +
