@@ -12,6 +12,7 @@
 #include "ncpost/canon/xml.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/stepnc/program_info.hpp"
 
 namespace ncpost::cli {
 namespace {
@@ -47,6 +48,9 @@ int run_trace(Args args) {
   add_builtin_report(schemas, loaded);
   print_schema_reports(schemas.reports);
   if (!loaded.ok()) {
+    // Say what the file is, too, when it is not a program at all (an AP238 AIM excerpt, say).
+    if (loaded.model.instances_of("PROJECT").empty())
+      loaded.diagnostics.push_back(stepnc::no_program_diagnostic(loaded.model));
     print_diagnostics(loaded.diagnostics, name);
     return kExitRejected;
   }

@@ -9,6 +9,7 @@
 
 #include "curves.hpp"
 #include "geometry.hpp"
+#include "ncpost/stepnc/program_info.hpp"
 
 namespace ncpost::stepnc {
 namespace {
@@ -125,8 +126,8 @@ InterpretResult Interpreter::run() {
   InterpretResult result;
   const auto projects = m_.instances_of("PROJECT");
   if (projects.empty()) {
-    diagnostics_.push_back(diag::make(diag::Code::StepncNoProject, 0, 0,
-                                      "no PROJECT instance: there is no program to interpret"));
+    // Nothing to interpret is an error here, whatever inspect makes of it.
+    diagnostics_.push_back(no_program_diagnostic(m_));
     diagnostics_.back().severity = diag::Severity::Error;
   } else {
     const Instance& project = *projects.front();

@@ -99,16 +99,7 @@ class Inspector {
   ordered_json project() {
     const auto projects = model_.instances_of("PROJECT");
     if (projects.empty()) {
-      const bool aim = model_.keyword_id("MACHINING_PROJECT").has_value() ||
-                       model_.keyword_id("PRODUCT_DEFINITION_PROCESS").has_value();
-      if (aim)
-        diagnostics_.push_back(diag::make(
-            diag::Code::StepncAimNotSupported, 0, 0,
-            "this is an AP238 AIM file (MACHINING_PROJECT in the integrated CNC schema); the "
-            "program tree is read from ISO 14649 ARM files only"));
-      else
-        diagnostics_.push_back(diag::make(diag::Code::StepncNoProject, 0, 0,
-                                          "no PROJECT instance: not an ISO 14649 program"));
+      diagnostics_.push_back(no_program_diagnostic(model_));
       return nullptr;
     }
     if (projects.size() > 1)
@@ -294,6 +285,17 @@ ProgramInfo inspect(const p21::Model& model, const express::SchemaRegistry& sche
                                info.diagnostics.end());
   info.diagnostics = std::move(selection.diagnostics);
   return info;
+}
+
+diag::Diagnostic no_program_diagnostic(const p21::Model& model) {
+  const bool aim = model.keyword_id("MACHINING_PROJECT").has_value() ||
+                   model.keyword_id("PRODUCT_DEFINITION_PROCESS").has_value();
+  if (aim)
+    return diag::make(diag::Code::StepncAimNotSupported, 0, 0,
+                      "this is an AP238 AIM file (MACHINING_PROJECT in the integrated CNC "
+                      "schema); ncpost reads ISO 14649 ARM programs only");
+  return diag::make(diag::Code::StepncNoProject, 0, 0,
+                    "no PROJECT instance: not an ISO 14649 program");
 }
 
 nlohmann::ordered_json diagnostics_json(const std::vector<diag::Diagnostic>& list,
