@@ -6,8 +6,9 @@
 namespace ncpost::canon {
 namespace {
 
+// False for every T, but only once T is known: lets the last `else` reject a forgotten call.
 template <class T>
-constexpr bool is = false;
+[[maybe_unused]] constexpr bool is = false;
 
 // Names of the calls that do not depend on their arguments.
 template <class T>

@@ -9,6 +9,14 @@ namespace {
 // A simple instance's parameter at the schema position of `name` in `entity`.
 std::optional<p21::Value> at_position(const express::Entity& entity,
                                       std::span<const p21::Value> params, std::string_view name) {
+  // Schema names are lower case, and so is every name the engine asks for: an exact compare
+  // finds them without the case-folding look-up, which stays as the fallback.
+  for (std::size_t i = 0; i < entity.attributes.size(); ++i) {
+    if (entity.attributes[i].name == name) {
+      if (i >= params.size()) return std::nullopt;
+      return params[i];
+    }
+  }
   const auto index = entity.attribute_index(name);
   if (!index || *index >= params.size()) return std::nullopt;
   return params[*index];

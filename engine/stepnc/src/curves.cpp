@@ -41,17 +41,16 @@ void reverse(std::vector<Segment>& segments) {
 }
 
 std::optional<std::vector<Segment>> CurveReader::segments(const p21::Instance& curve, int depth) {
-  const AttributeReader& a = geometry_.attributes();
   if (depth > kMaxCurveNesting) {
     geometry_.error(diag::Code::StepncBadGeometry, curve,
                     describe(geometry_.model(), curve) + " nests curves deeper than " +
                         std::to_string(kMaxCurveNesting));
     return std::nullopt;
   }
-  if (a.is_a(curve, "polyline")) return polyline(curve);
-  if (a.is_a(curve, "trimmed_curve")) return trimmed(curve);
-  if (a.is_a(curve, "composite_curve")) return composite(curve, depth);
-  if (a.is_a(curve, "b_spline_curve_with_knots")) return bspline(curve);
+  if (geometry_.is_a(curve, "polyline")) return polyline(curve);
+  if (geometry_.is_a(curve, "trimmed_curve")) return trimmed(curve);
+  if (geometry_.is_a(curve, "composite_curve")) return composite(curve, depth);
+  if (geometry_.is_a(curve, "b_spline_curve_with_knots")) return bspline(curve);
   geometry_.error(diag::Code::StepncNotImplemented, curve,
                   describe(geometry_.model(), curve) +
                       " as a toolpath curve is not implemented (POLYLINE, TRIMMED_CURVE, "
@@ -93,8 +92,7 @@ std::optional<std::vector<Segment>> CurveReader::polyline(const p21::Instance& c
 std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::string_view attribute,
                                             const p21::Instance& basis) {
   const p21::Model& m = geometry_.model();
-  const AttributeReader& a = geometry_.attributes();
-  const auto set = a.get(trimmed, attribute);
+  const auto set = geometry_.get(trimmed, attribute);
   if (!set || !set->is_list() || set->count() == 0) {
     geometry_.error(diag::Code::StepncBadAttribute, trimmed,
                     describe(m, trimmed) + " attribute " + std::string(attribute) + " is empty");
@@ -107,7 +105,7 @@ std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::s
     if (v.kind() == p21::ValueKind::Typed && m.typed_child(v).is_number())
       parameter = m.as_real(m.typed_child(v));
   }
-  const auto master = a.get(trimmed, "master_representation");
+  const auto master = geometry_.get(trimmed, "master_representation");
   const bool prefer_parameter =
       master && master->kind() == p21::ValueKind::Enumeration && m.enumeration(*master) == "PARAMETER";
   if (point_value && (!parameter || !prefer_parameter)) return geometry_.point(point_value);
@@ -117,17 +115,17 @@ std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::s
                         " holds neither a point nor a parameter");
     return std::nullopt;
   }
-  if (a.is_a(basis, "line")) {
-    const auto origin = geometry_.point(a.get(basis, "pnt"));
-    const p21::Instance* vector = geometry_.instance(a.get(basis, "dir"), "vector", &basis, "dir");
+  if (geometry_.is_a(basis, "line")) {
+    const auto origin = geometry_.point(geometry_.get(basis, "pnt"));
+    const p21::Instance* vector = geometry_.instance(geometry_.get(basis, "dir"), "vector", &basis, "dir");
     if (!origin || vector == nullptr) return std::nullopt;
-    const auto direction = geometry_.direction(a.get(*vector, "orientation"));
+    const auto direction = geometry_.direction(geometry_.get(*vector, "orientation"));
     const auto magnitude = geometry_.number(*vector, "magnitude");
     if (!direction || !magnitude) return std::nullopt;
     return *origin + *direction * (*parameter * *magnitude);
   }
-  if (a.is_a(basis, "circle")) {
-    const auto frame = geometry_.placement(a.get(basis, "position"));
+  if (geometry_.is_a(basis, "circle")) {
+    const auto frame = geometry_.placement(geometry_.get(basis, "position"));
     const auto radius = geometry_.number(basis, "radius");
     if (!frame || !radius) return std::nullopt;
     // ISO 10303-42 circle parameter: the angle, in radians here (the ARM has no unit context).
@@ -141,28 +139,27 @@ std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::s
 
 std::optional<std::vector<Segment>> CurveReader::trimmed(const p21::Instance& curve) {
   const p21::Model& m = geometry_.model();
-  const AttributeReader& a = geometry_.attributes();
-  const p21::Instance* basis = geometry_.instance(a.get(curve, "basis_curve"), "curve", &curve, "basis_curve");
+  const p21::Instance* basis = geometry_.instance(geometry_.get(curve, "basis_curve"), "curve", &curve, "basis_curve");
   if (basis == nullptr) return std::nullopt;
   const auto start = trim_point(curve, "trim_1", *basis);
   const auto end = trim_point(curve, "trim_2", *basis);
   if (!start || !end) return std::nullopt;
-  const auto sense = a.get(curve, "sense_agreement");
+  const auto sense = geometry_.get(curve, "sense_agreement");
   const bool agrees = !sense || m.as_logical(*sense) != p21::Logical::False;
 
   Segment s;
   s.start = *start;
   s.end = *end;
-  if (a.is_a(*basis, "line")) return std::vector<Segment>{s};
+  if (geometry_.is_a(*basis, "line")) return std::vector<Segment>{s};
 
-  const bool helix = a.is_a(*basis, "helix");
-  if (!helix && !a.is_a(*basis, "circle")) {
+  const bool helix = geometry_.is_a(*basis, "helix");
+  if (!helix && !geometry_.is_a(*basis, "circle")) {
     geometry_.error(diag::Code::StepncNotImplemented, curve,
                     describe(m, curve) + " trims " + describe(m, *basis) +
                         ", which is not implemented (LINE, CIRCLE and HELIX are)");
     return std::nullopt;
   }
-  const auto frame = geometry_.placement(a.get(*basis, "position"));
+  const auto frame = geometry_.placement(geometry_.get(*basis, "position"));
   const auto radius = geometry_.number(*basis, "radius");
   if (!frame || !radius) return std::nullopt;
   for (const auto& [p, which] : {std::pair{*start, "start"}, std::pair{*end, "end"}}) {
@@ -221,18 +218,17 @@ std::optional<std::vector<Segment>> CurveReader::trimmed(const p21::Instance& cu
 
 std::optional<std::vector<Segment>> CurveReader::composite(const p21::Instance& curve, int depth) {
   const p21::Model& m = geometry_.model();
-  const AttributeReader& a = geometry_.attributes();
-  const auto list = a.get(curve, "segments");
+  const auto list = geometry_.get(curve, "segments");
   if (!list || !list->is_list()) return std::nullopt;
   std::vector<Segment> out;
   for (p21::Value v : m.items(*list)) {
     const p21::Instance* seg = geometry_.instance(v, "composite_curve_segment", &curve, "segments");
     if (seg == nullptr) return std::nullopt;
-    const p21::Instance* parent = geometry_.instance(a.get(*seg, "parent_curve"), "curve", seg, "parent_curve");
+    const p21::Instance* parent = geometry_.instance(geometry_.get(*seg, "parent_curve"), "curve", seg, "parent_curve");
     if (parent == nullptr) return std::nullopt;
     auto part = segments(*parent, depth + 1);
     if (!part) return std::nullopt;
-    const auto same = a.get(*seg, "same_sense");
+    const auto same = geometry_.get(*seg, "same_sense");
     if (same && m.as_logical(*same) == p21::Logical::False) reverse(*part);
     out.insert(out.end(), part->begin(), part->end());
   }
@@ -241,13 +237,12 @@ std::optional<std::vector<Segment>> CurveReader::composite(const p21::Instance& 
 
 std::optional<std::vector<Segment>> CurveReader::bspline(const p21::Instance& curve) {
   const p21::Model& m = geometry_.model();
-  const AttributeReader& a = geometry_.attributes();
   Segment s;
   s.kind = Segment::Kind::Nurbs;
-  const auto degree = a.get(curve, "degree");
-  const auto points = a.get(curve, "control_points_list");
-  const auto multiplicities = a.get(curve, "knot_multiplicities");
-  const auto knots = a.get(curve, "knots");
+  const auto degree = geometry_.get(curve, "degree");
+  const auto points = geometry_.get(curve, "control_points_list");
+  const auto multiplicities = geometry_.get(curve, "knot_multiplicities");
+  const auto knots = geometry_.get(curve, "knots");
   if (!degree || !points || !multiplicities || !knots || !points->is_list() ||
       !multiplicities->is_list() || !knots->is_list() ||
       multiplicities->count() != knots->count()) {
@@ -266,7 +261,7 @@ std::optional<std::vector<Segment>> CurveReader::bspline(const p21::Instance& cu
   for (std::size_t i = 0; i < k.size(); ++i)
     for (std::int64_t r = 0; r < m.as_integer(mult[i]) && r < 64; ++r) s.knots.push_back(m.as_real(k[i]));
   s.weights.assign(s.control_points.size(), 1.0);
-  if (const auto w = a.get(curve, "weights_data"); w && w->is_list()) {
+  if (const auto w = geometry_.get(curve, "weights_data"); w && w->is_list()) {
     const auto ws = m.items(*w);
     if (ws.size() != s.control_points.size()) {
       geometry_.error(diag::Code::StepncBadGeometry, curve,

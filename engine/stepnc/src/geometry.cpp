@@ -27,21 +27,57 @@ void GeometryReader::error(diag::Code code, const p21::Instance& at, std::string
   diagnostics_.push_back(diag::make(code, pos.line, pos.column, std::move(message)));
 }
 
+bool GeometryReader::is_a(const p21::Instance& instance, std::string_view entity) {
+  // Simple instances: the answer per (keyword, literal) is remembered.
+  if (!model_.is_complex(instance)) {
+    if (instance.keyword >= kinds_.size()) kinds_.resize(model_.keyword_count());
+    for (const auto& [literal, answer] : kinds_[instance.keyword])
+      if (literal == entity.data()) return answer;
+  }
+  auto it = entities_.find(entity);
+  if (it == entities_.end())
+    it = entities_.emplace(entity, attributes_.schema().find_entity(entity)).first;
+  const bool answer = attributes_.is_a(instance, it->second);
+  if (!model_.is_complex(instance)) kinds_[instance.keyword].emplace_back(entity.data(), answer);
+  return answer;
+}
+
+std::optional<p21::Value> GeometryReader::get(const p21::Instance& instance, std::string_view name) {
+  const express::Entity* e = attributes_.entity(instance);
+  if (e == nullptr) return attributes_.get(instance, name);  // complex or unknown
+  if (instance.keyword >= positions_.size()) positions_.resize(model_.keyword_count());
+  auto& known = positions_[instance.keyword];
+  int position = -2;
+  for (const auto& [literal, at] : known)
+    if (literal == name.data()) position = at;
+  if (position == -2) {
+    const auto index = e->attribute_index(name);
+    position = index ? static_cast<int>(*index) : -1;
+    known.emplace_back(name.data(), position);
+  }
+  const auto params = model_.params(instance);
+  if (position < 0 || static_cast<std::size_t>(position) >= params.size()) return std::nullopt;
+  return params[static_cast<std::size_t>(position)];
+}
+
 const p21::Instance* GeometryReader::instance(std::optional<p21::Value> reference,
                                               std::string_view expected,
                                               const p21::Instance* owner,
                                               std::string_view attribute) {
   const p21::Instance* target =
       reference && reference->is_reference() ? model_.find(reference->id()) : nullptr;
-  const std::string where =
-      owner ? describe(model_, *owner) + " attribute " + std::string(attribute) : std::string("a reference");
+  // The message is built only when there is something to report: this runs per reference.
+  const auto where = [&] {
+    return owner ? describe(model_, *owner) + " attribute " + std::string(attribute)
+                 : std::string("a reference");
+  };
   if (target == nullptr) {
-    if (owner) error(diag::Code::StepncBadAttribute, *owner, where + " does not refer to an instance");
+    if (owner) error(diag::Code::StepncBadAttribute, *owner, where() + " does not refer to an instance");
     return nullptr;
   }
-  if (!expected.empty() && !attributes_.is_a(*target, expected)) {
+  if (!expected.empty() && !is_a(*target, expected)) {
     error(diag::Code::StepncWrongType, owner ? *owner : *target,
-          where + " refers to " + describe(model_, *target) + ", which is not a " +
+          where() + " refers to " + describe(model_, *target) + ", which is not a " +
               std::string(expected));
     return nullptr;
   }
@@ -49,7 +85,7 @@ const p21::Instance* GeometryReader::instance(std::optional<p21::Value> referenc
 }
 
 std::optional<double> GeometryReader::number(const p21::Instance& owner, std::string_view name) {
-  const auto v = attributes_.get(owner, name);
+  const auto v = get(owner, name);
   if (!v || !v->is_number()) return std::nullopt;
   const double d = model_.as_real(*v);
   if (!std::isfinite(d)) {
@@ -63,7 +99,7 @@ std::optional<double> GeometryReader::number(const p21::Instance& owner, std::st
 std::optional<Vec3> GeometryReader::point(std::optional<p21::Value> reference) {
   const p21::Instance* p = instance(reference, "cartesian_point");
   if (p == nullptr) return std::nullopt;
-  const auto coordinates = attributes_.get(*p, "coordinates");
+  const auto coordinates = get(*p, "coordinates");
   if (!coordinates || !coordinates->is_list() || coordinates->count() < 2 || coordinates->count() > 3) {
     error(diag::Code::StepncBadGeometry, *p, describe(model_, *p) + " needs two or three coordinates");
     return std::nullopt;
@@ -85,7 +121,7 @@ std::optional<Vec3> GeometryReader::point(std::optional<p21::Value> reference) {
 std::optional<Vec3> GeometryReader::direction(std::optional<p21::Value> reference) {
   const p21::Instance* d = instance(reference, "direction");
   if (d == nullptr) return std::nullopt;
-  const auto ratios = attributes_.get(*d, "direction_ratios");
+  const auto ratios = get(*d, "direction_ratios");
   if (!ratios || !ratios->is_list() || ratios->count() < 2 || ratios->count() > 3) {
     error(diag::Code::StepncBadGeometry, *d, describe(model_, *d) + " needs two or three ratios");
     return std::nullopt;
@@ -104,16 +140,16 @@ std::optional<Vec3> GeometryReader::direction(std::optional<p21::Value> referenc
 std::optional<Frame> GeometryReader::placement(std::optional<p21::Value> reference) {
   const p21::Instance* a = instance(reference, "axis2_placement_3d");
   if (a == nullptr) return std::nullopt;
-  const auto location = point(attributes_.get(*a, "location"));
+  const auto location = point(get(*a, "location"));
   if (!location) return std::nullopt;
   Vec3 z{0, 0, 1};
   Vec3 ref{1, 0, 0};
-  if (const auto axis = attributes_.get(*a, "axis"); axis && !axis->is_omitted()) {
+  if (const auto axis = get(*a, "axis"); axis && !axis->is_omitted()) {
     const auto d = direction(axis);
     if (!d) return std::nullopt;
     z = *d;
   }
-  if (const auto r = attributes_.get(*a, "ref_direction"); r && !r->is_omitted()) {
+  if (const auto r = get(*a, "ref_direction"); r && !r->is_omitted()) {
     const auto d = direction(r);
     if (!d) return std::nullopt;
     ref = *d;

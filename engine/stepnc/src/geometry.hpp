@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/p21/model.hpp"
@@ -61,6 +63,13 @@ class GeometryReader {
   // A number attribute, checked finite.
   [[nodiscard]] std::optional<double> number(const p21::Instance& owner, std::string_view name);
 
+  // is_a by entity name, with the schema look-up of each name done once per interpretation.
+  // `entity` must be a string with static storage (a literal): it keys the cache.
+  [[nodiscard]] bool is_a(const p21::Instance& instance, std::string_view entity);
+  // AttributeReader::get, with each (entity, name) position looked up once per interpretation.
+  // `name` must be a literal, as for is_a.
+  [[nodiscard]] std::optional<p21::Value> get(const p21::Instance& instance, std::string_view name);
+
   const p21::Instance* instance(std::optional<p21::Value> reference, std::string_view expected,
                                 const p21::Instance* owner = nullptr, std::string_view attribute = {});
   void error(diag::Code code, const p21::Instance& at, std::string message);
@@ -73,6 +82,10 @@ class GeometryReader {
   const AttributeReader& attributes_;
   std::vector<diag::Diagnostic>& diagnostics_;
   std::optional<p21::LineIndex> lines_;  // built at the first diagnostic
+  std::unordered_map<std::string_view, const express::Entity*> entities_;
+  // Per keyword: (name literal, position or -1) pairs, compared by pointer.
+  std::vector<std::vector<std::pair<const char*, int>>> positions_;
+  std::vector<std::vector<std::pair<const char*, bool>>> kinds_;  // is_a answers, likewise
 };
 
 std::string describe(const p21::Model& model, const p21::Instance& instance);

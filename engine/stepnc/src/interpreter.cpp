@@ -64,7 +64,7 @@ class Interpreter {
   // ---- helpers ----
   void emit(canon::Call c) { out_.call(c); }
   std::string name(const Instance& i) {
-    const auto v = a_.get(i, "its_id");
+    const auto v = geometry_.get(i, "its_id");
     return v && v->kind() == p21::ValueKind::String ? m_.as_string(*v) : std::string();
   }
   canon::Entity entity(const Instance& i) {
@@ -72,7 +72,7 @@ class Interpreter {
   }
   const Instance* ref(const Instance& owner, std::string_view attribute, std::string_view type,
                       bool optional = false) {
-    const auto v = a_.get(owner, attribute);
+    const auto v = geometry_.get(owner, attribute);
     if (optional && (!v || v->is_omitted())) return nullptr;
     return geometry_.instance(v, type, &owner, attribute);
   }
@@ -155,16 +155,16 @@ void Interpreter::set_up(const Instance& setup) {
   // machine table; each workpiece set-up places a workpiece. Toolpaths of a feature are in the
   // feature's placement, which sits in the workpiece (docs/interpreter.md, "Placements").
   Frame setup_frame;
-  if (const auto origin = a_.get(setup, "its_origin"); origin && !origin->is_omitted()) {
+  if (const auto origin = geometry_.get(setup, "its_origin"); origin && !origin->is_omitted()) {
     if (auto f = geometry_.placement(origin)) setup_frame = *f;
   }
   workpiece_origins_.clear();
   workpiece_setups_.clear();
-  if (const auto list = a_.get(setup, "its_workpiece_setup"); list && list->is_list()) {
+  if (const auto list = geometry_.get(setup, "its_workpiece_setup"); list && list->is_list()) {
     for (Value v : m_.items(*list)) {
       const Instance* ws = geometry_.instance(v, "workpiece_setup", &setup, "its_workpiece_setup");
       if (ws == nullptr) continue;
-      const auto origin = geometry_.placement(a_.get(*ws, "its_origin"));
+      const auto origin = geometry_.placement(geometry_.get(*ws, "its_origin"));
       workpiece_origins_.push_back(setup_frame.then(origin.value_or(Frame{})));
       workpiece_setups_.push_back(ws);
     }
@@ -175,7 +175,7 @@ void Interpreter::set_up(const Instance& setup) {
                     " workpiece set-ups; each workingstep uses the one of its feature's workpiece");
   // The setup's security plane until a workingstep names its own.
   if (const Instance* plane = ref(setup, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(a_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+    if (auto f = geometry_.placement(geometry_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
   }
 }
 
@@ -195,7 +195,7 @@ void Interpreter::executable(const Instance& e, unsigned depth) {
     geometry_.error(diag::Code::StepncCycle, e, "#" + std::to_string(e.id) + " contains itself");
     return;
   }
-  if (a_.is_a(e, "workplan")) {
+  if (geometry_.is_a(e, "workplan")) {
     emit(canon::Begin{canon::Scope::Workplan, entity(e)});
     const Instance* setup = ref(e, "its_setup", "setup", true);
     if (setup) {
@@ -205,28 +205,28 @@ void Interpreter::executable(const Instance& e, unsigned depth) {
     elements(e, "its_elements", depth);
     if (setup) emit(canon::End{canon::Scope::Setup, entity(*setup)});
     emit(canon::End{canon::Scope::Workplan, entity(e)});
-  } else if (a_.is_a(e, "machining_workingstep")) {
+  } else if (geometry_.is_a(e, "machining_workingstep")) {
     workingstep(e);
-  } else if (a_.is_a(e, "rapid_movement")) {
+  } else if (geometry_.is_a(e, "rapid_movement")) {
     rapid_movement(e);
-  } else if (a_.is_a(e, "nc_function")) {
+  } else if (geometry_.is_a(e, "nc_function")) {
     nc_function(e);
-  } else if (a_.is_a(e, "non_sequential")) {
+  } else if (geometry_.is_a(e, "non_sequential")) {
     note(e, detail::describe(m_, e) + ": NON_SEQUENTIAL elements run in file order");
     elements(e, "its_elements", depth);
-  } else if (a_.is_a(e, "parallel")) {
+  } else if (geometry_.is_a(e, "parallel")) {
     note(e, detail::describe(m_, e) + ": PARALLEL branches run one after another on this "
                                       "single-channel machine");
     elements(e, "branches", depth);
-  } else if (a_.is_a(e, "selective")) {
-    const auto list = a_.get(e, "its_elements");
+  } else if (geometry_.is_a(e, "selective")) {
+    const auto list = geometry_.get(e, "its_elements");
     if (list && list->is_list() && list->count() > 0) {
       note(e, detail::describe(m_, e) + ": SELECTIVE runs its first element; the other " +
                   std::to_string(list->count() - 1) + " are alternatives for the operator");
       if (const Instance* first = geometry_.instance(m_.items(*list)[0], "executable", &e, "its_elements"))
         executable(*first, depth + 1);
     }
-  } else if (a_.is_a(e, "if_statement") || a_.is_a(e, "while_statement")) {
+  } else if (geometry_.is_a(e, "if_statement") || geometry_.is_a(e, "while_statement")) {
     geometry_.error(diag::Code::StepncCondition, e,
                     detail::describe(m_, e) +
                         ": its condition depends on NC variables set while the program runs, "
@@ -238,33 +238,33 @@ void Interpreter::executable(const Instance& e, unsigned depth) {
 }
 
 void Interpreter::elements(const Instance& owner, std::string_view attribute, unsigned depth) {
-  const auto list = a_.get(owner, attribute);
+  const auto list = geometry_.get(owner, attribute);
   if (!list || !list->is_list()) return;
   for (Value v : m_.items(*list))
     if (const Instance* e = geometry_.instance(v, "executable", &owner, attribute)) executable(*e, depth + 1);
 }
 
 void Interpreter::nc_function(const Instance& f) {
-  if (a_.is_a(f, "program_stop")) {
+  if (geometry_.is_a(f, "program_stop")) {
     emit(canon::ProgramStop{});
-  } else if (a_.is_a(f, "optional_stop")) {
+  } else if (geometry_.is_a(f, "optional_stop")) {
     emit(canon::OptionalProgramStop{});
-  } else if (a_.is_a(f, "display_message")) {
-    const auto text = a_.get(f, "its_text");
+  } else if (geometry_.is_a(f, "display_message")) {
+    const auto text = geometry_.get(f, "its_text");
     emit(canon::Message{text && text->kind() == p21::ValueKind::String ? m_.as_string(*text) : name(f)});
-  } else if (a_.is_a(f, "load_tool")) {
+  } else if (geometry_.is_a(f, "load_tool")) {
     if (const Instance* t = ref(f, "its_tool", "machining_tool")) tool(*t);
-  } else if (a_.is_a(f, "unload_tool")) {
+  } else if (geometry_.is_a(f, "unload_tool")) {
     emit(canon::ChangeTool{0});
     tool_id_.reset();
-  } else if (a_.is_a(f, "exchange_pallet") || a_.is_a(f, "index_pallet") || a_.is_a(f, "index_table")) {
+  } else if (geometry_.is_a(f, "exchange_pallet") || geometry_.is_a(f, "index_pallet") || geometry_.is_a(f, "index_table")) {
     // RS274 has no pallet or table call: the operator is told, and the program stops for it.
     std::string what = std::string(m_.type_name(f));
-    if (const auto index = a_.get(f, "its_index"); index && index->is_number())
+    if (const auto index = geometry_.get(f, "its_index"); index && index->is_number())
       what += " " + std::to_string(m_.as_integer(*index));
     emit(canon::Message{what});
     emit(canon::ProgramStop{});
-  } else if (a_.is_a(f, "set_mark") || a_.is_a(f, "wait_for_mark")) {
+  } else if (geometry_.is_a(f, "set_mark") || geometry_.is_a(f, "wait_for_mark")) {
     emit(canon::Comment{std::string(m_.type_name(f)) + " " + name(f)});
     note(f, detail::describe(m_, f) + ": channel synchronisation has no effect on one channel");
   } else {
@@ -286,7 +286,7 @@ bool Interpreter::tool(const Instance& t) {
     }
     pocket = entry->pocket;
     length = entry->length_offset;
-  } else if (const auto l = a_.get(t, "overall_assembly_length"); l && l->is_number()) {
+  } else if (const auto l = geometry_.get(t, "overall_assembly_length"); l && l->is_number()) {
     length = m_.as_real(*l);
   }
   retract_to_security_plane();
@@ -309,7 +309,7 @@ void Interpreter::technology(const Instance* tech) {
     if (!feed_ || *feed_ != rate) emit(canon::SetFeedRate{rate});
     feed_ = rate;
   }
-  if (!a_.is_a(*tech, "milling_technology")) return;
+  if (!geometry_.is_a(*tech, "milling_technology")) return;
   if (const auto s = geometry_.number(*tech, "spindle")) {
     // NIST's convention (ex1.stp's notes): a negative speed turns clockwise.
     const double rpm = std::abs(*s) * kSpindleToRpm;
@@ -329,7 +329,7 @@ void Interpreter::technology(const Instance* tech) {
 void Interpreter::machine_functions(const Instance* functions) {
   if (functions == nullptr) return;
   const auto flag = [&](std::string_view attribute) -> std::optional<bool> {
-    const auto v = a_.get(*functions, attribute);
+    const auto v = geometry_.get(*functions, attribute);
     if (!v || v->is_omitted()) return std::nullopt;
     const auto l = m_.as_logical(*v);
     if (!l) return std::nullopt;
@@ -409,16 +409,16 @@ void Interpreter::motion(const std::vector<Segment>& segments, const Frame& fram
 
 void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid) {
   if (list == nullptr) return;
-  const auto items = a_.get(*list, "its_list");
+  const auto items = geometry_.get(*list, "its_list");
   if (!items || !items->is_list()) return;
   for (Value v : m_.items(*items)) {
     const Instance* path = geometry_.instance(v, "toolpath", list, "its_list");
     if (path == nullptr) continue;
-    if (!a_.is_a(*path, "cutter_location_trajectory")) {
+    if (!geometry_.is_a(*path, "cutter_location_trajectory")) {
       not_implemented(*path, "this kind of toolpath (CUTTER_LOCATION_TRAJECTORY is)");
       continue;
     }
-    if (const auto speed = a_.get(*path, "its_speed"); speed && !speed->is_omitted())
+    if (const auto speed = geometry_.get(*path, "its_speed"); speed && !speed->is_omitted())
       not_implemented(*path, "a toolpath speed profile (its_speed)");
     technology(ref(*path, "its_technology", "technology", true));
     machine_functions(ref(*path, "its_machine_functions", "machine_functions", true));
@@ -428,7 +428,7 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
     if (!segments || segments->empty()) continue;
     if (const Instance* axis_curve = ref(*path, "its_toolaxis", "bounded_curve", true)) {
       // A tool-axis curve: one axis vector per point of a polyline path.
-      const auto axes = a_.is_a(*axis_curve, "polyline") ? curves_.polyline_points(*axis_curve) : std::nullopt;
+      const auto axes = geometry_.is_a(*axis_curve, "polyline") ? curves_.polyline_points(*axis_curve) : std::nullopt;
       if (!axes || axes->size() != segments->size() + 1 ||
           std::any_of(segments->begin(), segments->end(),
                       [](const Segment& s) { return s.kind != Segment::Kind::Line; })) {
@@ -440,7 +440,7 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
         }
       }
     }
-    const auto type = a_.get(*path, "its_type");
+    const auto type = geometry_.get(*path, "its_type");
     const bool non_contact = type && m_.enumeration(*type) == "NON_CONTACT";
     const Vec3 start = frame.point(segments->front().start);
     const bool first_of_list = v == m_.items(*items)[0];
@@ -464,18 +464,18 @@ void Interpreter::workingstep(const Instance& ws) {
   const Instance* operation = ref(ws, "its_operation", "machining_operation");
   const Instance* feature = ref(ws, "its_feature", "manufacturing_feature", true);
   if (const Instance* plane = ref(ws, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(a_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+    if (auto f = geometry_.placement(geometry_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
   }
   // The feature's workpiece picks the workpiece set-up; its placement is the toolpaths' frame.
   Frame frame = workpiece_;
   if (feature != nullptr) {
-    if (const auto wp = a_.get(*feature, "its_workpiece"); wp && wp->is_reference()) {
+    if (const auto wp = geometry_.get(*feature, "its_workpiece"); wp && wp->is_reference()) {
       for (std::size_t i = 0; i < workpiece_setups_.size(); ++i) {
-        const auto w = a_.get(*workpiece_setups_[i], "its_workpiece");
+        const auto w = geometry_.get(*workpiece_setups_[i], "its_workpiece");
         if (w && w->is_reference() && w->id() == wp->id()) frame = workpiece_origins_[i];
       }
     }
-    if (const auto placement = a_.get(*feature, "feature_placement"); placement && !placement->is_omitted()) {
+    if (const auto placement = geometry_.get(*feature, "feature_placement"); placement && !placement->is_omitted()) {
       if (auto f = geometry_.placement(placement)) frame = frame.then(*f);
     }
   }
@@ -502,7 +502,7 @@ void Interpreter::workingstep(const Instance& ws) {
 void Interpreter::rapid_movement(const Instance& rm) {
   emit(canon::Begin{canon::Scope::Workingstep, entity(rm)});
   if (const Instance* plane = ref(rm, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(a_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+    if (auto f = geometry_.placement(geometry_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
   }
   // A rapid movement has no feature: its toolpath is in the workpiece's coordinates.
   toolpaths(ref(rm, "its_toolpath", "toolpath_list", true), workpiece_, true);
