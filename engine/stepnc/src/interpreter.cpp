@@ -414,8 +414,15 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
   for (Value v : m_.items(*items)) {
     const Instance* path = geometry_.instance(v, "toolpath", list, "its_list");
     if (path == nullptr) continue;
+    if (geometry_.is_a(*path, "feedstop")) {
+      // A pause in the path: the tool dwells where it is.
+      if (const auto seconds = geometry_.number(*path, "dwell")) emit(canon::Dwell{*seconds});
+      continue;
+    }
     if (!geometry_.is_a(*path, "cutter_location_trajectory")) {
-      not_implemented(*path, "this kind of toolpath (CUTTER_LOCATION_TRAJECTORY is)");
+      not_implemented(*path, "this kind of toolpath (CUTTER_LOCATION_TRAJECTORY and FEEDSTOP are; "
+                             "cutter-contact paths need the tool's geometry, axis trajectories "
+                             "per-axis commands)");
       continue;
     }
     if (const auto speed = geometry_.get(*path, "its_speed"); speed && !speed->is_omitted())
