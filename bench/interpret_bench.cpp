@@ -3,35 +3,19 @@
 //
 //   interpret_bench FILE [RUNS]
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
 
 namespace {
-
-std::string slurp(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  in.seekg(0, std::ios::end);
-  std::string text(static_cast<std::size_t>(in.tellg()), '\0');
-  in.seekg(0);
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  return text;
-}
-
-double peak_rss_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
 
 class DropChunks final : public ncpost::canon::ChunkSink {
  public:
@@ -51,13 +35,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   const int runs = argc > 2 ? std::stoi(argv[2]) : 3;
-  std::string text = slurp(argv[1]);
+  std::string text = ncpost::bench::slurp(argv[1]);
   const double mb = static_cast<double>(text.size()) / 1e6;
   const auto read_start = std::chrono::steady_clock::now();
   auto read = ncpost::p21::read(std::move(text));
   const double read_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
-  const double rss_after_read = peak_rss_mib();
+  const double rss_after_read = ncpost::bench::peak_rss_mib();
   const ncpost::express::SchemaRegistry registry;
   const auto selection = registry.select_or_builtin(read.model);
   const ncpost::stepnc::AttributeReader attributes(read.model, *selection.set());
@@ -82,6 +66,6 @@ int main(int argc, char** argv) {
             << " calls_per_s=" << static_cast<double>(calls) / times[times.size() / 2]
             << " chunks=" << sink.chunks << " largest_chunk_calls=" << sink.largest
             << " peak_rss_after_read_mib=" << rss_after_read
-            << " peak_rss_after_interpret_mib=" << peak_rss_mib() << '\n';
+            << " peak_rss_after_interpret_mib=" << ncpost::bench::peak_rss_mib() << '\n';
   return 0;
 }

@@ -5,8 +5,6 @@
 //
 // Run the two modes as separate processes: peak RSS is per process.
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -14,33 +12,19 @@
 #include <sstream>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "ncpost/p21/reader.hpp"
 
 namespace {
-
-std::string slurp(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  in.seekg(0, std::ios::end);
-  std::string text(static_cast<std::size_t>(in.tellg()), '\0');
-  in.seekg(0);
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  return text;
-}
-
-long peak_rss_kib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss;
-}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 3 && std::string(argv[1]) == "--rss") {
-    std::string text = slurp(argv[2]);
+    std::string text = ncpost::bench::slurp(argv[2]);
     const double mib = static_cast<double>(text.size()) / (1024.0 * 1024.0);
     auto result = ncpost::p21::read(std::move(text));
-    const double rss_mib = static_cast<double>(peak_rss_kib()) / 1024.0;
+    const double rss_mib = ncpost::bench::peak_rss_mib();
     std::cout << "file_mib=" << mib << " instances=" << result.model.instances().size()
               << " errors=" << !result.ok() << " peak_rss_mib=" << rss_mib
               << " rss_over_file=" << rss_mib / mib << '\n';
@@ -51,7 +35,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const int runs = argc > 2 ? std::stoi(argv[2]) : 5;
-  const std::string original = slurp(argv[1]);
+  const std::string original = ncpost::bench::slurp(argv[1]);
   const double mb = static_cast<double>(original.size()) / 1e6;
   std::vector<double> seconds;
   std::size_t instances = 0;

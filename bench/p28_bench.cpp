@@ -4,28 +4,18 @@
 //                                 of the early-bound XML
 //   p28_bench --rss FILE.stp      one read + early-bound write to a null sink; peak RSS
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "ncpost/express/parse.hpp"
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/p28/p28.hpp"
 
 namespace {
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  in.seekg(0, std::ios::end);
-  std::string text(static_cast<std::size_t>(in.tellg()), '\0');
-  in.seekg(0);
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  return text;
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -39,18 +29,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   ncpost::p28::initialise_xml();
-  const auto schema = ncpost::express::parse_express(slurp(NCPOST_SOURCE_DIR "/schemas/iso14649.exp"));
+  const auto schema = ncpost::express::parse_express(ncpost::bench::slurp(NCPOST_SOURCE_DIR "/schemas/iso14649.exp"));
   const bool rss_mode = std::string(argv[1]) == "--rss";
   const std::string path = rss_mode ? argv[2] : argv[1];
-  auto read = ncpost::p21::read(slurp(path));
+  auto read = ncpost::p21::read(ncpost::bench::slurp(path));
   const double input_mb = static_cast<double>(read.model.text().size()) / 1e6;
   if (rss_mode) {
     std::size_t bytes = 0;
     (void)ncpost::p28::write(read.model, &schema.schemas, ncpost::p28::Binding::Early,
                              [&](std::string_view piece) { bytes += piece.size(); });
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    const double rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    const double rss_mib = ncpost::bench::peak_rss_mib();
     std::cout << "p21_mib=" << input_mb * 1e6 / (1024 * 1024) << " xml_mib=" << static_cast<double>(bytes) / (1024 * 1024)
               << " peak_rss_mib=" << rss_mib << " rss_over_p21=" << rss_mib / (input_mb * 1e6 / (1024 * 1024)) << '\n';
     return 0;

@@ -11,7 +11,6 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <STEPControl_Reader.hxx>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -19,13 +18,9 @@
 #include <iostream>
 #include <vector>
 
-namespace {
+#include "bench_support.hpp"
 
-long peak_rss_kib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss;
-}
+namespace {
 
 bool read_once(const char* path, std::size_t& entities) {
   STEPControl_Reader reader;
@@ -43,7 +38,7 @@ int main(int argc, char** argv) {
     std::size_t entities = 0;
     const bool ok = read_once(argv[2], entities);
     const double mib = static_cast<double>(std::filesystem::file_size(argv[2])) / (1024.0 * 1024.0);
-    const double rss_mib = static_cast<double>(peak_rss_kib()) / 1024.0;
+    const double rss_mib = ncpost::bench::peak_rss_mib();
     std::cout << "file_mib=" << mib << " entities=" << entities << " ok=" << ok
               << " peak_rss_mib=" << rss_mib << " rss_over_file=" << rss_mib / mib << '\n';
     return ok ? 0 : 1;

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "format.hpp"
+#include "ncpost/xmltext/utf8.hpp"
 
 namespace ncpost::canon {
 namespace {
@@ -12,30 +13,6 @@ namespace {
 using detail::append_integer;
 
 // Length of the valid UTF-8 sequence starting at s[i] (2 to 4 bytes), or 0.
-std::size_t utf8_length(std::string_view s, std::size_t i) {
-  const auto b0 = static_cast<unsigned char>(s[i]);
-  std::size_t len = 0;
-  char32_t cp = 0;
-  char32_t min = 0;
-  if ((b0 & 0xE0u) == 0xC0u) {
-    len = 2, cp = b0 & 0x1Fu, min = 0x80;
-  } else if ((b0 & 0xF0u) == 0xE0u) {
-    len = 3, cp = b0 & 0x0Fu, min = 0x800;
-  } else if ((b0 & 0xF8u) == 0xF0u) {
-    len = 4, cp = b0 & 0x07u, min = 0x10000;
-  } else {
-    return 0;
-  }
-  if (i + len > s.size()) return 0;
-  for (std::size_t k = 1; k < len; ++k) {
-    const auto b = static_cast<unsigned char>(s[i + k]);
-    if ((b & 0xC0u) != 0x80u) return 0;
-    cp = (cp << 6) | (b & 0x3Fu);
-  }
-  if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
-  return len;
-}
-
 void append_hex_escape(std::string& out, unsigned char c) {
   constexpr char kHex[] = "0123456789ABCDEF";
   out += "\\x";
@@ -232,7 +209,8 @@ void append_quoted(std::string& out, std::string_view text) {
       case '\t': out += "\\t"; ++i; continue;
       default: break;
     }
-    const std::size_t len = c >= 0x80 ? utf8_length(text, i) : 0;
+    char32_t cp = 0;
+    const std::size_t len = c >= 0x80 ? xmltext::utf8_sequence_length(text, i, cp) : 0;
     if (len == 0) {
       append_hex_escape(out, c);
       ++i;

@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "ncpost/xmltext/utf8.hpp"
+
 namespace ncpost::p21 {
 namespace {
 
@@ -26,33 +28,6 @@ std::int64_t read_hex(std::string_view raw, std::size_t pos, std::size_t digits)
   return value;
 }
 
-// Length of a valid UTF-8 sequence starting at s[pos], or 0 when it is not valid.
-std::size_t utf8_sequence_length(std::string_view s, std::size_t pos, char32_t& cp) {
-  const auto b0 = static_cast<unsigned char>(s[pos]);
-  std::size_t len = 0;
-  char32_t min = 0;
-  if (b0 < 0x80) {
-    cp = b0;
-    return 1;
-  } else if ((b0 & 0xE0) == 0xC0) {
-    len = 2, cp = b0 & 0x1Fu, min = 0x80;
-  } else if ((b0 & 0xF0) == 0xE0) {
-    len = 3, cp = b0 & 0x0Fu, min = 0x800;
-  } else if ((b0 & 0xF8) == 0xF0) {
-    len = 4, cp = b0 & 0x07u, min = 0x10000;
-  } else {
-    return 0;
-  }
-  if (pos + len > s.size()) return 0;
-  for (std::size_t i = 1; i < len; ++i) {
-    const auto b = static_cast<unsigned char>(s[pos + i]);
-    if ((b & 0xC0) != 0x80) return 0;
-    cp = (cp << 6) | (b & 0x3Fu);
-  }
-  if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
-  return len;
-}
-
 // The decoder and the checker walk the same grammar; `Sink` receives code points or problems.
 template <typename Sink>
 void walk(std::string_view raw, Sink& sink) {
@@ -75,7 +50,7 @@ void walk(std::string_view raw, Sink& sink) {
       const auto uc = static_cast<unsigned char>(c);
       if (uc >= 0x80) {
         char32_t cp = 0;
-        const std::size_t len = utf8_sequence_length(raw, i, cp);
+        const std::size_t len = xmltext::utf8_sequence_length(raw, i, cp);
         if (len == 0) {
           sink.problem(i, "byte 0x" + std::string{"0123456789ABCDEF"[uc >> 4]} +
                               "0123456789ABCDEF"[uc & 15] + " is not valid UTF-8",
@@ -245,7 +220,7 @@ void encode_string(std::string_view utf8, std::string& out) {
       continue;
     }
     char32_t cp = 0;
-    std::size_t len = utf8_sequence_length(utf8, i, cp);
+    std::size_t len = xmltext::utf8_sequence_length(utf8, i, cp);
     if (len == 0) {
       cp = kReplacement;
       len = 1;

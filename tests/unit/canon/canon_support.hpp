@@ -3,6 +3,8 @@
 // (well-formedness, RELAX NG validation against engine/canon/canon.rng).
 
 #include <libxml/parser.h>
+
+#include "xml_check.hpp"
 #include <libxml/relaxng.h>
 
 #include <string>
@@ -85,13 +87,7 @@ inline std::vector<Call> sample_program() {
   };
 }
 
-inline bool well_formed(const std::string& xml) {
-  xmlDocPtr doc = xmlReadMemory(xml.data(), static_cast<int>(xml.size()), nullptr, nullptr,
-                                XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
-  const bool ok = doc != nullptr;
-  xmlFreeDoc(doc);
-  return ok;
-}
+using ncpost::test::well_formed;
 
 inline std::string rng_path() { return std::string(NCPOST_SOURCE_DIR) + "/engine/canon/canon.rng"; }
 

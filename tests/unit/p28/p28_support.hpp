@@ -3,6 +3,8 @@
 
 #include <libxml/parser.h>
 
+#include "xml_check.hpp"
+
 #include <memory>
 #include <string>
 
@@ -28,13 +30,7 @@ inline std::string to_p28(const p21::Model& model, const express::SchemaSet* sch
   return xml;
 }
 
-inline bool well_formed(const std::string& xml) {
-  xmlDocPtr doc = xmlReadMemory(xml.data(), static_cast<int>(xml.size()), nullptr, nullptr,
-                                XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
-  const bool ok = doc != nullptr;
-  xmlFreeDoc(doc);
-  return ok;
-}
+using ncpost::test::well_formed;
 
 inline std::string dump(const std::vector<diag::Diagnostic>& diagnostics) {
   std::string out;
