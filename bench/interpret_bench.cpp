@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     const auto result = ncpost::stepnc::interpret(read.model, attributes, chunker);
     chunker.finish();
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    times.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     calls = result.calls;
     if (!result.ok()) std::cerr << "interpreted with errors\n";
   }

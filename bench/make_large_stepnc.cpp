@@ -103,14 +103,16 @@ int main(int argc, char** argv) {
       if (&inst != &project && &inst != main) append_instance(m, inst, typical_shift, probe);
     per_copy = probe.size() + m.items(elements).size() * 9;  // plus the workplan's references
   }
-  const auto copies =
-      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(target / static_cast<double>(per_copy)));
+  const auto copies = std::max<std::uint64_t>(
+      1, static_cast<std::uint64_t>(target / static_cast<double>(per_copy)));
 
   std::ofstream out(argv[3], std::ios::binary);
   out << "ISO-10303-21;\nHEADER;\n"
-         "FILE_DESCRIPTION(('ncpost benchmark input: NIST ex1E replicated " << copies
+         "FILE_DESCRIPTION(('ncpost benchmark input: NIST ex1E replicated "
+      << copies
       << " times'),'2;1');\n"
-         "FILE_NAME('large.stp','2026-11-21T00:00:00',('ncpost bench'),(''),'','make_large_stepnc','');\n"
+         "FILE_NAME('large.stp','2026-11-21T00:00:00',('ncpost "
+         "bench'),(''),'','make_large_stepnc','');\n"
          "FILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'));\nENDSEC;\nDATA;\n";
   std::string buffer;
   append_instance(m, project, 0, buffer);

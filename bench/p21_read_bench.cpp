@@ -15,9 +15,7 @@
 #include "bench_support.hpp"
 #include "ncpost/p21/reader.hpp"
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 3 && std::string(argv[1]) == "--rss") {

@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   ncpost::p28::initialise_xml();
-  const auto schema = ncpost::express::parse_express(ncpost::bench::slurp(NCPOST_SOURCE_DIR "/schemas/iso14649.exp"));
+  const auto schema = ncpost::express::parse_express(
+      ncpost::bench::slurp(NCPOST_SOURCE_DIR "/schemas/iso14649.exp"));
   const bool rss_mode = std::string(argv[1]) == "--rss";
   const std::string path = rss_mode ? argv[2] : argv[1];
   auto read = ncpost::p21::read(ncpost::bench::slurp(path));
@@ -39,8 +40,10 @@ int main(int argc, char** argv) {
     (void)ncpost::p28::write(read.model, &schema.schemas, ncpost::p28::Binding::Early,
                              [&](std::string_view piece) { bytes += piece.size(); });
     const double rss_mib = ncpost::bench::peak_rss_mib();
-    std::cout << "p21_mib=" << input_mb * 1e6 / (1024 * 1024) << " xml_mib=" << static_cast<double>(bytes) / (1024 * 1024)
-              << " peak_rss_mib=" << rss_mib << " rss_over_p21=" << rss_mib / (input_mb * 1e6 / (1024 * 1024)) << '\n';
+    std::cout << "p21_mib=" << input_mb * 1e6 / (1024 * 1024)
+              << " xml_mib=" << static_cast<double>(bytes) / (1024 * 1024)
+              << " peak_rss_mib=" << rss_mib
+              << " rss_over_p21=" << rss_mib / (input_mb * 1e6 / (1024 * 1024)) << '\n';
     return 0;
   }
   const int runs = argc > 2 ? std::stoi(argv[2]) : 3;

@@ -11,7 +11,6 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <STEPControl_Reader.hxx>
-
 #include <algorithm>
 #include <chrono>
 #include <filesystem>

@@ -50,9 +50,9 @@ int run_convert(Args args) {
   if (*to == "p21") {
     p21::write(loaded.model, write_stdout);
   } else {
-    const auto notes = p28::write(loaded.model, loaded.schema,
-                                  binding_name == "early" ? p28::Binding::Early : p28::Binding::Late,
-                                  write_stdout);
+    const auto notes = p28::write(
+        loaded.model, loaded.schema,
+        binding_name == "early" ? p28::Binding::Early : p28::Binding::Late, write_stdout);
     diagnostics.insert(diagnostics.end(), notes.begin(), notes.end());
   }
   std::cout.flush();

@@ -28,7 +28,8 @@ int run_trace(Args args) {
   if (!options.error().empty()) return usage_error("trace", options.error());
   if (options.positionals().size() != 1) return usage_error("trace", "expects one FILE or -");
   const std::string format = options.value("format").value_or("text");
-  if (format != "text" && format != "xml") return usage_error("trace", "--format must be text or xml");
+  if (format != "text" && format != "xml")
+    return usage_error("trace", "--format must be text or xml");
 
   LoadedSchemas schemas = load_schemas(options.value("schemas"));
   print_schema_reports(schemas.reports);

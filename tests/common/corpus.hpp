@@ -48,8 +48,8 @@ inline std::string read_file(const std::filesystem::path& path) {
 }  // namespace ncpost::test
 
 // Use at the top of a test that needs the corpus: binds `corpus` to its path or skips.
-#define NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus)                                                \
-  const auto corpus##_opt = ::ncpost::test::corpus_dir();                                  \
+#define NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus)                                               \
+  const auto corpus##_opt = ::ncpost::test::corpus_dir();                                   \
   if (!corpus##_opt) {                                                                      \
     if (::ncpost::test::corpus_required())                                                  \
       FAIL() << "NCPOST_REQUIRE_CORPUS=1 but the corpus was not found (set NCPOST_CORPUS)"; \

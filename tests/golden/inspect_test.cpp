@@ -39,7 +39,8 @@ std::vector<std::string> codes(const std::vector<diag::Diagnostic>& diagnostics)
 // instead; review the diff before committing it.
 void expect_golden(const ordered_json& actual, const std::string& name) {
   const fs::path golden = test::source_dir() / "tests/golden/inspect" / (name + ".json");
-  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN");
+      update && std::string(update) == "1") {
     std::ofstream(golden) << actual.dump(2) << '\n';
     return;
   }
@@ -111,7 +112,8 @@ TEST(InspectCorpus, NistExample1WithTheCombinedSchema) {
 }
 
 TEST(InspectOwn, BracketExample) {
-  const ProgramInfo info = inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
+  const ProgramInfo info =
+      inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
   EXPECT_TRUE(info.diagnostics.empty());
   const auto& main = info.json["project"]["main_workplan"];
   EXPECT_EQ(element_ids(main), (std::vector<std::uint64_t>{20, 21, 22, 23, 24}));
@@ -127,18 +129,18 @@ std::string program(const std::string& data) {
 }
 
 TEST(InspectOwn, ControlStructures) {
-  const ProgramInfo info = inspect_text(program(
-      "#1=PROJECT('P',#2,(),$,$,$);"
-      "#2=WORKPLAN('MAIN',(#3,#4,#5,#6,#7,#8),$,$,$);"
-      "#3=IF_STATEMENT('IF',#20,#9,#10);"
-      "#4=WHILE_STATEMENT('WHILE',#20,#11);"
-      "#5=PARALLEL('PAR',(#9,#10));"
-      "#6=NON_SEQUENTIAL('NONSEQ',(#9));"
-      "#7=SELECTIVE('SEL',(#10));"
-      "#8=LOAD_TOOL('LOAD',#30);"
-      "#9=PROGRAM_STOP('STOP');#10=SET_MARK('MARK');#11=EXCHANGE_PALLET('PALLET');"
-      "#20=COMPARISON_EQUAL(#21,#21);#21=NC_CONSTANT('C',1.);"
-      "#30=MILLING_CUTTING_TOOL('T1',$,(),$,$,$);"));
+  const ProgramInfo info = inspect_text(
+      program("#1=PROJECT('P',#2,(),$,$,$);"
+              "#2=WORKPLAN('MAIN',(#3,#4,#5,#6,#7,#8),$,$,$);"
+              "#3=IF_STATEMENT('IF',#20,#9,#10);"
+              "#4=WHILE_STATEMENT('WHILE',#20,#11);"
+              "#5=PARALLEL('PAR',(#9,#10));"
+              "#6=NON_SEQUENTIAL('NONSEQ',(#9));"
+              "#7=SELECTIVE('SEL',(#10));"
+              "#8=LOAD_TOOL('LOAD',#30);"
+              "#9=PROGRAM_STOP('STOP');#10=SET_MARK('MARK');#11=EXCHANGE_PALLET('PALLET');"
+              "#20=COMPARISON_EQUAL(#21,#21);#21=NC_CONSTANT('C',1.);"
+              "#30=MILLING_CUTTING_TOOL('T1',$,(),$,$,$);"));
   EXPECT_TRUE(info.diagnostics.empty());
   const auto& e = info.json["project"]["main_workplan"]["elements"];
   EXPECT_EQ(e[0]["true_branch"]["type"], "PROGRAM_STOP");
@@ -152,9 +154,9 @@ TEST(InspectOwn, ControlStructures) {
 }
 
 TEST(InspectOwn, WorkplanThatContainsItself) {
-  const ProgramInfo info = inspect_text(program(
-      "#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
-      "#3=WORKPLAN('LOOP',(#2),$,$,$);"));
+  const ProgramInfo info =
+      inspect_text(program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
+                           "#3=WORKPLAN('LOOP',(#2),$,$,$);"));
   ASSERT_EQ(info.diagnostics.size(), 1u);
   EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-005");
   EXPECT_EQ(info.diagnostics[0].message, "#2 contains itself");
@@ -190,10 +192,10 @@ TEST(InspectOwn, UnknownExecutableIsReportedNotDropped) {
 // Executables are whatever the schema makes a subtype of EXECUTABLE, not a list in the code:
 // ISO 14649-10's touch probing and a schema of one's own.
 TEST(InspectOwn, ExecutablesComeFromTheSchema) {
-  const ProgramInfo builtin = inspect_text(program(
-      "#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
-      "#3=TOOL_LENGTH_PROBING('PROBE',$,$,$,#4,0.,1.,#5);#4=NC_VARIABLE('V',0.);"
-      "#5=MILLING_CUTTING_TOOL('T1',$,(),$,$,$);"));
+  const ProgramInfo builtin = inspect_text(
+      program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
+              "#3=TOOL_LENGTH_PROBING('PROBE',$,$,$,#4,0.,1.,#5);#4=NC_VARIABLE('V',0.);"
+              "#5=MILLING_CUTTING_TOOL('T1',$,(),$,$,$);"));
   EXPECT_TRUE(builtin.diagnostics.empty());
   EXPECT_EQ(builtin.json["project"]["main_workplan"]["elements"][0]["name"], "PROBE");
 
@@ -240,7 +242,8 @@ TEST(InspectOwn, NotAStepNcFile) {
 }
 
 TEST(InspectOwn, TextFormatShowsTheTree) {
-  const ProgramInfo info = inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
+  const ProgramInfo info =
+      inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
   const std::string text = format_text(info.json);
   EXPECT_NE(text.find("project:     #1 'BRACKET'"), std::string::npos) << text;
   EXPECT_NE(text.find("      #25 MACHINING_WORKINGSTEP 'DRILL HOLE'"), std::string::npos) << text;

@@ -26,7 +26,9 @@ struct Expectation {
 };
 
 // Names the case in gtest's output instead of dumping its bytes.
-void PrintTo(const Expectation& e, std::ostream* os) { *os << e.file; }
+void PrintTo(const Expectation& e, std::ostream* os) {
+  *os << e.file;
+}
 
 std::vector<Expectation> load_expectations() {
   std::vector<Expectation> out;
@@ -129,7 +131,8 @@ std::vector<std::string> malformed_cases() {
 
 INSTANTIATE_TEST_SUITE_P(Cases, P21Malformed, ::testing::ValuesIn(malformed_cases()),
                          [](const auto& param_info) {
-                           std::string name = param_info.param.substr(0, param_info.param.size() - 4);
+                           std::string name =
+                               param_info.param.substr(0, param_info.param.size() - 4);
                            for (char& c : name)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;

@@ -2,12 +2,13 @@
 // programs (tests/golden/trace/cases), plus the numbers checked by hand from the files' own
 // coordinates. NCPOST_UPDATE_GOLDEN=1 rewrites the golden files; review the diff.
 
+#include "ncpost/canon/trace.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "corpus.hpp"
-#include "ncpost/canon/trace.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
@@ -35,7 +36,8 @@ Traced trace_of(const fs::path& file, const InterpretOptions& options = {}) {
   const AttributeReader attributes(loaded.model, *loaded.schema);
   canon::TraceWriter writer([&](std::string_view piece) { out.trace += piece; });
   auto result = interpret(loaded.model, attributes, writer, options);
-  out.diagnostics.insert(out.diagnostics.end(), result.diagnostics.begin(), result.diagnostics.end());
+  out.diagnostics.insert(out.diagnostics.end(), result.diagnostics.begin(),
+                         result.diagnostics.end());
   return out;
 }
 
@@ -47,7 +49,8 @@ std::string golden_text(const Traced& t, const std::string& name) {
 }
 
 void expect_golden(const std::string& actual, const fs::path& golden) {
-  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN");
+      update && std::string(update) == "1") {
     std::ofstream(golden, std::ios::binary) << actual;
     return;
   }
@@ -81,7 +84,8 @@ TEST(TraceCorpus, NistExample1E) {
   EXPECT_TRUE(has_line(t.trace, "STRAIGHT_TRAVERSE(20.0000, 60.0000, 10.0000)"));
   // Three tool changes after the first load: mill #39, drill #44, reamer #47, mill #39 again.
   std::size_t changes = 0;
-  for (std::size_t at = 0; (at = t.trace.find("CHANGE_TOOL(", at)) != std::string::npos; ++at) ++changes;
+  for (std::size_t at = 0; (at = t.trace.find("CHANGE_TOOL(", at)) != std::string::npos; ++at)
+    ++changes;
   EXPECT_EQ(changes, 4u);
   // Technology #40: feed 0.04 m/s = 2400 mm/min; spindle -12 rev/s = 720 rpm clockwise.
   EXPECT_TRUE(has_line(t.trace, "SET_FEED_RATE(2400.0000)"));
@@ -107,16 +111,17 @@ TEST(TraceCorpus, ToolTableGivesPocketsAndOffsets) {
   EXPECT_TRUE(table_diagnostics.empty());
   ASSERT_EQ(options.tools->entries.size(), 3u);
   const Traced t = trace_of(corpus / "p21/nist_toolkit_ex1E.stp", options);
-  EXPECT_TRUE(has_line(t.trace, "CHANGE_TOOL(3)"));   // 'MILL 18MM'
+  EXPECT_TRUE(has_line(t.trace, "CHANGE_TOOL(3)"));                   // 'MILL 18MM'
   EXPECT_TRUE(has_line(t.trace, "USE_TOOL_LENGTH_OFFSET(70.0000)"));  // SPIRAL_DRILL_20MM
-  EXPECT_TRUE(has_line(t.trace, "CHANGE_TOOL(6)"));   // "REAMER_22MM"
+  EXPECT_TRUE(has_line(t.trace, "CHANGE_TOOL(6)"));                   // "REAMER_22MM"
 }
 
 TEST(TraceOwn, RotatedSetupByHand) {
   // Setup #30: rotated 90° about Z (ref_direction +Y) and shifted -14.7 in Z. Feature at
   // (10, 0, 0); toolpath point (5, 0, -1) → workpiece (15, 0, -1) → machine (-0, 15, -15.7);
   // (5, 20, -1) → (15, 20, -1) → (-20, 15, -15.7). Security plane z 50 → 35.3.
-  const Traced t = trace_of(test::source_dir() / "tests/golden/trace/cases/placement-rotated-setup.stp");
+  const Traced t =
+      trace_of(test::source_dir() / "tests/golden/trace/cases/placement-rotated-setup.stp");
   EXPECT_TRUE(has_line(t.trace, "STRAIGHT_FEED(0.0000, 15.0000, -15.7000)"));
   EXPECT_TRUE(has_line(t.trace, "STRAIGHT_FEED(-20.0000, 15.0000, -15.7000)"));
   EXPECT_TRUE(has_line(t.trace, "STRAIGHT_TRAVERSE(0.0000, 15.0000, 35.3000)"));

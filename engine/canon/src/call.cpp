@@ -13,35 +13,62 @@ template <class T>
 // Names of the calls that do not depend on their arguments.
 template <class T>
 constexpr std::string_view fixed_name() noexcept {
-  if constexpr (std::is_same_v<T, UseLengthUnits>) return "USE_LENGTH_UNITS";
-  else if constexpr (std::is_same_v<T, SetOriginOffsets>) return "SET_ORIGIN_OFFSETS";
-  else if constexpr (std::is_same_v<T, SetFeedReference>) return "SET_FEED_REFERENCE";
-  else if constexpr (std::is_same_v<T, SelectPlane>) return "SELECT_PLANE";
-  else if constexpr (std::is_same_v<T, StraightTraverse>) return "STRAIGHT_TRAVERSE";
-  else if constexpr (std::is_same_v<T, StraightFeed>) return "STRAIGHT_FEED";
-  else if constexpr (std::is_same_v<T, ArcFeed>) return "ARC_FEED";
-  else if constexpr (std::is_same_v<T, NurbsFeed>) return "NURBS_FEED";
-  else if constexpr (std::is_same_v<T, SetFeedRate>) return "SET_FEED_RATE";
-  else if constexpr (std::is_same_v<T, SetSpindleSpeed>) return "SET_SPINDLE_SPEED";
-  else if constexpr (std::is_same_v<T, StartSpindleClockwise>) return "START_SPINDLE_CLOCKWISE";
+  if constexpr (std::is_same_v<T, UseLengthUnits>)
+    return "USE_LENGTH_UNITS";
+  else if constexpr (std::is_same_v<T, SetOriginOffsets>)
+    return "SET_ORIGIN_OFFSETS";
+  else if constexpr (std::is_same_v<T, SetFeedReference>)
+    return "SET_FEED_REFERENCE";
+  else if constexpr (std::is_same_v<T, SelectPlane>)
+    return "SELECT_PLANE";
+  else if constexpr (std::is_same_v<T, StraightTraverse>)
+    return "STRAIGHT_TRAVERSE";
+  else if constexpr (std::is_same_v<T, StraightFeed>)
+    return "STRAIGHT_FEED";
+  else if constexpr (std::is_same_v<T, ArcFeed>)
+    return "ARC_FEED";
+  else if constexpr (std::is_same_v<T, NurbsFeed>)
+    return "NURBS_FEED";
+  else if constexpr (std::is_same_v<T, SetFeedRate>)
+    return "SET_FEED_RATE";
+  else if constexpr (std::is_same_v<T, SetSpindleSpeed>)
+    return "SET_SPINDLE_SPEED";
+  else if constexpr (std::is_same_v<T, StartSpindleClockwise>)
+    return "START_SPINDLE_CLOCKWISE";
   else if constexpr (std::is_same_v<T, StartSpindleCounterclockwise>)
     return "START_SPINDLE_COUNTERCLOCKWISE";
-  else if constexpr (std::is_same_v<T, StopSpindleTurning>) return "STOP_SPINDLE_TURNING";
-  else if constexpr (std::is_same_v<T, SpindleRetract>) return "SPINDLE_RETRACT";
-  else if constexpr (std::is_same_v<T, SelectTool>) return "SELECT_TOOL";
-  else if constexpr (std::is_same_v<T, ChangeTool>) return "CHANGE_TOOL";
-  else if constexpr (std::is_same_v<T, UseToolLengthOffset>) return "USE_TOOL_LENGTH_OFFSET";
-  else if constexpr (std::is_same_v<T, FloodOn>) return "FLOOD_ON";
-  else if constexpr (std::is_same_v<T, FloodOff>) return "FLOOD_OFF";
-  else if constexpr (std::is_same_v<T, MistOn>) return "MIST_ON";
-  else if constexpr (std::is_same_v<T, MistOff>) return "MIST_OFF";
-  else if constexpr (std::is_same_v<T, Dwell>) return "DWELL";
-  else if constexpr (std::is_same_v<T, Comment>) return "COMMENT";
-  else if constexpr (std::is_same_v<T, Message>) return "MESSAGE";
-  else if constexpr (std::is_same_v<T, OptionalProgramStop>) return "OPTIONAL_PROGRAM_STOP";
-  else if constexpr (std::is_same_v<T, ProgramStop>) return "PROGRAM_STOP";
-  else if constexpr (std::is_same_v<T, ProgramEnd>) return "PROGRAM_END";
-  else static_assert(is<T>, "every call needs a name");
+  else if constexpr (std::is_same_v<T, StopSpindleTurning>)
+    return "STOP_SPINDLE_TURNING";
+  else if constexpr (std::is_same_v<T, SpindleRetract>)
+    return "SPINDLE_RETRACT";
+  else if constexpr (std::is_same_v<T, SelectTool>)
+    return "SELECT_TOOL";
+  else if constexpr (std::is_same_v<T, ChangeTool>)
+    return "CHANGE_TOOL";
+  else if constexpr (std::is_same_v<T, UseToolLengthOffset>)
+    return "USE_TOOL_LENGTH_OFFSET";
+  else if constexpr (std::is_same_v<T, FloodOn>)
+    return "FLOOD_ON";
+  else if constexpr (std::is_same_v<T, FloodOff>)
+    return "FLOOD_OFF";
+  else if constexpr (std::is_same_v<T, MistOn>)
+    return "MIST_ON";
+  else if constexpr (std::is_same_v<T, MistOff>)
+    return "MIST_OFF";
+  else if constexpr (std::is_same_v<T, Dwell>)
+    return "DWELL";
+  else if constexpr (std::is_same_v<T, Comment>)
+    return "COMMENT";
+  else if constexpr (std::is_same_v<T, Message>)
+    return "MESSAGE";
+  else if constexpr (std::is_same_v<T, OptionalProgramStop>)
+    return "OPTIONAL_PROGRAM_STOP";
+  else if constexpr (std::is_same_v<T, ProgramStop>)
+    return "PROGRAM_STOP";
+  else if constexpr (std::is_same_v<T, ProgramEnd>)
+    return "PROGRAM_END";
+  else
+    static_assert(is<T>, "every call needs a name");
 }
 
 constexpr std::string_view kBeginNames[] = {"PROJECT_BEGIN", "SETUP_BEGIN", "WORKPLAN_BEGIN",
@@ -55,10 +82,14 @@ std::string_view name(const Call& call) noexcept {
   return std::visit(
       [](const auto& c) -> std::string_view {
         using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, Begin>) return marker_name(c.scope, true);
-        else if constexpr (std::is_same_v<T, End>) return marker_name(c.scope, false);
-        else if constexpr (std::is_same_v<T, Cycle>) return name(c.kind);
-        else return fixed_name<T>();
+        if constexpr (std::is_same_v<T, Begin>)
+          return marker_name(c.scope, true);
+        else if constexpr (std::is_same_v<T, End>)
+          return marker_name(c.scope, false);
+        else if constexpr (std::is_same_v<T, Cycle>)
+          return name(c.kind);
+        else
+          return fixed_name<T>();
       },
       call);
 }
@@ -69,47 +100,64 @@ std::string_view marker_name(Scope scope, bool begin) noexcept {
 
 std::string_view name(Scope scope) noexcept {
   switch (scope) {
-    case Scope::Project: return "PROJECT";
-    case Scope::Setup: return "SETUP";
-    case Scope::Workplan: return "WORKPLAN";
-    case Scope::Workingstep: return "WORKINGSTEP";
+    case Scope::Project:
+      return "PROJECT";
+    case Scope::Setup:
+      return "SETUP";
+    case Scope::Workplan:
+      return "WORKPLAN";
+    case Scope::Workingstep:
+      return "WORKINGSTEP";
   }
   return "?";
 }
 
 std::string_view name(CycleKind kind) noexcept {
   switch (kind) {
-    case CycleKind::Drill: return "DRILL_CYCLE";
-    case CycleKind::PeckDrill: return "PECK_DRILL_CYCLE";
-    case CycleKind::Tap: return "TAP_CYCLE";
-    case CycleKind::Bore: return "BORE_CYCLE";
-    case CycleKind::Ream: return "REAM_CYCLE";
+    case CycleKind::Drill:
+      return "DRILL_CYCLE";
+    case CycleKind::PeckDrill:
+      return "PECK_DRILL_CYCLE";
+    case CycleKind::Tap:
+      return "TAP_CYCLE";
+    case CycleKind::Bore:
+      return "BORE_CYCLE";
+    case CycleKind::Ream:
+      return "REAM_CYCLE";
   }
   return "?";
 }
 
 std::string_view name(Units units) noexcept {
   switch (units) {
-    case Units::Inches: return "CANON_UNITS_INCHES";
-    case Units::Millimetres: return "CANON_UNITS_MM";
-    case Units::Centimetres: return "CANON_UNITS_CM";
+    case Units::Inches:
+      return "CANON_UNITS_INCHES";
+    case Units::Millimetres:
+      return "CANON_UNITS_MM";
+    case Units::Centimetres:
+      return "CANON_UNITS_CM";
   }
   return "?";
 }
 
 std::string_view name(Plane plane) noexcept {
   switch (plane) {
-    case Plane::Xy: return "CANON_PLANE_XY";
-    case Plane::Yz: return "CANON_PLANE_YZ";
-    case Plane::Xz: return "CANON_PLANE_XZ";
+    case Plane::Xy:
+      return "CANON_PLANE_XY";
+    case Plane::Yz:
+      return "CANON_PLANE_YZ";
+    case Plane::Xz:
+      return "CANON_PLANE_XZ";
   }
   return "?";
 }
 
 std::string_view name(FeedReference reference) noexcept {
   switch (reference) {
-    case FeedReference::Workpiece: return "CANON_WORKPIECE";
-    case FeedReference::Xyz: return "CANON_XYZ";
+    case FeedReference::Workpiece:
+      return "CANON_WORKPIECE";
+    case FeedReference::Xyz:
+      return "CANON_XYZ";
   }
   return "?";
 }
@@ -179,8 +227,8 @@ bool valid(const NurbsFeed& nurbs) noexcept {
   if (nurbs.points.size() < degree + 1) return false;
   if (nurbs.knots.size() != nurbs.points.size() + degree + 1) return false;
   for (const auto& p : nurbs.points) {
-    if (!(p.weight > 0) || !std::isfinite(p.weight) || !std::isfinite(p.x) ||
-        !std::isfinite(p.y) || !std::isfinite(p.z))
+    if (!(p.weight > 0) || !std::isfinite(p.weight) || !std::isfinite(p.x) || !std::isfinite(p.y) ||
+        !std::isfinite(p.z))
       return false;
   }
   for (std::size_t n = 0; n < nurbs.knots.size(); ++n) {

@@ -25,14 +25,14 @@ class Emitter {
 };
 
 bool finite(const Cycle& c) {
-  const double values[] = {c.x,    c.y,          c.safe_z,         c.r_z,   c.bottom_z,
-                           c.feed, c.dwell,      c.peck,           c.pitch, c.peck_retract,
-                           c.peck_clearance, c.spindle_speed};
+  const double values[] = {
+      c.x,     c.y,    c.safe_z, c.r_z,          c.bottom_z,       c.feed,
+      c.dwell, c.peck, c.pitch,  c.peck_retract, c.peck_clearance, c.spindle_speed};
   for (const double v : values) {
     if (!std::isfinite(v)) return false;
   }
-  if (c.rotary && !(std::isfinite(c.rotary->a) && std::isfinite(c.rotary->b) &&
-                    std::isfinite(c.rotary->c)))
+  if (c.rotary &&
+      !(std::isfinite(c.rotary->a) && std::isfinite(c.rotary->b) && std::isfinite(c.rotary->c)))
     return false;
   if (c.tool_axis && !(std::isfinite(c.tool_axis->i) && std::isfinite(c.tool_axis->j) &&
                        std::isfinite(c.tool_axis->k)))
@@ -68,14 +68,20 @@ void expand_pecks(const Cycle& c, Emitter& e) {
 
 std::string_view describe(CycleError error) noexcept {
   switch (error) {
-    case CycleError::None: return "ok";
-    case CycleError::NotFinite: return "a cycle parameter is not a finite number";
-    case CycleError::BadHeights: return "cycle heights are not safe_z >= r_z >= bottom_z";
-    case CycleError::BadFeed: return "cycle feed rate is not positive";
+    case CycleError::None:
+      return "ok";
+    case CycleError::NotFinite:
+      return "a cycle parameter is not a finite number";
+    case CycleError::BadHeights:
+      return "cycle heights are not safe_z >= r_z >= bottom_z";
+    case CycleError::BadFeed:
+      return "cycle feed rate is not positive";
     case CycleError::BadPeck:
       return "peck drilling needs a positive peck and non-negative retract and clearance";
-    case CycleError::TooManyPecks: return "peck drilling would need more pecks than allowed";
-    case CycleError::NegativeDwell: return "cycle dwell is negative";
+    case CycleError::TooManyPecks:
+      return "peck drilling would need more pecks than allowed";
+    case CycleError::NegativeDwell:
+      return "cycle dwell is negative";
   }
   return "?";
 }
@@ -106,12 +112,14 @@ CycleError expand_cycle(const Cycle& c, Sink& out, const ExpandOptions& options)
       e.dwell();
       e.rapid(c.safe_z);
       break;
-    case CycleKind::PeckDrill: expand_pecks(c, e); break;
+    case CycleKind::PeckDrill:
+      expand_pecks(c, e);
+      break;
     case CycleKind::Tap: {
-      const Call forward = c.left_hand ? Call{StartSpindleCounterclockwise{}}
-                                       : Call{StartSpindleClockwise{}};
-      const Call reverse = c.left_hand ? Call{StartSpindleClockwise{}}
-                                       : Call{StartSpindleCounterclockwise{}};
+      const Call forward =
+          c.left_hand ? Call{StartSpindleCounterclockwise{}} : Call{StartSpindleClockwise{}};
+      const Call reverse =
+          c.left_hand ? Call{StartSpindleClockwise{}} : Call{StartSpindleCounterclockwise{}};
       e.feed(c.bottom_z);
       e.call(StopSpindleTurning{});
       e.call(reverse);

@@ -24,7 +24,9 @@ void Chunker::call(const Call& call) {
   if (is_workingstep(call, false)) flush();
 }
 
-void Chunker::finish() { flush(); }
+void Chunker::finish() {
+  flush();
+}
 
 void Chunker::flush() {
   if (pending_.empty()) return;

@@ -24,7 +24,11 @@ class Printer {
  public:
   explicit Printer(std::string& out) : out_(out) {}
 
-  void operator()(const UseLengthUnits& c) { open("USE_LENGTH_UNITS"); word(name(c.units)); close(); }
+  void operator()(const UseLengthUnits& c) {
+    open("USE_LENGTH_UNITS");
+    word(name(c.units));
+    close();
+  }
   void operator()(const SetOriginOffsets& c) {
     open("SET_ORIGIN_OFFSETS");
     number(c.offset.x), number(c.offset.y), number(c.offset.z);
@@ -36,14 +40,26 @@ class Printer {
     word(name(c.reference));
     close();
   }
-  void operator()(const SelectPlane& c) { open("SELECT_PLANE"); word(name(c.plane)); close(); }
-  void operator()(const StraightTraverse& c) { open("STRAIGHT_TRAVERSE"); pose(c.to); close(); }
-  void operator()(const StraightFeed& c) { open("STRAIGHT_FEED"); pose(c.to); close(); }
+  void operator()(const SelectPlane& c) {
+    open("SELECT_PLANE");
+    word(name(c.plane));
+    close();
+  }
+  void operator()(const StraightTraverse& c) {
+    open("STRAIGHT_TRAVERSE");
+    pose(c.to);
+    close();
+  }
+  void operator()(const StraightFeed& c) {
+    open("STRAIGHT_FEED");
+    pose(c.to);
+    close();
+  }
   void operator()(const ArcFeed& c) {
     if (const auto p = plane_arc(c)) {
       open("ARC_FEED");
-      number(p->first_end), number(p->second_end), number(p->first_axis),
-          number(p->second_axis), integer(p->rotation), number(p->axis_end_point);
+      number(p->first_end), number(p->second_end), number(p->first_axis), number(p->second_axis),
+          integer(p->rotation), number(p->axis_end_point);
     } else {
       // A tilted-plane arc has no rs274 form; print the stored 3D form under its own name.
       open("ARC_FEED_3D");
@@ -81,18 +97,46 @@ class Printer {
     tool_axis(c.tool_axis);
     close();
   }
-  void operator()(const SetFeedRate& c) { open("SET_FEED_RATE"); number(c.rate); close(); }
-  void operator()(const SetSpindleSpeed& c) { open("SET_SPINDLE_SPEED"); number(c.rpm); close(); }
-  void operator()(const SelectTool& c) { open("SELECT_TOOL"); integer(c.slot); close(); }
-  void operator()(const ChangeTool& c) { open("CHANGE_TOOL"); integer(c.slot); close(); }
+  void operator()(const SetFeedRate& c) {
+    open("SET_FEED_RATE");
+    number(c.rate);
+    close();
+  }
+  void operator()(const SetSpindleSpeed& c) {
+    open("SET_SPINDLE_SPEED");
+    number(c.rpm);
+    close();
+  }
+  void operator()(const SelectTool& c) {
+    open("SELECT_TOOL");
+    integer(c.slot);
+    close();
+  }
+  void operator()(const ChangeTool& c) {
+    open("CHANGE_TOOL");
+    integer(c.slot);
+    close();
+  }
   void operator()(const UseToolLengthOffset& c) {
     open("USE_TOOL_LENGTH_OFFSET");
     number(c.length);
     close();
   }
-  void operator()(const Dwell& c) { open("DWELL"); number(c.seconds); close(); }
-  void operator()(const Comment& c) { open("COMMENT"); quoted(c.text); close(); }
-  void operator()(const Message& c) { open("MESSAGE"); quoted(c.text); close(); }
+  void operator()(const Dwell& c) {
+    open("DWELL");
+    number(c.seconds);
+    close();
+  }
+  void operator()(const Comment& c) {
+    open("COMMENT");
+    quoted(c.text);
+    close();
+  }
+  void operator()(const Message& c) {
+    open("MESSAGE");
+    quoted(c.text);
+    close();
+  }
   void operator()(const Begin& c) { marker(c.scope, "_BEGIN", c.entity); }
   void operator()(const End& c) { marker(c.scope, "_END", c.entity); }
   void operator()(const Cycle& c) {
@@ -107,9 +151,12 @@ class Printer {
         number(c.pitch), number(c.spindle_speed);
         word(c.left_hand ? "LEFT_HAND" : "RIGHT_HAND");
         break;
-      case CycleKind::Bore: word(c.spindle_stop ? "SPINDLE_STOP" : "FEED_OUT"); break;
+      case CycleKind::Bore:
+        word(c.spindle_stop ? "SPINDLE_STOP" : "FEED_OUT");
+        break;
       case CycleKind::Drill:
-      case CycleKind::Ream: break;
+      case CycleKind::Ream:
+        break;
     }
     rotary(c.rotary);
     tool_axis(c.tool_axis);
@@ -117,7 +164,7 @@ class Printer {
   }
   // The calls without arguments; a new call with arguments does not compile until handled.
   template <class T>
-    requires std::is_empty_v<T>
+  requires std::is_empty_v<T>
   void operator()(const T& c) {
     open(name(Call{c}));
     close();
@@ -161,9 +208,12 @@ class Printer {
       out_ += '#';
       append_integer(out_, e.id);
     }
-    if (e.type.empty()) word("$");
-    else if (is_identifier(e.type)) word(e.type);
-    else quoted(e.type);
+    if (e.type.empty())
+      word("$");
+    else if (is_identifier(e.type))
+      word(e.type);
+    else
+      quoted(e.type);
     quoted(e.name);
     close();
   }
@@ -204,10 +254,20 @@ void append_quoted(std::string& out, std::string_view text) {
       continue;
     }
     switch (c) {
-      case '\n': out += "\\n"; ++i; continue;
-      case '\r': out += "\\r"; ++i; continue;
-      case '\t': out += "\\t"; ++i; continue;
-      default: break;
+      case '\n':
+        out += "\\n";
+        ++i;
+        continue;
+      case '\r':
+        out += "\\r";
+        ++i;
+        continue;
+      case '\t':
+        out += "\\t";
+        ++i;
+        continue;
+      default:
+        break;
     }
     char32_t cp = 0;
     const std::size_t len = c >= 0x80 ? xmltext::utf8_sequence_length(text, i, cp) : 0;

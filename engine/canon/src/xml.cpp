@@ -14,18 +14,24 @@ using detail::append_integer;
 
 std::string_view xml_units(Units u) {
   switch (u) {
-    case Units::Inches: return "inch";
-    case Units::Millimetres: return "mm";
-    case Units::Centimetres: return "cm";
+    case Units::Inches:
+      return "inch";
+    case Units::Millimetres:
+      return "mm";
+    case Units::Centimetres:
+      return "cm";
   }
   return "mm";
 }
 
 std::string_view xml_plane(Plane p) {
   switch (p) {
-    case Plane::Xy: return "xy";
-    case Plane::Yz: return "yz";
-    case Plane::Xz: return "xz";
+    case Plane::Xy:
+      return "xy";
+    case Plane::Yz:
+      return "yz";
+    case Plane::Xz:
+      return "xz";
   }
   return "xy";
 }
@@ -33,13 +39,20 @@ std::string_view xml_plane(Plane p) {
 // The element name without building a Call (which would copy strings and NURBS vectors).
 template <class T>
 std::string_view element_name(const T& c) {
-  if constexpr (std::is_same_v<T, Begin>) return marker_name(c.scope, true);
-  else if constexpr (std::is_same_v<T, End>) return marker_name(c.scope, false);
-  else if constexpr (std::is_same_v<T, Cycle>) return name(c.kind);
-  else if constexpr (std::is_same_v<T, NurbsFeed>) return "NURBS_FEED";
-  else if constexpr (std::is_same_v<T, Comment>) return "COMMENT";
-  else if constexpr (std::is_same_v<T, Message>) return "MESSAGE";
-  else return name(Call{c});  // the rest are a few numbers at most
+  if constexpr (std::is_same_v<T, Begin>)
+    return marker_name(c.scope, true);
+  else if constexpr (std::is_same_v<T, End>)
+    return marker_name(c.scope, false);
+  else if constexpr (std::is_same_v<T, Cycle>)
+    return name(c.kind);
+  else if constexpr (std::is_same_v<T, NurbsFeed>)
+    return "NURBS_FEED";
+  else if constexpr (std::is_same_v<T, Comment>)
+    return "COMMENT";
+  else if constexpr (std::is_same_v<T, Message>)
+    return "MESSAGE";
+  else
+    return name(Call{c});  // the rest are a few numbers at most
 }
 
 // Writes one call as one element (a NURBS as an element with children), on its own line.
@@ -124,9 +137,12 @@ class ElementWriter {
         number("pitch", c.pitch), number("spindle_speed", c.spindle_speed);
         text("hand", c.left_hand ? "left" : "right");
         break;
-      case CycleKind::Bore: text("spindle_stop", c.spindle_stop ? "true" : "false"); break;
+      case CycleKind::Bore:
+        text("spindle_stop", c.spindle_stop ? "true" : "false");
+        break;
       case CycleKind::Drill:
-      case CycleKind::Ream: break;
+      case CycleKind::Ream:
+        break;
     }
     rotary(c.rotary);
     tool_axis(c.tool_axis);
@@ -134,10 +150,8 @@ class ElementWriter {
   }
   // The calls without arguments; a new call with arguments does not compile until handled.
   template <class T>
-    requires std::is_empty_v<T>
-  void operator()(const T& c) {
-    open(c), empty();
-  }
+  requires std::is_empty_v<T>
+  void operator()(const T& c) { open(c), empty(); }
 
   // The attributes of a structure marker (also used for <workingstep>).
   void entity(const Entity& e) {

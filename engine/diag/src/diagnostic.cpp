@@ -14,9 +14,13 @@ constexpr std::array kCodes = {
 
 }  // namespace
 
-const CodeInfo& info(Code code) noexcept { return kCodes[static_cast<std::size_t>(code)]; }
+const CodeInfo& info(Code code) noexcept {
+  return kCodes[static_cast<std::size_t>(code)];
+}
 
-std::vector<CodeInfo> all_codes() { return {kCodes.begin(), kCodes.end()}; }
+std::vector<CodeInfo> all_codes() {
+  return {kCodes.begin(), kCodes.end()};
+}
 
 std::string_view to_string(Severity severity) noexcept {
   switch (severity) {

@@ -26,7 +26,8 @@ class Comparer {
              " vs " + std::to_string(static_cast<int>(y.kind())) + ")";
     switch (x.kind()) {
       case ValueKind::Omitted:
-      case ValueKind::Derived: return std::nullopt;
+      case ValueKind::Derived:
+        return std::nullopt;
       case ValueKind::Integer:
         if (a_.as_integer(x) != b_.as_integer(y))
           return where + ": integers differ (" + std::string(a_.slice(x)) + " vs " +
@@ -121,8 +122,8 @@ std::optional<std::string> first_difference(const Model& a, const Model& b) {
   }
   if (a.anchors().size() != b.anchors().size()) return "anchor counts differ";
   for (std::size_t i = 0; i < a.anchors().size(); ++i)
-    if (auto d = cmp.values(a.anchors()[i].item, b.anchors()[i].item,
-                            "anchor " + std::to_string(i + 1)))
+    if (auto d =
+            cmp.values(a.anchors()[i].item, b.anchors()[i].item, "anchor " + std::to_string(i + 1)))
       return d;
   if (a.instances().size() != b.instances().size())
     return "instance counts differ: " + std::to_string(a.instances().size()) + " vs " +

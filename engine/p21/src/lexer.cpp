@@ -38,8 +38,12 @@ constexpr std::array<std::uint8_t, 256> make_classes() {
 }
 constexpr auto kClass = make_classes();
 
-inline bool is(char c, std::uint8_t cls) { return (kClass[static_cast<unsigned char>(c)] & cls) != 0; }
-inline bool is_hex_upper(char c) { return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'F'); }
+inline bool is(char c, std::uint8_t cls) {
+  return (kClass[static_cast<unsigned char>(c)] & cls) != 0;
+}
+inline bool is_hex_upper(char c) {
+  return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'F');
+}
 
 std::string quoted(const char* begin, const char* end) {
   constexpr std::size_t kMax = 40;
@@ -101,7 +105,8 @@ void Lexer::skip_space_and_comments() {
         const void* hit = std::memchr(p_, '*', static_cast<std::size_t>(end_ - p_));
         if (!hit) {
           p_ = end_;
-          report(Code::P21UnterminatedComment, start, "comment opened here is never closed by '*/'");
+          report(Code::P21UnterminatedComment, start,
+                 "comment opened here is never closed by '*/'");
           return;
         }
         const char* star = static_cast<const char*>(hit);
@@ -130,24 +135,50 @@ Token Lexer::next() {
   const char* start = p_;
   const char c = *p_;
   switch (c) {
-    case '(': ++p_; return make(Tok::LParen, start, p_);
-    case ')': ++p_; return make(Tok::RParen, start, p_);
-    case ',': ++p_; return make(Tok::Comma, start, p_);
-    case '=': ++p_; return make(Tok::Equals, start, p_);
-    case ';': ++p_; return make(Tok::Semicolon, start, p_);
-    case '$': ++p_; return make(Tok::Dollar, start, p_);
-    case '*': ++p_; return make(Tok::Star, start, p_);
-    case '{': ++p_; return make(Tok::LBrace, start, p_);
-    case '}': ++p_; return make(Tok::RBrace, start, p_);
-    case ':': ++p_; return make(Tok::Colon, start, p_);
-    case '\'': return lex_string(start);
-    case '"': return lex_binary(start);
-    case '.': return lex_enumeration(start);
+    case '(':
+      ++p_;
+      return make(Tok::LParen, start, p_);
+    case ')':
+      ++p_;
+      return make(Tok::RParen, start, p_);
+    case ',':
+      ++p_;
+      return make(Tok::Comma, start, p_);
+    case '=':
+      ++p_;
+      return make(Tok::Equals, start, p_);
+    case ';':
+      ++p_;
+      return make(Tok::Semicolon, start, p_);
+    case '$':
+      ++p_;
+      return make(Tok::Dollar, start, p_);
+    case '*':
+      ++p_;
+      return make(Tok::Star, start, p_);
+    case '{':
+      ++p_;
+      return make(Tok::LBrace, start, p_);
+    case '}':
+      ++p_;
+      return make(Tok::RBrace, start, p_);
+    case ':':
+      ++p_;
+      return make(Tok::Colon, start, p_);
+    case '\'':
+      return lex_string(start);
+    case '"':
+      return lex_binary(start);
+    case '.':
+      return lex_enumeration(start);
     case '#':
-    case '@': return lex_hash_or_at(start);
-    case '<': return lex_resource(start);
+    case '@':
+      return lex_hash_or_at(start);
+    case '<':
+      return lex_resource(start);
     case '+':
-    case '-': return lex_number(start);
+    case '-':
+      return lex_number(start);
     case '\0': {
       const char* q = p_;
       while (q < end_ && *q == '\0') ++q;
@@ -168,10 +199,10 @@ Token Lexer::lex_garbage(const char* start) {
          std::strchr("()',;=$*#@.\"<{}:", *q) == nullptr && *q != '\0')
     ++q;
   const auto byte = static_cast<unsigned char>(*start);
-  std::string what = byte >= 0x20 && byte < 0x7F
-                         ? "character '" + std::string(1, *start) + "'"
-                         : "byte 0x" + std::string{"0123456789ABCDEF"[byte >> 4]} +
-                               "0123456789ABCDEF"[byte & 15];
+  std::string what =
+      byte >= 0x20 && byte < 0x7F
+          ? "character '" + std::string(1, *start) + "'"
+          : "byte 0x" + std::string{"0123456789ABCDEF"[byte >> 4]} + "0123456789ABCDEF"[byte & 15];
   return error(Code::P21InvalidCharacter, start, q, what + " cannot start a token", false);
 }
 
@@ -204,8 +235,7 @@ Token Lexer::lex_number(const char* start) {
       hint = " (infinities and NaNs cannot be written in ISO 10303-21)";
     else if (!is_real && word.find_first_of("Ee") != std::string_view::npos)
       hint = " (a real needs a decimal point, as in 1.E5)";
-    return error(Code::P21BadNumber, start, q, "malformed number " + quoted(start, q) + hint,
-                 true);
+    return error(Code::P21BadNumber, start, q, "malformed number " + quoted(start, q) + hint, true);
   }
   p_ = q;
   const Tok kind = is_real ? Tok::Real : Tok::Integer;

@@ -21,10 +21,10 @@ enum class Tok : std::uint8_t {
   ValueName,     // @123; slice is the digits
   Integer,
   Real,
-  String,        // slice is the body between the apostrophes
-  Binary,        // slice is the body between the quotes
-  Enumeration,   // slice is the name between the dots
-  Resource,      // <...>; slice is the body between the brackets
+  String,       // slice is the body between the apostrophes
+  Binary,       // slice is the body between the quotes
+  Enumeration,  // slice is the name between the dots
+  Resource,     // <...>; slice is the body between the brackets
   LParen,
   RParen,
   Comma,

@@ -11,7 +11,9 @@ namespace {
 
 constexpr std::uint32_t kNoInstance = 0xFFFFFFFFu;
 
-char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
+char upper(char c) {
+  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
 
 }  // namespace
 
@@ -50,8 +52,9 @@ const Instance* Model::find(std::uint64_t id) const {
     const std::uint32_t index = dense_index_[id];
     return index == kNoInstance ? nullptr : &instances_[index];
   }
-  auto it = std::lower_bound(sparse_index_.begin(), sparse_index_.end(), id,
-                             [](const auto& entry, std::uint64_t key) { return entry.first < key; });
+  auto it =
+      std::lower_bound(sparse_index_.begin(), sparse_index_.end(), id,
+                       [](const auto& entry, std::uint64_t key) { return entry.first < key; });
   if (it == sparse_index_.end() || it->first != id) return nullptr;
   return &instances_[it->second];
 }
@@ -72,7 +75,8 @@ bool Model::has_type(const Instance& instance, std::string_view name) const {
 
 std::span<const std::uint32_t> Model::instance_indices_of(KeywordId k) const {
   if (k + 1 >= by_keyword_start_.size()) return {};
-  return {by_keyword_.data() + by_keyword_start_[k], by_keyword_start_[k + 1] - by_keyword_start_[k]};
+  return {by_keyword_.data() + by_keyword_start_[k],
+          by_keyword_start_[k + 1] - by_keyword_start_[k]};
 }
 
 std::vector<const Instance*> Model::instances_of(std::string_view name) const {

@@ -20,30 +20,54 @@ constexpr std::uint32_t kMaxParameters = 0x0FFFFFFFu;  // what a Value's count c
 
 std::string describe(const Token& t, std::string_view text) {
   switch (t.kind) {
-    case Tok::Eof: return "end of file";
-    case Tok::Keyword: return "keyword '" + std::string(text.substr(t.offset, t.length)) + "'";
-    case Tok::InstanceName: return "instance name '#" + std::to_string(detail::instance_id(text, t)) + "'";
-    case Tok::ConstantName: return "constant name";
-    case Tok::ValueName: return "value instance name";
-    case Tok::Integer: return "integer";
-    case Tok::Real: return "real";
-    case Tok::String: return "string";
-    case Tok::Binary: return "binary";
-    case Tok::Enumeration: return "enumeration";
-    case Tok::Resource: return "resource name";
-    case Tok::LParen: return "'('";
-    case Tok::RParen: return "')'";
-    case Tok::Comma: return "','";
-    case Tok::Equals: return "'='";
-    case Tok::Semicolon: return "';'";
-    case Tok::Dollar: return "'$'";
-    case Tok::Star: return "'*'";
-    case Tok::LBrace: return "'{'";
-    case Tok::RBrace: return "'}'";
-    case Tok::Colon: return "':'";
-    case Tok::Magic: return "'ISO-10303-21'";
-    case Tok::EndMagic: return "'END-ISO-10303-21'";
-    case Tok::Error: return "malformed token";
+    case Tok::Eof:
+      return "end of file";
+    case Tok::Keyword:
+      return "keyword '" + std::string(text.substr(t.offset, t.length)) + "'";
+    case Tok::InstanceName:
+      return "instance name '#" + std::to_string(detail::instance_id(text, t)) + "'";
+    case Tok::ConstantName:
+      return "constant name";
+    case Tok::ValueName:
+      return "value instance name";
+    case Tok::Integer:
+      return "integer";
+    case Tok::Real:
+      return "real";
+    case Tok::String:
+      return "string";
+    case Tok::Binary:
+      return "binary";
+    case Tok::Enumeration:
+      return "enumeration";
+    case Tok::Resource:
+      return "resource name";
+    case Tok::LParen:
+      return "'('";
+    case Tok::RParen:
+      return "')'";
+    case Tok::Comma:
+      return "','";
+    case Tok::Equals:
+      return "'='";
+    case Tok::Semicolon:
+      return "';'";
+    case Tok::Dollar:
+      return "'$'";
+    case Tok::Star:
+      return "'*'";
+    case Tok::LBrace:
+      return "'{'";
+    case Tok::RBrace:
+      return "'}'";
+    case Tok::Colon:
+      return "':'";
+    case Tok::Magic:
+      return "'ISO-10303-21'";
+    case Tok::EndMagic:
+      return "'END-ISO-10303-21'";
+    case Tok::Error:
+      return "malformed token";
   }
   return "token";
 }
@@ -90,7 +114,9 @@ class Parser {
   }
   [[nodiscard]] bool stopped() const { return diagnostics_.full(); }
 
-  void error(Code code, const Token& at, std::string message) { error_at(code, at.start, std::move(message)); }
+  void error(Code code, const Token& at, std::string message) {
+    error_at(code, at.start, std::move(message));
+  }
   void error_at(Code code, std::uint32_t offset, std::string message) {
     const auto pos = lexer_.position(offset);
     diagnostics_.add(code, pos.line, pos.column, std::move(message));
@@ -201,24 +227,35 @@ void Parser::resynchronise() {
 
 std::optional<Value> Parser::simple_value(const Token& t) {
   switch (t.kind) {
-    case Tok::Dollar: return Value::omitted();
-    case Tok::Star: return Value::derived();
-    case Tok::Integer: return Value::slice(ValueKind::Integer, t.offset, t.length);
-    case Tok::Real: return Value::slice(ValueKind::Real, t.offset, t.length);
+    case Tok::Dollar:
+      return Value::omitted();
+    case Tok::Star:
+      return Value::derived();
+    case Tok::Integer:
+      return Value::slice(ValueKind::Integer, t.offset, t.length);
+    case Tok::Real:
+      return Value::slice(ValueKind::Real, t.offset, t.length);
     case Tok::String:
       return Value::slice(ValueKind::String, t.offset, t.length, t.needs_decoding);
-    case Tok::Enumeration: return Value::slice(ValueKind::Enumeration, t.offset, t.length);
-    case Tok::Binary: return Value::slice(ValueKind::Binary, t.offset, t.length);
-    case Tok::InstanceName: return Value::reference(detail::instance_id(text_, t));
-    case Tok::ConstantName: return Value::slice(ValueKind::ConstantName, t.offset, t.length);
-    case Tok::ValueName: return Value::slice(ValueKind::ValueName, t.offset, t.length);
-    case Tok::Resource: return Value::slice(ValueKind::Resource, t.offset, t.length);
+    case Tok::Enumeration:
+      return Value::slice(ValueKind::Enumeration, t.offset, t.length);
+    case Tok::Binary:
+      return Value::slice(ValueKind::Binary, t.offset, t.length);
+    case Tok::InstanceName:
+      return Value::reference(detail::instance_id(text_, t));
+    case Tok::ConstantName:
+      return Value::slice(ValueKind::ConstantName, t.offset, t.length);
+    case Tok::ValueName:
+      return Value::slice(ValueKind::ValueName, t.offset, t.length);
+    case Tok::Resource:
+      return Value::slice(ValueKind::Resource, t.offset, t.length);
     case Tok::Error:
       // A malformed literal whose extent is sound: it was reported; `$` stands in so that the
       // rest of the instance is still checked.
       if (t.recoverable) return Value::omitted();
       return std::nullopt;
-    default: return std::nullopt;
+    default:
+      return std::nullopt;
   }
 }
 
@@ -247,7 +284,8 @@ ListEnd Parser::parse_parameters(std::uint32_t& first, std::uint32_t& count) {
       count = n;
       return true;
     }
-    stack_.push_back(frame.keyword == kListFrame ? Value::list(at, n) : Value::typed(frame.keyword, at));
+    stack_.push_back(frame.keyword == kListFrame ? Value::list(at, n)
+                                                 : Value::typed(frame.keyword, at));
     return true;
   };
 
@@ -377,8 +415,7 @@ void Parser::parse_file() {
         advance();
       }
       if (current_.kind != Tok::Eof)
-        error(Code::P21TrailingContent, current_,
-              "content after 'END-ISO-10303-21;' is ignored");
+        error(Code::P21TrailingContent, current_, "content after 'END-ISO-10303-21;' is ignored");
       break;
     }
     if (current_.kind == Tok::Keyword) {
@@ -407,7 +444,7 @@ void Parser::parse_file() {
   }
   if (stopped())
     error_at(Code::P21TooManyErrors, current_.start,
-                     "stopped after " + std::to_string(options_.max_errors) + " errors");
+             "stopped after " + std::to_string(options_.max_errors) + " errors");
   if (!seen_data && !stopped())
     diagnostics_.add(Code::P21NoData, 1, 1, "the file has no DATA section");
 }
@@ -422,10 +459,9 @@ void Parser::check_header_order(std::uint32_t first_header) {
     if (in_place) continue;
     const bool present = model.header_entity(kRequired[i]) != nullptr;
     error_at(Code::P21HeaderEntity, current_.start,
-                     std::string(kRequired[i]) +
-                         (present ? " is out of order: the header must start with "
-                                    "FILE_DESCRIPTION, FILE_NAME, FILE_SCHEMA"
-                                  : " is missing from the header"));
+             std::string(kRequired[i]) + (present ? " is out of order: the header must start with "
+                                                    "FILE_DESCRIPTION, FILE_NAME, FILE_SCHEMA"
+                                                  : " is missing from the header"));
   }
 }
 
@@ -462,8 +498,7 @@ void Parser::parse_header_section() {
       expect_semicolon(std::string(slice(keyword)));
       continue;
     }
-    if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic ||
-        at_keyword("DATA")) {
+    if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic || at_keyword("DATA")) {
       error(Code::P21MissingEndsec, current_, "HEADER section is not closed by 'ENDSEC;'");
       return;
     }
@@ -664,7 +699,8 @@ void Parser::parse_instance() {
         return;
       }
       const Value list = Value::list(first, count);
-      records.push_back(Value::typed(record, builder_.push_values(std::span<const Value>(&list, 1))));
+      records.push_back(
+          Value::typed(record, builder_.push_values(std::span<const Value>(&list, 1))));
     }
     if (current_.kind != Tok::RParen) {
       unexpected(current_, "a partial record name or ')' in complex " + what());

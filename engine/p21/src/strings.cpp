@@ -52,8 +52,9 @@ void walk(std::string_view raw, Sink& sink) {
         char32_t cp = 0;
         const std::size_t len = xmltext::utf8_sequence_length(raw, i, cp);
         if (len == 0) {
-          sink.problem(i, "byte 0x" + std::string{"0123456789ABCDEF"[uc >> 4]} +
-                              "0123456789ABCDEF"[uc & 15] + " is not valid UTF-8",
+          sink.problem(i,
+                       "byte 0x" + std::string{"0123456789ABCDEF"[uc >> 4]} +
+                           "0123456789ABCDEF"[uc & 15] + " is not valid UTF-8",
                        StringProblem::Encoding);
           sink.code_point(kReplacement);
           ++i;
@@ -87,15 +88,14 @@ void walk(std::string_view raw, Sink& sink) {
       // \PA\ .. \PI\ select ISO 8859-1 .. -9. Only part 1 maps linearly to Unicode; other
       // pages are decoded as part 1 and reported, rather than mis-decoded silently.
       if (rest[2] != 'A')
-        sink.problem(i, "ISO 8859 page \\P" + std::string(1, rest[2]) +
-                            "\\ is decoded as ISO 8859-1",
+        sink.problem(i,
+                     "ISO 8859 page \\P" + std::string(1, rest[2]) + "\\ is decoded as ISO 8859-1",
                      StringProblem::Encoding);
       i += 4;
     } else if (rest.starts_with("\\X\\")) {
       const std::int64_t v = read_hex(raw, i + 3, 2);
       if (v < 0) {
-        sink.problem(i, "\\X\\ must be followed by two hex digits",
-                     StringProblem::Malformed);
+        sink.problem(i, "\\X\\ must be followed by two hex digits", StringProblem::Malformed);
         sink.code_point(kReplacement);
         i += 3;
       } else {
@@ -145,8 +145,9 @@ void walk(std::string_view raw, Sink& sink) {
     } else {
       // Writers often put Windows paths in unescaped. The meaning is plain, so the backslash is
       // kept as a literal and the reader warns instead of rejecting the file.
-      sink.problem(i, "backslash that starts no control directive is read as a literal '\\'; "
-                      "write \\\\ for a backslash",
+      sink.problem(i,
+                   "backslash that starts no control directive is read as a literal '\\'; "
+                   "write \\\\ for a backslash",
                    StringProblem::LoneBackslash);
       sink.code_point(U'\\');
       ++i;
@@ -213,9 +214,12 @@ void encode_string(std::string_view utf8, std::string& out) {
     const auto uc = static_cast<unsigned char>(utf8[i]);
     if (uc >= 0x20 && uc < 0x7F) {
       close_run();
-      if (uc == '\'') out += "''";
-      else if (uc == '\\') out += "\\\\";
-      else out.push_back(static_cast<char>(uc));
+      if (uc == '\'')
+        out += "''";
+      else if (uc == '\\')
+        out += "\\\\";
+      else
+        out.push_back(static_cast<char>(uc));
       ++i;
       continue;
     }

@@ -104,10 +104,16 @@ class Writer {
 // Recursion here is bounded by Model::max_depth(), which the readers cap.
 void append_value(const Model& model, Value v, std::string& out) {
   switch (v.kind()) {
-    case ValueKind::Omitted: out += '$'; return;
-    case ValueKind::Derived: out += '*'; return;
+    case ValueKind::Omitted:
+      out += '$';
+      return;
+    case ValueKind::Derived:
+      out += '*';
+      return;
     case ValueKind::Integer:
-    case ValueKind::Real: out += model.slice(v); return;
+    case ValueKind::Real:
+      out += model.slice(v);
+      return;
     case ValueKind::String:
       out += '\'';
       out += model.slice(v);
@@ -160,7 +166,9 @@ void append_value(const Model& model, Value v, std::string& out) {
   }
 }
 
-void write(const Model& model, const TextSink& sink) { Writer(model, sink).run(); }
+void write(const Model& model, const TextSink& sink) {
+  Writer(model, sink).run();
+}
 
 std::string write_to_string(const Model& model) {
   std::string out;

@@ -23,7 +23,9 @@ std::string upper(std::string_view s) {
   return out;
 }
 
-std::string positional_name(std::size_t index) { return "attr_" + std::to_string(index + 1); }
+std::string positional_name(std::size_t index) {
+  return "attr_" + std::to_string(index + 1);
+}
 
 Binding::Binding(const express::SchemaSet* schemas) : schemas_(schemas) {}
 
@@ -36,8 +38,12 @@ const TypePlan* Binding::plan_named(std::string_view name, int depth) {
   by_name_.emplace(key, &p);  // before recursing, so a self-reference ends here
   if (const express::TypeDecl* decl = schemas_->find_type(key)) {
     switch (decl->underlying.kind) {
-      case TypeKind::Select: p.kind = Kind::Select; break;
-      case TypeKind::Enumeration: p.kind = Kind::Enumeration; break;
+      case TypeKind::Select:
+        p.kind = Kind::Select;
+        break;
+      case TypeKind::Enumeration:
+        p.kind = Kind::Enumeration;
+        break;
       default:
         p.kind = Kind::Defined;
         p.underlying = plan(decl->underlying, depth + 1);
@@ -92,22 +98,28 @@ const TypePlan* Binding::plan(const express::TypeSpec& spec, int depth) {
       result = &p;
       break;
     }
-    case TypeKind::Named: result = plan_named(spec.name, depth); break;
+    case TypeKind::Named:
+      result = plan_named(spec.name, depth);
+      break;
     case TypeKind::Aggregate: {
       TypePlan& p = types_.emplace_back();
       p.kind = Kind::Aggregate;
       p.aggregate = spec.aggregate;
-      p.element = spec.element && depth < kMaxTypeDepth ? plan(*spec.element, depth + 1) : &unknown_;
+      p.element =
+          spec.element && depth < kMaxTypeDepth ? plan(*spec.element, depth + 1) : &unknown_;
       result = &p;
       break;
     }
-    default: break;
+    default:
+      break;
   }
   by_spec_.emplace(&spec, result);
   return result;
 }
 
-const TypePlan* Binding::named_type(std::string_view name) { return plan_named(name, 0); }
+const TypePlan* Binding::named_type(std::string_view name) {
+  return plan_named(name, 0);
+}
 
 const EntityPlan& Binding::entity(std::string_view name, std::size_t min_attributes) {
   std::string key = lower(name);

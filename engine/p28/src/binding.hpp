@@ -16,9 +16,9 @@ namespace ncpost::p28::detail {
 // A declared type, resolved.
 struct TypePlan {
   enum class Kind : std::uint8_t {
-    Unknown,      // no schema information: literals follow the P21 value
+    Unknown,  // no schema information: literals follow the P21 value
     Integer,
-    Real,         // REAL and NUMBER
+    Real,  // REAL and NUMBER
     String,
     Binary,
     Boolean,
@@ -37,14 +37,14 @@ struct TypePlan {
 };
 
 struct AttributePlan {
-  std::string name;     // schema name, or "attr_N" when the entity is not in the schema
+  std::string name;  // schema name, or "attr_N" when the entity is not in the schema
   bool inherited = false;
   bool derived = false;  // a subtype redeclares it as DERIVE: the value is `*`
   const TypePlan* type = nullptr;
 };
 
 struct EntityPlan {
-  std::string name;  // lower case
+  std::string name;    // lower case
   bool known = false;  // in the schema: attributes are named
   std::vector<AttributePlan> attributes;
   std::unordered_map<std::string, std::size_t> index_of;  // attribute name → position

@@ -157,25 +157,25 @@ class Reader {
 
   struct Frame {
     FrameKind kind = FrameKind::Root;
-    const TypePlan* type = nullptr;   // expected type of the value(s) inside
-    std::uint32_t stack_base = 0;     // scratch values of aggregates and instances start here
+    const TypePlan* type = nullptr;  // expected type of the value(s) inside
+    std::uint32_t stack_base = 0;    // scratch values of aggregates and instances start here
     std::uint32_t depth = 0;
-    std::uint32_t slot = 0;           // Attribute: the position in the instance
-    std::optional<Value> value;       // Attribute, TypeLiteral: the value once read
+    std::uint32_t slot = 0;      // Attribute: the position in the instance
+    std::optional<Value> value;  // Attribute, TypeLiteral: the value once read
     LiteralKind literal = LiteralKind::String;
-    std::string name;                 // Instance/Partial: entity; TypeLiteral: type; Values: anchor
-    const EntityPlan* plan = nullptr; // Instance
-    std::uint64_t id = 0;             // Instance
-    bool header = false;              // Instance: a header entity
-    bool positional = false;          // Instance: attributes are taken in document order
-    bool early = false;               // Attribute: early binding element
-    bool implicit = false;            // TypeLiteral: wraps the declared type (no typed param)
-    std::uint32_t next_position = 0;  // positional attributes
-    std::string text;                 // Literal, early Attribute: collected text
-    std::vector<Value> slots;         // Instance: one per attribute
-    std::vector<Value> records;       // complex Instance: Typed values
-    bool items_by_position = false;   // early Attribute holding pos="n" items without ex:cType
-    std::vector<Value> items;         // ... and those items
+    std::string name;  // Instance/Partial: entity; TypeLiteral: type; Values: anchor
+    const EntityPlan* plan = nullptr;  // Instance
+    std::uint64_t id = 0;              // Instance
+    bool header = false;               // Instance: a header entity
+    bool positional = false;           // Instance: attributes are taken in document order
+    bool early = false;                // Attribute: early binding element
+    bool implicit = false;             // TypeLiteral: wraps the declared type (no typed param)
+    std::uint32_t next_position = 0;   // positional attributes
+    std::string text;                  // Literal, early Attribute: collected text
+    std::vector<Value> slots;          // Instance: one per attribute
+    std::vector<Value> records;        // complex Instance: Typed values
+    bool items_by_position = false;    // early Attribute holding pos="n" items without ex:cType
+    std::vector<Value> items;          // ... and those items
   };
 
   // ---- diagnostics ----
@@ -193,7 +193,7 @@ class Reader {
     int line = xmlTextReaderLocatorLineNumber(locator);
     if (line <= 0 && reader->reader_) line = xmlTextReaderGetParserLineNumber(reader->reader_);
     const bool fatal = severity == XML_PARSER_SEVERITY_ERROR;
-    if (!fatal) return;  // warnings from libxml2 are not about the model
+    if (!fatal) return;                           // warnings from libxml2 are not about the model
     if (text == reader->last_xml_error_) return;  // libxml2 repeats itself while unwinding
     reader->last_xml_error_ = text;
     reader->diagnostics_.add(Code::P28XmlError, static_cast<std::uint32_t>(std::max(line, 0)), 0,
@@ -299,21 +299,33 @@ Value Reader::literal_value(LiteralKind kind, const TypePlan* type, std::string_
   while (type && type->kind == Kind::Defined) type = type->underlying;
   if (kind == LiteralKind::ByType) {
     switch (type ? type->kind : Kind::Unknown) {
-      case Kind::Integer: kind = LiteralKind::Integer; break;
-      case Kind::Real: kind = LiteralKind::Real; break;
-      case Kind::Binary: kind = LiteralKind::Binary; break;
+      case Kind::Integer:
+        kind = LiteralKind::Integer;
+        break;
+      case Kind::Real:
+        kind = LiteralKind::Real;
+        break;
+      case Kind::Binary:
+        kind = LiteralKind::Binary;
+        break;
       case Kind::Boolean:
-      case Kind::Logical: kind = LiteralKind::Logical; break;
-      case Kind::Enumeration: kind = LiteralKind::Enumeration; break;
-      case Kind::String: kind = LiteralKind::String; break;
+      case Kind::Logical:
+        kind = LiteralKind::Logical;
+        break;
+      case Kind::Enumeration:
+        kind = LiteralKind::Enumeration;
+        break;
+      case Kind::String:
+        kind = LiteralKind::String;
+        break;
       default: {
         // No schema information: a number stays a number, a spelling of NaN or infinity is a
         // (bad) number, everything else is a string.
         const std::string_view t = trim(raw);
         const std::string u = detail::upper(t);
-        const bool not_finite = u.find("NAN") != std::string::npos || u == "INF" ||
-                                u == "-INF" || u == "INFINITY" || u == "-INFINITY";
-        kind = is_p21_integer(t)          ? LiteralKind::Integer
+        const bool not_finite = u.find("NAN") != std::string::npos || u == "INF" || u == "-INF" ||
+                                u == "INFINITY" || u == "-INFINITY";
+        kind = is_p21_integer(t)           ? LiteralKind::Integer
                : p21_real(t) || not_finite ? LiteralKind::Real
                                            : LiteralKind::String;
         break;
@@ -347,10 +359,12 @@ Value Reader::literal_value(LiteralKind kind, const TypePlan* type, std::string_
       }
       return text_value(ValueKind::Real, *real);
     }
-    case LiteralKind::String: return string_value(raw);
+    case LiteralKind::String:
+      return string_value(raw);
     case LiteralKind::Binary:
-      if (t.empty() || t[0] < '0' || t[0] > '3' ||
-          !std::all_of(t.begin() + 1, t.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); })) {
+      if (t.empty() || t[0] < '0' || t[0] > '3' || !std::all_of(t.begin() + 1, t.end(), [](char c) {
+            return std::isxdigit(static_cast<unsigned char>(c));
+          })) {
         error(Code::P28BadValue, "'" + std::string(t.substr(0, 40)) + "' is not a binary");
         return Value::omitted();
       }
@@ -369,13 +383,16 @@ Value Reader::literal_value(LiteralKind kind, const TypePlan* type, std::string_
         return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
       });
       if (!ok) {
-        error(Code::P28BadValue, "'" + std::string(t.substr(0, 40)) + "' is not an enumeration value");
+        error(Code::P28BadValue,
+              "'" + std::string(t.substr(0, 40)) + "' is not an enumeration value");
         return Value::omitted();
       }
       return text_value(ValueKind::Enumeration, u);
     }
-    case LiteralKind::Resource: return text_value(ValueKind::Resource, t);
-    case LiteralKind::ByType: break;
+    case LiteralKind::Resource:
+      return text_value(ValueKind::Resource, t);
+    case LiteralKind::ByType:
+      break;
   }
   return Value::omitted();
 }
@@ -427,7 +444,9 @@ p21::ReadResult Reader::run() {
         if (empty && !stopped_) end_element();
         break;
       }
-      case XML_READER_TYPE_END_ELEMENT: end_element(); break;
+      case XML_READER_TYPE_END_ELEMENT:
+        end_element();
+        break;
       case XML_READER_TYPE_TEXT:
       case XML_READER_TYPE_CDATA:
       case XML_READER_TYPE_SIGNIFICANT_WHITESPACE: {
@@ -436,7 +455,8 @@ p21::ReadResult Reader::run() {
           f.text += view(xmlTextReaderConstValue(reader_));
         break;
       }
-      default: break;
+      default:
+        break;
     }
   }
   if (status < 0 && !diagnostics_.has_errors())
@@ -520,8 +540,8 @@ void Reader::start_element() {
         f.type = binding_.unknown();
         f.stack_base = static_cast<std::uint32_t>(stack_.size());
       } else if (frames_.size() == 1 && f.depth == 0) {
-        error(Code::P28NotP28, "root element <" + std::string(local) +
-                                   "> is not an ISO 10303-28 document");
+        error(Code::P28NotP28,
+              "root element <" + std::string(local) + "> is not an ISO 10303-28 document");
         stopped_ = true;
         return;
       } else {
@@ -592,7 +612,8 @@ void Reader::start_element() {
         std::from_chars(name.data() + 5, name.data() + name.size(), n);
         if (n > 0) index = n - 1;
       } else if (top.plan != nullptr) {
-        if (auto it = top.plan->index_of.find(name); it != top.plan->index_of.end()) index = it->second;
+        if (auto it = top.plan->index_of.find(name); it != top.plan->index_of.end())
+          index = it->second;
       } else if (top.header) {
         static const std::array<std::pair<std::string_view, std::vector<std::string_view>>, 3>
             kHeader = {{{"file_description", {"description", "implementation_level"}},
@@ -607,7 +628,8 @@ void Reader::start_element() {
       }
       if (!index) {
         if (top.plan != nullptr && top.plan->known) {
-          error(Code::P28UnknownAttribute, "entity " + top.name + " has no attribute '" + name + "'");
+          error(Code::P28UnknownAttribute,
+                "entity " + top.name + " has no attribute '" + name + "'");
           f.kind = FrameKind::Skip;
           push(std::move(f));
           return;
@@ -711,7 +733,8 @@ void Reader::start_value_element(std::string_view local, std::string_view, bool)
     const TypePlan* named = binding_.named_type(f.name);
     // The paper's form wraps a literal in the attribute's own defined type: that is not a
     // typed parameter. Any other type name is a SELECT member, i.e. a P21 typed parameter.
-    f.implicit = expected && expected->kind == Kind::Defined && expected->name == detail::lower(f.name);
+    f.implicit =
+        expected && expected->kind == Kind::Defined && expected->name == detail::lower(f.name);
     f.type = named->kind == Kind::Defined ? named->underlying : named;
   } else {
     error(Code::P28UnexpectedElement, "<" + std::string(local) + "> is not a value");
@@ -755,12 +778,12 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
     const std::string_view kind = local.substr(0, local.size() - 8);
     f.kind = FrameKind::Literal;
     f.type = expected;
-    f.literal = kind == "double"         ? LiteralKind::Real
-                : kind == "long" || kind == "integer" ? LiteralKind::Integer
-                : kind == "hexBinary"    ? LiteralKind::Binary
+    f.literal = kind == "double"                         ? LiteralKind::Real
+                : kind == "long" || kind == "integer"    ? LiteralKind::Integer
+                : kind == "hexBinary"                    ? LiteralKind::Binary
                 : kind == "boolean" || kind == "logical" ? LiteralKind::Logical
-                : kind == "enumeration"  ? LiteralKind::Enumeration
-                                         : LiteralKind::String;
+                : kind == "enumeration"                  ? LiteralKind::Enumeration
+                                                         : LiteralKind::String;
     push(std::move(f));
     return;
   }
@@ -789,7 +812,8 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
   }
   if (!ctype.empty()) {
     f.kind = FrameKind::Aggregate;
-    const TypePlan* t = implicit ? declared : (named->kind == Kind::Defined ? named->underlying : named);
+    const TypePlan* t =
+        implicit ? declared : (named->kind == Kind::Defined ? named->underlying : named);
     while (t && t->kind == Kind::Defined) t = t->underlying;
     f.type = t && t->kind == Kind::Aggregate ? t->element : binding_.unknown();
     f.stack_base = static_cast<std::uint32_t>(stack_.size());
@@ -852,8 +876,12 @@ void Reader::deliver(Value v) {
       top.value = v;
       return;
     case FrameKind::Aggregate:
-    case FrameKind::Values: stack_.push_back(v); return;
-    default: error(Code::P28UnexpectedElement, "a value outside an attribute"); return;
+    case FrameKind::Values:
+      stack_.push_back(v);
+      return;
+    default:
+      error(Code::P28UnexpectedElement, "a value outside an attribute");
+      return;
   }
 }
 
@@ -863,7 +891,8 @@ void Reader::finish_instance(Frame& f) {
   inst.offset = 0;
   if (f.name.empty()) {
     if (f.records.empty()) {
-      error(Code::P21EmptyComplex, "complex instance #" + std::to_string(f.id) + " has no partial records");
+      error(Code::P21EmptyComplex,
+            "complex instance #" + std::to_string(f.id) + " has no partial records");
       return;
     }
     inst.keyword = p21::Model::kComplexKeyword;
@@ -903,7 +932,7 @@ void Reader::close_frame() {
       }
       Value v = literal_value(f.literal, f.type, f.text);
       if (f.literal == LiteralKind::Resource && !f.name.empty()) {
-        v = f.name == "constant" ? text_value(ValueKind::ConstantName, trim(f.text))
+        v = f.name == "constant"         ? text_value(ValueKind::ConstantName, trim(f.text))
             : f.name == "value-instance" ? text_value(ValueKind::ValueName, trim(f.text))
                                          : v;
       }
@@ -964,7 +993,9 @@ void Reader::close_frame() {
       owner.records.push_back(Value::typed(builder_.intern(detail::upper(f.name)), at));
       break;
     }
-    case FrameKind::Instance: finish_instance(f); break;
+    case FrameKind::Instance:
+      finish_instance(f);
+      break;
     case FrameKind::Values: {
       const auto n = static_cast<std::uint32_t>(stack_.size()) - f.stack_base;
       const std::uint32_t first =
@@ -982,7 +1013,8 @@ void Reader::close_frame() {
       }
       break;
     }
-    default: break;
+    default:
+      break;
   }
 }
 
@@ -1009,9 +1041,12 @@ void Reader::build_header_from_ed2() {
   fd.first = builder_.push_values(description);
   fd.count = 2;
   builder_.add_header(fd);
-  std::vector<Value> name = {one_of("name"),           one_of("time_stamp"),
-                             list_of(strings_of("author")), list_of(strings_of("organization")),
-                             one_of("preprocessor_version"), one_of("originating_system"),
+  std::vector<Value> name = {one_of("name"),
+                             one_of("time_stamp"),
+                             list_of(strings_of("author")),
+                             list_of(strings_of("organization")),
+                             one_of("preprocessor_version"),
+                             one_of("originating_system"),
                              one_of("authorization")};
   Instance fn;
   fn.keyword = builder_.intern("FILE_NAME");
@@ -1022,7 +1057,9 @@ void Reader::build_header_from_ed2() {
 
 // Every external resource (DTD, entity, XInclude) is refused: inputs are untrusted. Returning
 // no input makes libxml2 report the load as failed.
-xmlParserInputPtr refuse_entity(const char*, const char*, xmlParserCtxtPtr) { return nullptr; }
+xmlParserInputPtr refuse_entity(const char*, const char*, xmlParserCtxtPtr) {
+  return nullptr;
+}
 
 }  // namespace
 

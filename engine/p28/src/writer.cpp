@@ -27,20 +27,25 @@ constexpr std::string_view kExNamespace =
     "urn:iso.org:standard:10303:part(28):version(2):xmlschema:common";
 
 // The attribute names of the ISO 10303-21 header entities, which no data schema declares.
-const std::array<std::pair<std::string_view, std::vector<std::string_view>>, 3> kHeaderAttributes = {{
-    {"file_description", {"description", "implementation_level"}},
-    {"file_name",
-     {"name", "time_stamp", "author", "organization", "preprocessor_version", "originating_system",
-      "authorization"}},
-    {"file_schema", {"schema_identifiers"}},
-}};
+const std::array<std::pair<std::string_view, std::vector<std::string_view>>, 3> kHeaderAttributes =
+    {{
+        {"file_description", {"description", "implementation_level"}},
+        {"file_name",
+         {"name", "time_stamp", "author", "organization", "preprocessor_version",
+          "originating_system", "authorization"}},
+        {"file_schema", {"schema_identifiers"}},
+    }};
 
 std::string_view aggregate_name(express::AggregateKind kind) {
   switch (kind) {
-    case express::AggregateKind::Set: return "set";
-    case express::AggregateKind::Bag: return "bag";
-    case express::AggregateKind::Array: return "array";
-    default: return "list";
+    case express::AggregateKind::Set:
+      return "set";
+    case express::AggregateKind::Bag:
+      return "bag";
+    case express::AggregateKind::Array:
+      return "array";
+    default:
+      return "list";
   }
 }
 
@@ -156,8 +161,10 @@ class Writer {
     const auto params = model_.params(h);
     for (std::size_t i = 0; i < params.size(); ++i) {
       put("<attribute_instance express_attribute_name=\"");
-      if (names && i < names->size()) put((*names)[i]);
-      else put(detail::positional_name(i));
+      if (names && i < names->size())
+        put((*names)[i]);
+      else
+        put(detail::positional_name(i));
       put("\">");
       late_value(params[i], binding_.unknown());
       put("</attribute_instance>");
@@ -244,8 +251,12 @@ class Writer {
       return;
     }
     switch (v.kind()) {
-      case ValueKind::Omitted: put("<unset_literal/>"); return;
-      case ValueKind::Derived: put("<derived_literal/>"); return;
+      case ValueKind::Omitted:
+        put("<unset_literal/>");
+        return;
+      case ValueKind::Derived:
+        put("<derived_literal/>");
+        return;
       case ValueKind::Integer:
         // An integer written where the schema wants a REAL stays a real on the way back.
         if (type->kind == Kind::Real) {
@@ -256,13 +267,17 @@ class Writer {
           literal("integer_literal", model_.slice(v));
         }
         return;
-      case ValueKind::Real: literal("real_literal", model_.slice(v)); return;
+      case ValueKind::Real:
+        literal("real_literal", model_.slice(v));
+        return;
       case ValueKind::String:
         put("<string_literal>");
         string_content(v);
         put("</string_literal>");
         return;
-      case ValueKind::Binary: literal("binary_literal", model_.slice(v)); return;
+      case ValueKind::Binary:
+        literal("binary_literal", model_.slice(v));
+        return;
       case ValueKind::Enumeration: {
         const std::string_view e = model_.slice(v);
         if (type->kind == Kind::Boolean || type->kind == Kind::Logical) {
@@ -372,8 +387,9 @@ class Writer {
     put("<ex:iso_10303_28_header>\n");
     if (const Instance* fn = model_.header_entity("FILE_NAME")) {
       static constexpr std::array<std::string_view, 7> kFields = {
-          "name", "time_stamp", "author", "organization", "preprocessor_version",
-          "originating_system", "authorization"};
+          "name",         "time_stamp",           "author",
+          "organization", "preprocessor_version", "originating_system",
+          "authorization"};
       const auto params = model_.params(*fn);
       for (std::size_t i = 0; i < kFields.size() && i < params.size(); ++i) {
         const Value v = params[i];
@@ -479,7 +495,8 @@ class Writer {
         put(type->kind == Kind::Aggregate ? aggregate_name(type->aggregate) : "list");
         put("\"");
         close_start();
-        const TypePlan* element = type->kind == Kind::Aggregate ? type->element : binding_.unknown();
+        const TypePlan* element =
+            type->kind == Kind::Aggregate ? type->element : binding_.unknown();
         const auto items = model_.items(v);
         for (std::size_t i = 0; i < items.size(); ++i) early_item(items[i], element, i);
         return;
@@ -538,7 +555,8 @@ class Writer {
         put(">");
         return;
       }
-      default: break;
+      default:
+        break;
     }
     // Element name: the declared defined type if there is one, else a wrapper for the kind.
     std::string name;
@@ -546,22 +564,44 @@ class Writer {
       name = declared->name;
     } else {
       switch (v.kind()) {
-        case ValueKind::Omitted: name = "ex:unset"; break;
-        case ValueKind::Derived: name = "ex:derived"; break;
-        case ValueKind::Integer: name = declared->kind == Kind::Real ? "ex:double-wrapper" : "ex:long-wrapper"; break;
-        case ValueKind::Real: name = "ex:double-wrapper"; break;
-        case ValueKind::String: name = "ex:string-wrapper"; break;
-        case ValueKind::Binary: name = "ex:hexBinary-wrapper"; break;
+        case ValueKind::Omitted:
+          name = "ex:unset";
+          break;
+        case ValueKind::Derived:
+          name = "ex:derived";
+          break;
+        case ValueKind::Integer:
+          name = declared->kind == Kind::Real ? "ex:double-wrapper" : "ex:long-wrapper";
+          break;
+        case ValueKind::Real:
+          name = "ex:double-wrapper";
+          break;
+        case ValueKind::String:
+          name = "ex:string-wrapper";
+          break;
+        case ValueKind::Binary:
+          name = "ex:hexBinary-wrapper";
+          break;
         case ValueKind::Enumeration:
           name = declared->kind == Kind::Boolean   ? "ex:boolean-wrapper"
                  : declared->kind == Kind::Logical ? "ex:logical-wrapper"
                                                    : "ex:enumeration-wrapper";
           break;
-        case ValueKind::List: name = "ex:aggregate-wrapper"; break;
-        case ValueKind::ConstantName: name = "ex:constant"; break;
-        case ValueKind::ValueName: name = "ex:value-instance"; break;
-        case ValueKind::Resource: name = "ex:resource"; break;
-        default: name = "ex:unknown"; break;
+        case ValueKind::List:
+          name = "ex:aggregate-wrapper";
+          break;
+        case ValueKind::ConstantName:
+          name = "ex:constant";
+          break;
+        case ValueKind::ValueName:
+          name = "ex:value-instance";
+          break;
+        case ValueKind::Resource:
+          name = "ex:resource";
+          break;
+        default:
+          name = "ex:unknown";
+          break;
       }
     }
     put("<");
@@ -582,8 +622,12 @@ class Writer {
       case ValueKind::Binary:
       case ValueKind::ConstantName:
       case ValueKind::ValueName:
-      case ValueKind::Resource: text(model_.slice(v)); return;
-      case ValueKind::String: string_content(v); return;
+      case ValueKind::Resource:
+        text(model_.slice(v));
+        return;
+      case ValueKind::String:
+        string_content(v);
+        return;
       case ValueKind::Enumeration: {
         const std::string_view e = model_.slice(v);
         if (type->kind == Kind::Boolean || type->kind == Kind::Logical) {
@@ -593,7 +637,8 @@ class Writer {
         }
         return;
       }
-      default: return;  // $ and * have no content
+      default:
+        return;  // $ and * have no content
     }
   }
 

@@ -25,9 +25,12 @@ InputFormat detect_format(std::string_view bytes) noexcept {
 
 std::string_view to_string(InputFormat format) noexcept {
   switch (format) {
-    case InputFormat::P21: return "p21";
-    case InputFormat::P28: return "p28";
-    case InputFormat::Unknown: break;
+    case InputFormat::P21:
+      return "p21";
+    case InputFormat::P28:
+      return "p28";
+    case InputFormat::Unknown:
+      break;
   }
   return "unknown";
 }

@@ -89,7 +89,8 @@ std::optional<std::vector<Segment>> CurveReader::polyline(const p21::Instance& c
 
 // A trimming point: a CARTESIAN_POINT, or a PARAMETER_VALUE on the basis curve. When both are
 // given, master_representation chooses (ISO 10303-42).
-std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::string_view attribute,
+std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed,
+                                            std::string_view attribute,
                                             const p21::Instance& basis) {
   const p21::Model& m = geometry_.model();
   const auto set = geometry_.get(trimmed, attribute);
@@ -106,8 +107,8 @@ std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::s
       parameter = m.as_real(m.typed_child(v));
   }
   const auto master = geometry_.get(trimmed, "master_representation");
-  const bool prefer_parameter =
-      master && master->kind() == p21::ValueKind::Enumeration && m.enumeration(*master) == "PARAMETER";
+  const bool prefer_parameter = master && master->kind() == p21::ValueKind::Enumeration &&
+                                m.enumeration(*master) == "PARAMETER";
   if (point_value && (!parameter || !prefer_parameter)) return geometry_.point(point_value);
   if (!parameter) {
     geometry_.error(diag::Code::StepncBadAttribute, trimmed,
@@ -117,7 +118,8 @@ std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::s
   }
   if (geometry_.is_a(basis, "line")) {
     const auto origin = geometry_.point(geometry_.get(basis, "pnt"));
-    const p21::Instance* vector = geometry_.instance(geometry_.get(basis, "dir"), "vector", &basis, "dir");
+    const p21::Instance* vector =
+        geometry_.instance(geometry_.get(basis, "dir"), "vector", &basis, "dir");
     if (!origin || vector == nullptr) return std::nullopt;
     const auto direction = geometry_.direction(geometry_.get(*vector, "orientation"));
     const auto magnitude = geometry_.number(*vector, "magnitude");
@@ -139,7 +141,8 @@ std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed, std::s
 
 std::optional<std::vector<Segment>> CurveReader::trimmed(const p21::Instance& curve) {
   const p21::Model& m = geometry_.model();
-  const p21::Instance* basis = geometry_.instance(geometry_.get(curve, "basis_curve"), "curve", &curve, "basis_curve");
+  const p21::Instance* basis =
+      geometry_.instance(geometry_.get(curve, "basis_curve"), "curve", &curve, "basis_curve");
   if (basis == nullptr) return std::nullopt;
   const auto start = trim_point(curve, "trim_1", *basis);
   const auto end = trim_point(curve, "trim_2", *basis);
@@ -224,7 +227,8 @@ std::optional<std::vector<Segment>> CurveReader::composite(const p21::Instance& 
   for (p21::Value v : m.items(*list)) {
     const p21::Instance* seg = geometry_.instance(v, "composite_curve_segment", &curve, "segments");
     if (seg == nullptr) return std::nullopt;
-    const p21::Instance* parent = geometry_.instance(geometry_.get(*seg, "parent_curve"), "curve", seg, "parent_curve");
+    const p21::Instance* parent =
+        geometry_.instance(geometry_.get(*seg, "parent_curve"), "curve", seg, "parent_curve");
     if (parent == nullptr) return std::nullopt;
     auto part = segments(*parent, depth + 1);
     if (!part) return std::nullopt;
@@ -259,7 +263,8 @@ std::optional<std::vector<Segment>> CurveReader::bspline(const p21::Instance& cu
   const auto mult = m.items(*multiplicities);
   const auto k = m.items(*knots);
   for (std::size_t i = 0; i < k.size(); ++i)
-    for (std::int64_t r = 0; r < m.as_integer(mult[i]) && r < 64; ++r) s.knots.push_back(m.as_real(k[i]));
+    for (std::int64_t r = 0; r < m.as_integer(mult[i]) && r < 64; ++r)
+      s.knots.push_back(m.as_real(k[i]));
   s.weights.assign(s.control_points.size(), 1.0);
   if (const auto w = geometry_.get(curve, "weights_data"); w && w->is_list()) {
     const auto ws = m.items(*w);
@@ -271,7 +276,8 @@ std::optional<std::vector<Segment>> CurveReader::bspline(const p21::Instance& cu
     }
     for (std::size_t i = 0; i < ws.size(); ++i) s.weights[i] = m.as_real(ws[i]);
   }
-  if (s.degree < 1 || s.knots.size() != s.control_points.size() + static_cast<std::size_t>(s.degree) + 1) {
+  if (s.degree < 1 ||
+      s.knots.size() != s.control_points.size() + static_cast<std::size_t>(s.degree) + 1) {
     geometry_.error(diag::Code::StepncBadGeometry, curve,
                     describe(m, curve) + ": " + std::to_string(s.knots.size()) + " knots for " +
                         std::to_string(s.control_points.size()) + " control points of degree " +

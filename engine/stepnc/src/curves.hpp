@@ -33,7 +33,8 @@ class CurveReader {
       : geometry_(geometry), arc_tolerance_(arc_tolerance) {}
 
   // The segments of a bounded curve, in its sense; nullopt after reporting why not.
-  [[nodiscard]] std::optional<std::vector<Segment>> segments(const p21::Instance& curve, int depth = 0);
+  [[nodiscard]] std::optional<std::vector<Segment>> segments(const p21::Instance& curve,
+                                                             int depth = 0);
   // Points of a curve used as a tool-axis curve (POLYLINE of directions as points).
   [[nodiscard]] std::optional<std::vector<Vec3>> polyline_points(const p21::Instance& curve);
 

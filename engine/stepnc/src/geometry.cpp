@@ -42,7 +42,8 @@ bool GeometryReader::is_a(const p21::Instance& instance, std::string_view entity
   return answer;
 }
 
-std::optional<p21::Value> GeometryReader::get(const p21::Instance& instance, std::string_view name) {
+std::optional<p21::Value> GeometryReader::get(const p21::Instance& instance,
+                                              std::string_view name) {
   const express::Entity* e = attributes_.entity(instance);
   if (e == nullptr) return attributes_.get(instance, name);  // complex or unknown
   if (instance.keyword >= positions_.size()) positions_.resize(model_.keyword_count());
@@ -61,8 +62,7 @@ std::optional<p21::Value> GeometryReader::get(const p21::Instance& instance, std
 }
 
 const p21::Instance* GeometryReader::instance(std::optional<p21::Value> reference,
-                                              std::string_view expected,
-                                              const p21::Instance* owner,
+                                              std::string_view expected, const p21::Instance* owner,
                                               std::string_view attribute) {
   const p21::Instance* target =
       reference && reference->is_reference() ? model_.find(reference->id()) : nullptr;
@@ -72,7 +72,8 @@ const p21::Instance* GeometryReader::instance(std::optional<p21::Value> referenc
                  : std::string("a reference");
   };
   if (target == nullptr) {
-    if (owner) error(diag::Code::StepncBadAttribute, *owner, where() + " does not refer to an instance");
+    if (owner)
+      error(diag::Code::StepncBadAttribute, *owner, where() + " does not refer to an instance");
     return nullptr;
   }
   if (!expected.empty() && !is_a(*target, expected)) {
@@ -100,18 +101,22 @@ std::optional<Vec3> GeometryReader::point(std::optional<p21::Value> reference) {
   const p21::Instance* p = instance(reference, "cartesian_point");
   if (p == nullptr) return std::nullopt;
   const auto coordinates = get(*p, "coordinates");
-  if (!coordinates || !coordinates->is_list() || coordinates->count() < 2 || coordinates->count() > 3) {
-    error(diag::Code::StepncBadGeometry, *p, describe(model_, *p) + " needs two or three coordinates");
+  if (!coordinates || !coordinates->is_list() || coordinates->count() < 2 ||
+      coordinates->count() > 3) {
+    error(diag::Code::StepncBadGeometry, *p,
+          describe(model_, *p) + " needs two or three coordinates");
     return std::nullopt;
   }
   const auto items = model_.items(*coordinates);
   std::array<double, 3> xyz{0, 0, 0};
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const p21::Value c = items[i].kind() == p21::ValueKind::Typed ? model_.typed_child(items[i]) : items[i];
+    const p21::Value c =
+        items[i].kind() == p21::ValueKind::Typed ? model_.typed_child(items[i]) : items[i];
     xyz[i] = c.is_number() ? model_.as_real(c) : std::nan("");
     if (!std::isfinite(xyz[i])) {
       error(diag::Code::StepncBadGeometry, *p,
-            describe(model_, *p) + " coordinate " + std::to_string(i + 1) + " is not a finite number");
+            describe(model_, *p) + " coordinate " + std::to_string(i + 1) +
+                " is not a finite number");
       return std::nullopt;
     }
   }
@@ -131,7 +136,8 @@ std::optional<Vec3> GeometryReader::direction(std::optional<p21::Value> referenc
          items.size() > 2 ? model_.as_real(items[2]) : 0.0};
   const double length = v.length();
   if (!v.finite() || length < kUnitTolerance) {
-    error(diag::Code::StepncBadGeometry, *d, describe(model_, *d) + " has no direction (zero or non-finite ratios)");
+    error(diag::Code::StepncBadGeometry, *d,
+          describe(model_, *d) + " has no direction (zero or non-finite ratios)");
     return std::nullopt;
   }
   return v * (1.0 / length);

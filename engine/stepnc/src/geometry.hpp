@@ -39,7 +39,9 @@ struct Frame {
   Vec3 y{0, 1, 0};
   Vec3 z{0, 0, 1};
 
-  [[nodiscard]] Vec3 point(Vec3 local) const { return origin + x * local.x + y * local.y + z * local.z; }
+  [[nodiscard]] Vec3 point(Vec3 local) const {
+    return origin + x * local.x + y * local.y + z * local.z;
+  }
   [[nodiscard]] Vec3 direction(Vec3 local) const { return x * local.x + y * local.y + z * local.z; }
   // This frame after `inner`: a point of `inner`'s local coordinates, in this frame's parent.
   [[nodiscard]] Frame then(const Frame& inner) const {
@@ -71,7 +73,8 @@ class GeometryReader {
   [[nodiscard]] std::optional<p21::Value> get(const p21::Instance& instance, std::string_view name);
 
   const p21::Instance* instance(std::optional<p21::Value> reference, std::string_view expected,
-                                const p21::Instance* owner = nullptr, std::string_view attribute = {});
+                                const p21::Instance* owner = nullptr,
+                                std::string_view attribute = {});
   void error(diag::Code code, const p21::Instance& at, std::string message);
 
   [[nodiscard]] const p21::Model& model() const { return model_; }

@@ -67,9 +67,7 @@ class Interpreter {
     const auto v = geometry_.get(i, "its_id");
     return v && v->kind() == p21::ValueKind::String ? m_.as_string(*v) : std::string();
   }
-  canon::Entity entity(const Instance& i) {
-    return {i.id, std::string(m_.type_name(i)), name(i)};
-  }
+  canon::Entity entity(const Instance& i) { return {i.id, std::string(m_.type_name(i)), name(i)}; }
   const Instance* ref(const Instance& owner, std::string_view attribute, std::string_view type,
                       bool optional = false) {
     const auto v = geometry_.get(owner, attribute);
@@ -109,11 +107,11 @@ class Interpreter {
   detail::GeometryReader geometry_;
   detail::CurveReader curves_;
 
-  Frame workpiece_;                      // machine ← workpiece (setup ∘ workpiece setup)
-  std::vector<Frame> workpiece_origins_; // workpiece setups of the current setup
+  Frame workpiece_;                       // machine ← workpiece (setup ∘ workpiece setup)
+  std::vector<Frame> workpiece_origins_;  // workpiece setups of the current setup
   std::vector<const Instance*> workpiece_setups_;
-  std::optional<double> security_z_;     // in machine coordinates
-  std::optional<Vec3> position_;         // unknown until the first move
+  std::optional<double> security_z_;  // in machine coordinates
+  std::optional<Vec3> position_;      // unknown until the first move
   std::optional<std::uint64_t> tool_id_;
   std::optional<double> feed_;
   std::optional<double> spindle_;
@@ -175,7 +173,8 @@ void Interpreter::set_up(const Instance& setup) {
                     " workpiece set-ups; each workingstep uses the one of its feature's workpiece");
   // The setup's security plane until a workingstep names its own.
   if (const Instance* plane = ref(setup, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(geometry_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+    if (auto f = geometry_.placement(geometry_.get(*plane, "position")))
+      security_z_ = workpiece_.point(f->origin).z;
   }
 }
 
@@ -215,15 +214,17 @@ void Interpreter::executable(const Instance& e, unsigned depth) {
     note(e, detail::describe(m_, e) + ": NON_SEQUENTIAL elements run in file order");
     elements(e, "its_elements", depth);
   } else if (geometry_.is_a(e, "parallel")) {
-    note(e, detail::describe(m_, e) + ": PARALLEL branches run one after another on this "
-                                      "single-channel machine");
+    note(e, detail::describe(m_, e) +
+                ": PARALLEL branches run one after another on this "
+                "single-channel machine");
     elements(e, "branches", depth);
   } else if (geometry_.is_a(e, "selective")) {
     const auto list = geometry_.get(e, "its_elements");
     if (list && list->is_list() && list->count() > 0) {
       note(e, detail::describe(m_, e) + ": SELECTIVE runs its first element; the other " +
                   std::to_string(list->count() - 1) + " are alternatives for the operator");
-      if (const Instance* first = geometry_.instance(m_.items(*list)[0], "executable", &e, "its_elements"))
+      if (const Instance* first =
+              geometry_.instance(m_.items(*list)[0], "executable", &e, "its_elements"))
         executable(*first, depth + 1);
     }
   } else if (geometry_.is_a(e, "if_statement") || geometry_.is_a(e, "while_statement")) {
@@ -241,7 +242,8 @@ void Interpreter::elements(const Instance& owner, std::string_view attribute, un
   const auto list = geometry_.get(owner, attribute);
   if (!list || !list->is_list()) return;
   for (Value v : m_.items(*list))
-    if (const Instance* e = geometry_.instance(v, "executable", &owner, attribute)) executable(*e, depth + 1);
+    if (const Instance* e = geometry_.instance(v, "executable", &owner, attribute))
+      executable(*e, depth + 1);
 }
 
 void Interpreter::nc_function(const Instance& f) {
@@ -251,13 +253,15 @@ void Interpreter::nc_function(const Instance& f) {
     emit(canon::OptionalProgramStop{});
   } else if (geometry_.is_a(f, "display_message")) {
     const auto text = geometry_.get(f, "its_text");
-    emit(canon::Message{text && text->kind() == p21::ValueKind::String ? m_.as_string(*text) : name(f)});
+    emit(canon::Message{text && text->kind() == p21::ValueKind::String ? m_.as_string(*text)
+                                                                       : name(f)});
   } else if (geometry_.is_a(f, "load_tool")) {
     if (const Instance* t = ref(f, "its_tool", "machining_tool")) tool(*t);
   } else if (geometry_.is_a(f, "unload_tool")) {
     emit(canon::ChangeTool{0});
     tool_id_.reset();
-  } else if (geometry_.is_a(f, "exchange_pallet") || geometry_.is_a(f, "index_pallet") || geometry_.is_a(f, "index_table")) {
+  } else if (geometry_.is_a(f, "exchange_pallet") || geometry_.is_a(f, "index_pallet") ||
+             geometry_.is_a(f, "index_table")) {
     // RS274 has no pallet or table call: the operator is told, and the program stops for it.
     std::string what = std::string(m_.type_name(f));
     if (const auto index = geometry_.get(f, "its_index"); index && index->is_number())
@@ -318,8 +322,10 @@ void Interpreter::technology(const Instance* tech) {
         emit(canon::StopSpindleTurning{});
       } else {
         emit(canon::SetSpindleSpeed{rpm});
-        if (*s < 0) emit(canon::StartSpindleClockwise{});
-        else emit(canon::StartSpindleCounterclockwise{});
+        if (*s < 0)
+          emit(canon::StartSpindleClockwise{});
+        else
+          emit(canon::StartSpindleCounterclockwise{});
       }
     }
     spindle_ = *s;
@@ -336,13 +342,17 @@ void Interpreter::machine_functions(const Instance* functions) {
     return *l == p21::Logical::True;
   };
   if (const auto coolant = flag("coolant"); coolant && *coolant != flood_) {
-    if (*coolant) emit(canon::FloodOn{});
-    else emit(canon::FloodOff{});
+    if (*coolant)
+      emit(canon::FloodOn{});
+    else
+      emit(canon::FloodOff{});
     flood_ = *coolant;
   }
   if (const auto mist = flag("mist"); mist && *mist != mist_) {
-    if (*mist) emit(canon::MistOn{});
-    else emit(canon::MistOff{});
+    if (*mist)
+      emit(canon::MistOn{});
+    else
+      emit(canon::MistOff{});
     mist_ = *mist;
   }
 }
@@ -360,7 +370,8 @@ void Interpreter::approach(Vec3 start, bool rapid_only) {
   if (!rapid_only) retract_to_security_plane();
   if (security_z_ && !rapid_only && start.z < *security_z_) {
     const Vec3 above{start.x, start.y, *security_z_};
-    if (!position_ || (*position_ - above).length() >= kSamePoint) emit(canon::StraightTraverse{pose(above)});
+    if (!position_ || (*position_ - above).length() >= kSamePoint)
+      emit(canon::StraightTraverse{pose(above)});
   }
   emit(canon::StraightTraverse{pose(start)});
   position_ = start;
@@ -370,11 +381,14 @@ void Interpreter::motion(const std::vector<Segment>& segments, const Frame& fram
   bool selected_xy = true;
   for (const Segment& s : segments) {
     const Vec3 end = frame.point(s.end);
-    const auto axis = s.tool_axis ? std::optional<Vec3>(frame.direction(*s.tool_axis)) : std::nullopt;
+    const auto axis =
+        s.tool_axis ? std::optional<Vec3>(frame.direction(*s.tool_axis)) : std::nullopt;
     switch (s.kind) {
       case Segment::Kind::Line:
-        if (rapid) emit(canon::StraightTraverse{pose(end, axis)});
-        else emit(canon::StraightFeed{pose(end, axis)});
+        if (rapid)
+          emit(canon::StraightTraverse{pose(end, axis)});
+        else
+          emit(canon::StraightFeed{pose(end, axis)});
         break;
       case Segment::Kind::Arc: {
         const Vec3 normal = frame.direction(s.normal);
@@ -386,8 +400,10 @@ void Interpreter::motion(const std::vector<Segment>& segments, const Frame& fram
           emit(canon::SelectPlane{plane});
           selected_xy = plane == canon::Plane::Xy;
         }
-        emit(canon::ArcFeed{pose(end, axis), {centre.x, centre.y, centre.z},
-                            {normal.x, normal.y, normal.z}, s.turns});
+        emit(canon::ArcFeed{pose(end, axis),
+                            {centre.x, centre.y, centre.z},
+                            {normal.x, normal.y, normal.z},
+                            s.turns});
         break;
       }
       case Segment::Kind::Nurbs: {
@@ -420,9 +436,10 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
       continue;
     }
     if (!geometry_.is_a(*path, "cutter_location_trajectory")) {
-      not_implemented(*path, "this kind of toolpath (CUTTER_LOCATION_TRAJECTORY and FEEDSTOP are; "
-                             "cutter-contact paths need the tool's geometry, axis trajectories "
-                             "per-axis commands)");
+      not_implemented(*path,
+                      "this kind of toolpath (CUTTER_LOCATION_TRAJECTORY and FEEDSTOP are; "
+                      "cutter-contact paths need the tool's geometry, axis trajectories "
+                      "per-axis commands)");
       continue;
     }
     if (const auto speed = geometry_.get(*path, "its_speed"); speed && !speed->is_omitted())
@@ -435,7 +452,9 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
     if (!segments || segments->empty()) continue;
     if (const Instance* axis_curve = ref(*path, "its_toolaxis", "bounded_curve", true)) {
       // A tool-axis curve: one axis vector per point of a polyline path.
-      const auto axes = geometry_.is_a(*axis_curve, "polyline") ? curves_.polyline_points(*axis_curve) : std::nullopt;
+      const auto axes = geometry_.is_a(*axis_curve, "polyline")
+                            ? curves_.polyline_points(*axis_curve)
+                            : std::nullopt;
       if (!axes || axes->size() != segments->size() + 1 ||
           std::any_of(segments->begin(), segments->end(),
                       [](const Segment& s) { return s.kind != Segment::Kind::Line; })) {
@@ -458,8 +477,10 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
                       detail::describe(m_, *path) +
                           " starts away from where the previous toolpath ended; the tool " +
                           (rapid ? "moves" : "feeds") + " across");
-      if (rapid) emit(canon::StraightTraverse{pose(start)});
-      else emit(canon::StraightFeed{pose(start)});
+      if (rapid)
+        emit(canon::StraightTraverse{pose(start)});
+      else
+        emit(canon::StraightFeed{pose(start)});
       position_ = start;
     }
     motion(*segments, frame, rapid || non_contact);
@@ -471,7 +492,8 @@ void Interpreter::workingstep(const Instance& ws) {
   const Instance* operation = ref(ws, "its_operation", "machining_operation");
   const Instance* feature = ref(ws, "its_feature", "manufacturing_feature", true);
   if (const Instance* plane = ref(ws, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(geometry_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+    if (auto f = geometry_.placement(geometry_.get(*plane, "position")))
+      security_z_ = workpiece_.point(f->origin).z;
   }
   // The feature's workpiece picks the workpiece set-up; its placement is the toolpaths' frame.
   Frame frame = workpiece_;
@@ -482,7 +504,8 @@ void Interpreter::workingstep(const Instance& ws) {
         if (w && w->is_reference() && w->id() == wp->id()) frame = workpiece_origins_[i];
       }
     }
-    if (const auto placement = geometry_.get(*feature, "feature_placement"); placement && !placement->is_omitted()) {
+    if (const auto placement = geometry_.get(*feature, "feature_placement");
+        placement && !placement->is_omitted()) {
       if (auto f = geometry_.placement(placement)) frame = frame.then(*f);
     }
   }
@@ -509,7 +532,8 @@ void Interpreter::workingstep(const Instance& ws) {
 void Interpreter::rapid_movement(const Instance& rm) {
   emit(canon::Begin{canon::Scope::Workingstep, entity(rm)});
   if (const Instance* plane = ref(rm, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(geometry_.get(*plane, "position"))) security_z_ = workpiece_.point(f->origin).z;
+    if (auto f = geometry_.placement(geometry_.get(*plane, "position")))
+      security_z_ = workpiece_.point(f->origin).z;
   }
   // A rapid movement has no feature: its toolpath is in the workpiece's coordinates.
   toolpaths(ref(rm, "its_toolpath", "toolpath_list", true), workpiece_, true);
@@ -537,18 +561,22 @@ ToolTable read_tool_table(std::string_view text, std::vector<diag::Diagnostic>& 
     std::string_view line = text.substr(0, eol);
     text = eol == std::string_view::npos ? std::string_view() : text.substr(eol + 1);
     ++line_number;
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
-    if (line.empty() || !std::isdigit(static_cast<unsigned char>(line.front()))) continue;  // heading
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
+      line.remove_prefix(1);
+    if (line.empty() || !std::isdigit(static_cast<unsigned char>(line.front())))
+      continue;  // heading
     // POCKET  FMS  TLO  DIAM  [HOLDER  DESCRIPTION...]; FMS may be quoted with ' or ".
     ToolTableEntry e;
     auto [p, ec] = std::from_chars(line.data(), line.data() + line.size(), e.pocket);
     line.remove_prefix(static_cast<std::size_t>(p - line.data()));
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
+      line.remove_prefix(1);
     if (!line.empty() && (line.front() == '\'' || line.front() == '"')) {
       const char quote = line.front();
       const std::size_t close = line.find(quote, 1);
       if (close == std::string_view::npos) {
-        diagnostics.push_back(diag::make(diag::Code::StepncToolTable, line_number, 1, "unclosed quote in the tool name"));
+        diagnostics.push_back(diag::make(diag::Code::StepncToolTable, line_number, 1,
+                                         "unclosed quote in the tool name"));
         continue;
       }
       e.name = std::string(line.substr(1, close - 1));
@@ -560,11 +588,13 @@ ToolTable read_tool_table(std::string_view text, std::vector<diag::Diagnostic>& 
     }
     double numbers[2] = {0, 0};
     for (double& n : numbers) {
-      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
+        line.remove_prefix(1);
       auto [q, ec2] = std::from_chars(line.data(), line.data() + line.size(), n);
       if (ec2 != std::errc()) {
-        diagnostics.push_back(diag::make(diag::Code::StepncToolTable, line_number, 1,
-                                         "expected the length offset and diameter of tool '" + e.name + "'"));
+        diagnostics.push_back(
+            diag::make(diag::Code::StepncToolTable, line_number, 1,
+                       "expected the length offset and diameter of tool '" + e.name + "'"));
         break;
       }
       line.remove_prefix(static_cast<std::size_t>(q - line.data()));

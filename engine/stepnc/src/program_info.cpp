@@ -211,8 +211,8 @@ class Inspector {
   }
 
   void note_tool(const Instance& tool, const Instance& user) {
-    auto it = std::find_if(tools_.begin(), tools_.end(),
-                           [&](const auto& t) { return t.first == &tool; });
+    auto it =
+        std::find_if(tools_.begin(), tools_.end(), [&](const auto& t) { return t.first == &tool; });
     if (it == tools_.end()) {
       tools_.emplace_back(&tool, std::vector<std::uint64_t>{});
       it = tools_.end() - 1;

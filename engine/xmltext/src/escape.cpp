@@ -24,24 +24,36 @@ void append_escaped(std::string& out, std::string_view text, bool in_attribute) 
     if (i >= text.size()) break;
     const auto c = static_cast<unsigned char>(text[i]);
     switch (c) {
-      case '<': out += "&lt;"; ++i; continue;
-      case '>': out += "&gt;"; ++i; continue;
-      case '&': out += "&amp;"; ++i; continue;
+      case '<':
+        out += "&lt;";
+        ++i;
+        continue;
+      case '>':
+        out += "&gt;";
+        ++i;
+        continue;
+      case '&':
+        out += "&amp;";
+        ++i;
+        continue;
       case '"':
         out += in_attribute ? "&quot;" : "\"";
         ++i;
         continue;
       case '\t':
       case '\n':
-        if (in_attribute) out += c == '\t' ? "&#9;" : "&#10;";
-        else out.push_back(static_cast<char>(c));
+        if (in_attribute)
+          out += c == '\t' ? "&#9;" : "&#10;";
+        else
+          out.push_back(static_cast<char>(c));
         ++i;
         continue;
       case '\r':
         out += "&#13;";
         ++i;
         continue;
-      default: break;
+      default:
+        break;
     }
     if (c < 0x20) {
       out += kReplacement;

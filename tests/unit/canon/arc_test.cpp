@@ -81,9 +81,9 @@ TEST(CanonArc, TiltedOrDegenerateNormalsHaveNoPlaneForm) {
 }
 
 TEST(CanonArc, FromPlaneRoundTrips) {
-  for (const PlaneArc& p : {PlaneArc{Plane::Xy, 20, 2, 15, 2, -1, 3},
-                            PlaneArc{Plane::Xz, 3, 30, 3, 25, -1, 2},
-                            PlaneArc{Plane::Yz, 10, 3, 6, 3, 2, 30}}) {
+  for (const PlaneArc& p :
+       {PlaneArc{Plane::Xy, 20, 2, 15, 2, -1, 3}, PlaneArc{Plane::Xz, 3, 30, 3, 25, -1, 2},
+        PlaneArc{Plane::Yz, 10, 3, 6, 3, 2, 30}}) {
     const ArcFeed a = arc_from_plane(p);
     const auto back = plane_arc(a);
     ASSERT_TRUE(back);

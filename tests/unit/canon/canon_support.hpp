@@ -3,14 +3,13 @@
 // (well-formedness, RELAX NG validation against engine/canon/canon.rng).
 
 #include <libxml/parser.h>
-
-#include "xml_check.hpp"
 #include <libxml/relaxng.h>
 
 #include <string>
 #include <vector>
 
 #include "ncpost/canon/call.hpp"
+#include "xml_check.hpp"
 
 namespace ncpost::canon::test {
 
@@ -26,8 +25,13 @@ inline std::vector<Call> sample_program() {
   const Entity plan = entity(3, "WORKPLAN", "main");
   const Entity ws1 = entity(10, "MACHINING_WORKINGSTEP", "WS FINISH PLANAR FACE1");
   const Entity ws2 = entity(20, "MACHINING_WORKINGSTEP", "WS DRILL");
-  Cycle drill{.kind = CycleKind::Drill, .x = 10, .y = 20, .safe_z = 50, .r_z = 2,
-              .bottom_z = -10, .feed = 100};
+  Cycle drill{.kind = CycleKind::Drill,
+              .x = 10,
+              .y = 20,
+              .safe_z = 50,
+              .r_z = 2,
+              .bottom_z = -10,
+              .feed = 100};
   Cycle peck = drill;
   peck.kind = CycleKind::PeckDrill, peck.peck = 3, peck.peck_clearance = 0.5;
   Cycle tap = drill;
@@ -89,7 +93,9 @@ inline std::vector<Call> sample_program() {
 
 using ncpost::test::well_formed;
 
-inline std::string rng_path() { return std::string(NCPOST_SOURCE_DIR) + "/engine/canon/canon.rng"; }
+inline std::string rng_path() {
+  return std::string(NCPOST_SOURCE_DIR) + "/engine/canon/canon.rng";
+}
 
 inline void collect_error(void* user, const xmlError* error) {
   auto* errors = static_cast<std::string*>(user);

@@ -36,8 +36,8 @@ TEST(CanonChunks, StartWorkingstepsBetweenAndEnd) {
   EXPECT_EQ(names(chunks[2]), (std::vector<std::string>{"COMMENT", "OPTIONAL_PROGRAM_STOP"}));
   EXPECT_EQ(names(chunks[3]).front(), "WORKINGSTEP_BEGIN");
   EXPECT_EQ(names(chunks[3]).back(), "WORKINGSTEP_END");
-  EXPECT_EQ(names(chunks[4]), (std::vector<std::string>{"WORKPLAN_END", "SETUP_END",
-                                                        "PROGRAM_END", "PROJECT_END"}));
+  EXPECT_EQ(names(chunks[4]),
+            (std::vector<std::string>{"WORKPLAN_END", "SETUP_END", "PROGRAM_END", "PROJECT_END"}));
   // Nothing lost, nothing reordered.
   std::vector<Call> joined;
   for (const auto& c : chunks) joined.insert(joined.end(), c.begin(), c.end());
@@ -81,7 +81,9 @@ TEST(CanonChunks, SizeLimitSplitsLongWorkingsteps) {
   EXPECT_EQ(chunk(calls, ChunkLimits{0}).size(), calls.size());
 }
 
-TEST(CanonChunks, EmptyProgramHasNoChunks) { EXPECT_TRUE(chunk({}).empty()); }
+TEST(CanonChunks, EmptyProgramHasNoChunks) {
+  EXPECT_TRUE(chunk({}).empty());
+}
 
 TEST(CanonChunks, TraceChunkByChunkEqualsWholeTrace) {
   const auto calls = test::sample_program();

@@ -1,18 +1,19 @@
 // Cycle expansion: the exact motions of every kind, as traces.
 
+#include "ncpost/canon/cycle.hpp"
+
 #include <gtest/gtest.h>
 
 #include <limits>
 
-#include "ncpost/canon/cycle.hpp"
 #include "ncpost/canon/trace.hpp"
 
 namespace ncpost::canon {
 namespace {
 
 Cycle base(CycleKind kind) {
-  return Cycle{.kind = kind, .x = 10, .y = 20, .safe_z = 50, .r_z = 2, .bottom_z = -10,
-               .feed = 100};
+  return Cycle{
+      .kind = kind, .x = 10, .y = 20, .safe_z = 50, .r_z = 2, .bottom_z = -10, .feed = 100};
 }
 
 std::string expand(const Cycle& cycle) {
@@ -65,8 +66,15 @@ TEST(CanonCycle, PeckDrillG83ThreePecks) {
 TEST(CanonCycle, PeckDrillMatchesLinuxCncG83) {
   // `G0 X0 Y0 Z10 / G98 G83 X1 Y1 Z-6 R2 Q2` in mm: rs274 prints the motions below
   // (LinuxCNC's re-entry clearance is 0.010 in = 0.254 mm).
-  Cycle c{.kind = CycleKind::PeckDrill, .x = 1, .y = 1, .safe_z = 10, .r_z = 2, .bottom_z = -6,
-          .feed = 100, .peck = 2, .peck_clearance = 0.254};
+  Cycle c{.kind = CycleKind::PeckDrill,
+          .x = 1,
+          .y = 1,
+          .safe_z = 10,
+          .r_z = 2,
+          .bottom_z = -6,
+          .feed = 100,
+          .peck = 2,
+          .peck_clearance = 0.254};
   ProgramBuffer out;
   ASSERT_EQ(expand_cycle(c, out), CycleError::None);
   std::vector<Call> motions(out.calls().begin() + 1, out.calls().end());  // after SET_FEED_RATE
@@ -103,8 +111,15 @@ TEST(CanonCycle, ChipBreakingG73) {
 
 TEST(CanonCycle, PeckCountDoesNotDriftWithRounding) {
   // 0 - 3 × 0.1 is -0.30000000000000004 in binary: still three pecks, the last at -0.3.
-  Cycle c{.kind = CycleKind::PeckDrill, .x = 0, .y = 0, .safe_z = 1, .r_z = 0,
-          .bottom_z = -0.3, .feed = 10, .peck = 0.1, .peck_retract = 0.05};
+  Cycle c{.kind = CycleKind::PeckDrill,
+          .x = 0,
+          .y = 0,
+          .safe_z = 1,
+          .r_z = 0,
+          .bottom_z = -0.3,
+          .feed = 10,
+          .peck = 0.1,
+          .peck_retract = 0.05};
   ProgramBuffer out;
   ASSERT_EQ(expand_cycle(c, out), CycleError::None);
   int feeds = 0;

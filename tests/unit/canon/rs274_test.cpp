@@ -30,7 +30,7 @@ constexpr const char* kGcode =
     "G1 X10 Y0\n"
     "G2 X20 Y0 I5 J0\n"
     "G3 X10 Y0 I-5 J0\n"
-    "G2 X20 Y0 Z-3 I5 J0 P2\n"   // a helix with two turns
+    "G2 X20 Y0 Z-3 I5 J0 P2\n"  // a helix with two turns
     "G18 G2 X30 Z-3 I5 K0\n"
     "G19 G3 Y10 Z-3 J5 K0\n"
     "G17\n"
@@ -82,8 +82,8 @@ bool parse_line(const std::string& text, Line& out) {
   std::size_t start = 0;
   while (!inner.empty() && start <= inner.size()) {
     const std::size_t comma = inner.find(", ", start);
-    out.args.push_back(inner.substr(start, comma == std::string::npos ? std::string::npos
-                                                                      : comma - start));
+    out.args.push_back(
+        inner.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (comma == std::string::npos) break;
     start = comma + 2;
   }
@@ -112,8 +112,8 @@ std::string run_rs274(const std::string& gcode) {
   if (dir == nullptr) return {};
   const std::filesystem::path folder(dir);
   std::ofstream(folder / "test.ngc") << gcode;
-  const std::string command = "cd '" + folder.string() + "' && " + kRs274 +
-                              " -g test.ngc </dev/null 2>/dev/null";
+  const std::string command =
+      "cd '" + folder.string() + "' && " + kRs274 + " -g test.ngc </dev/null 2>/dev/null";
   std::string output;
   if (FILE* pipe = popen(command.c_str(), "r")) {
     char buffer[4096];
@@ -160,8 +160,8 @@ TEST(CanonRs274, MotionLinesMatchLinuxCnc) {
 
 TEST(CanonRs274, LineParserReadsBothForms) {
   Line line;
-  ASSERT_TRUE(parse_line("   23 N..... ARC_FEED(20.0000, 2.0000, 15.0000, 2.0000, -1, 3.0000)",
-                         line));
+  ASSERT_TRUE(
+      parse_line("   23 N..... ARC_FEED(20.0000, 2.0000, 15.0000, 2.0000, -1, 3.0000)", line));
   EXPECT_EQ(line.name, "ARC_FEED");
   EXPECT_EQ(line.args.size(), 6u);
   ASSERT_TRUE(parse_line("    1 FLOOD_ON()", line));

@@ -1,11 +1,12 @@
 // The text trace: exact strings for every call, numbers, strings, line numbers.
 
+#include "ncpost/canon/trace.hpp"
+
 #include <gtest/gtest.h>
 
 #include <limits>
 
 #include "canon_support.hpp"
-#include "ncpost/canon/trace.hpp"
 
 namespace ncpost::canon {
 namespace {
@@ -73,8 +74,9 @@ TEST(CanonTrace, Nurbs) {
   EXPECT_EQ(format_call(n),
             "NURBS_FEED(2, [(0.0000, 0.0000, 0.0000, 1.0000), (1.0000, 2.0000, 0.0000, 0.5000), "
             "(3.0000, 0.0000, 0.0000, 1.0000)], [0.0000, 0.0000, 0.0000, 1.0000, 1.0000, 1.0000])");
-  EXPECT_EQ(format_call(NurbsFeed{.degree = 1, .points = {}, .knots = {}, .rotary = Rotary{1, 2, 3}}),
-            "NURBS_FEED(1, [], [], 1.0000, 2.0000, 3.0000)");
+  EXPECT_EQ(
+      format_call(NurbsFeed{.degree = 1, .points = {}, .knots = {}, .rotary = Rotary{1, 2, 3}}),
+      "NURBS_FEED(1, [], [], 1.0000, 2.0000, 3.0000)");
 }
 
 TEST(CanonTrace, FeedSpindleToolsCoolantOther) {
@@ -121,8 +123,14 @@ TEST(CanonTrace, StructureMarkers) {
 }
 
 TEST(CanonTrace, Cycles) {
-  const Cycle drill{.kind = CycleKind::Drill, .x = 10, .y = 20, .safe_z = 50, .r_z = 2,
-                    .bottom_z = -10, .feed = 100, .dwell = 0.5};
+  const Cycle drill{.kind = CycleKind::Drill,
+                    .x = 10,
+                    .y = 20,
+                    .safe_z = 50,
+                    .r_z = 2,
+                    .bottom_z = -10,
+                    .feed = 100,
+                    .dwell = 0.5};
   EXPECT_EQ(format_call(drill),
             "DRILL_CYCLE(10.0000, 20.0000, 50.0000, 2.0000, -10.0000, 100.0000, 0.5000)");
   Cycle c = drill;
@@ -157,7 +165,7 @@ TEST(CanonTrace, Cycles) {
 TEST(CanonTrace, Numbers) {
   EXPECT_EQ(number(0), "0.0000");
   EXPECT_EQ(number(-0.0), "0.0000");
-  EXPECT_EQ(number(-0.00004), "0.0000");  // rounds to zero: no sign
+  EXPECT_EQ(number(-0.00004), "0.0000");   // rounds to zero: no sign
   EXPECT_EQ(number(-0.00005), "-0.0001");  // -0.00005 is slightly beyond -0.00005 in binary
   EXPECT_EQ(number(0.00005), "0.0001");
   // Rounding is of the exact binary value, as printf rounds: 2.00025 is 2.0002499999... and
@@ -184,7 +192,10 @@ TEST(CanonTrace, Strings) {
   EXPECT_EQ(quoted(""), "\"\"");
   EXPECT_EQ(quoted("say \"hi\" \\ now"), "\"say \\\"hi\\\" \\\\ now\"");
   EXPECT_EQ(quoted("a\nb\rc\td"), "\"a\\nb\\rc\\td\"");
-  EXPECT_EQ(quoted(std::string_view("nul\0bell\x07" "del\x7f", 13)), "\"nul\\x00bell\\x07del\\x7F\"");
+  EXPECT_EQ(quoted(std::string_view("nul\0bell\x07"
+                                    "del\x7f",
+                                    13)),
+            "\"nul\\x00bell\\x07del\\x7F\"");
   EXPECT_EQ(quoted("Fr\xC3\xA4sen \xE2\x8C\x80"), "\"Fr\xC3\xA4sen \xE2\x8C\x80\"");  // UTF-8 kept
   EXPECT_EQ(quoted("bad \xC3 \xFF \xED\xA0\x80"), "\"bad \\xC3 \\xFF \\xED\\xA0\\x80\"");
   EXPECT_EQ(format_call(Comment{"line1\nline2 \"x\""}), "COMMENT(\"line1\\nline2 \\\"x\\\"\")");

@@ -1,6 +1,8 @@
 // The XML form: exact elements, numbers, escaping, well-formedness, validity against
 // engine/canon/canon.rng, and chunked output equal to the whole document.
 
+#include "ncpost/canon/xml.hpp"
+
 #include <gtest/gtest.h>
 
 #include <charconv>
@@ -8,7 +10,6 @@
 #include <limits>
 
 #include "canon_support.hpp"
-#include "ncpost/canon/xml.hpp"
 
 namespace ncpost::canon {
 namespace {
@@ -55,9 +56,9 @@ TEST(CanonXml, Numbers) {
   EXPECT_EQ(xml_number(std::numeric_limits<double>::infinity()), "INF");
   EXPECT_EQ(xml_number(-std::numeric_limits<double>::infinity()), "-INF");
   // Shortest form that reads back to the same double.
-  for (const double v : {1.0 / 3.0, 91.9, 2.5e-7, -123456.789012345678, 0.30000000000000004,
-                         std::numeric_limits<double>::max(),
-                         std::numeric_limits<double>::denorm_min()}) {
+  for (const double v :
+       {1.0 / 3.0, 91.9, 2.5e-7, -123456.789012345678, 0.30000000000000004,
+        std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()}) {
     const std::string s = xml_number(v);
     double back = 0;
     const auto r = std::from_chars(s.data(), s.data() + s.size(), back);
@@ -68,27 +69,29 @@ TEST(CanonXml, Numbers) {
 }
 
 TEST(CanonXml, ExactElements) {
-  const std::string xml = chunk_xml({
-      UseLengthUnits{Units::Inches},
-      SetOriginOffsets{{0, 0, -14.7}, Rotary{0, 0, 90}},
-      SetFeedReference{FeedReference::Workpiece},
-      SelectPlane{Plane::Xz},
-      StraightTraverse{{1, -0.0, 0.1, {}, {}}},
-      StraightFeed{{1, 2, 3, Rotary{10, 20, 30}, Direction{0, 0, 1}}},
-      ArcFeed{{20, 2, 3, {}, {}}, {15, 2, 3}, {0, 0, 1}, -1},
-      ArcFeed{{1, 1, 1, {}, {}}, {0, 0, 0}, {0, 1, 1}, 2},
-      SetFeedRate{250},
-      SetSpindleSpeed{1200},
-      SelectTool{3},
-      ChangeTool{3},
-      UseToolLengthOffset{12.5},
-      Dwell{0.5},
-      StartSpindleClockwise{},
-      Comment{"a < b & \"c\""},
-      Message{"m"},
-      Begin{Scope::Workplan, entity(3, "WORKPLAN", "main")},
-      End{Scope::Project, entity(0, "", "")},
-  }, 7);
+  const std::string xml = chunk_xml(
+      {
+          UseLengthUnits{Units::Inches},
+          SetOriginOffsets{{0, 0, -14.7}, Rotary{0, 0, 90}},
+          SetFeedReference{FeedReference::Workpiece},
+          SelectPlane{Plane::Xz},
+          StraightTraverse{{1, -0.0, 0.1, {}, {}}},
+          StraightFeed{{1, 2, 3, Rotary{10, 20, 30}, Direction{0, 0, 1}}},
+          ArcFeed{{20, 2, 3, {}, {}}, {15, 2, 3}, {0, 0, 1}, -1},
+          ArcFeed{{1, 1, 1, {}, {}}, {0, 0, 0}, {0, 1, 1}, 2},
+          SetFeedRate{250},
+          SetSpindleSpeed{1200},
+          SelectTool{3},
+          ChangeTool{3},
+          UseToolLengthOffset{12.5},
+          Dwell{0.5},
+          StartSpindleClockwise{},
+          Comment{"a < b & \"c\""},
+          Message{"m"},
+          Begin{Scope::Workplan, entity(3, "WORKPLAN", "main")},
+          End{Scope::Project, entity(0, "", "")},
+      },
+      7);
   EXPECT_EQ(xml,
             "<chunk seq=\"7\">\n"
             "  <USE_LENGTH_UNITS units=\"inch\"/>\n"
@@ -119,16 +122,36 @@ TEST(CanonXml, ExactElements) {
 }
 
 TEST(CanonXml, NurbsAndCycles) {
-  Cycle tap{.kind = CycleKind::Tap, .x = 1, .y = 2, .safe_z = 10, .r_z = 2, .bottom_z = -8,
-            .feed = 500, .pitch = 1.25, .spindle_speed = 400};
-  Cycle peck{.kind = CycleKind::PeckDrill, .x = 1, .y = 2, .safe_z = 10, .r_z = 2,
-             .bottom_z = -8, .feed = 80, .dwell = 0.25, .peck = 3, .peck_clearance = 0.5};
-  Cycle bore{.kind = CycleKind::Bore, .x = 1, .y = 2, .safe_z = 10, .r_z = 2, .bottom_z = -8,
-             .feed = 60};
+  Cycle tap{.kind = CycleKind::Tap,
+            .x = 1,
+            .y = 2,
+            .safe_z = 10,
+            .r_z = 2,
+            .bottom_z = -8,
+            .feed = 500,
+            .pitch = 1.25,
+            .spindle_speed = 400};
+  Cycle peck{.kind = CycleKind::PeckDrill,
+             .x = 1,
+             .y = 2,
+             .safe_z = 10,
+             .r_z = 2,
+             .bottom_z = -8,
+             .feed = 80,
+             .dwell = 0.25,
+             .peck = 3,
+             .peck_clearance = 0.5};
+  Cycle bore{
+      .kind = CycleKind::Bore, .x = 1, .y = 2, .safe_z = 10, .r_z = 2, .bottom_z = -8, .feed = 60};
   const std::string xml = chunk_xml({
-      NurbsFeed{.degree = 1, .points = {{0, 0, 0, 1}, {1, 0, 0, 1}}, .knots = {0, 0, 1, 1},
-                .rotary = {}, .tool_axis = Direction{0, 0, 1}},
-      tap, peck, bore,
+      NurbsFeed{.degree = 1,
+                .points = {{0, 0, 0, 1}, {1, 0, 0, 1}},
+                .knots = {0, 0, 1, 1},
+                .rotary = {},
+                .tool_axis = Direction{0, 0, 1}},
+      tap,
+      peck,
+      bore,
   });
   EXPECT_EQ(xml,
             "<chunk seq=\"0\">\n"
@@ -235,8 +258,8 @@ TEST(CanonXml, SchemaRejectsWhatTheWriterNeverWrites) {
 
 TEST(CanonXml, ChunkedEqualsWholeByteForByte) {
   const auto calls = test::sample_program();
-  for (const std::size_t max_calls : {std::size_t{65536}, std::size_t{1}, std::size_t{3},
-                                      std::size_t{7}}) {
+  for (const std::size_t max_calls :
+       {std::size_t{65536}, std::size_t{1}, std::size_t{3}, std::size_t{7}}) {
     SCOPED_TRACE(max_calls);
     const ChunkLimits limits{max_calls};
     const auto chunks = chunk_texts(calls, limits);

@@ -25,13 +25,15 @@ TEST(DiagnosticCodes, AreUniqueAndWellFormed) {
 TEST(DiagnosticCodes, AreAllDocumented) {
   const std::string doc = test::read_file(test::source_dir() / "docs/diagnostics.md");
   for (const CodeInfo& c : all_codes()) {
-    const std::string row = "| `" + std::string(c.id) + "` | " + std::string(to_string(c.default_severity)) + " |";
+    const std::string row =
+        "| `" + std::string(c.id) + "` | " + std::string(to_string(c.default_severity)) + " |";
     EXPECT_NE(doc.find(row), std::string::npos) << "docs/diagnostics.md lacks: " << row;
   }
 }
 
 TEST(DiagnosticCodes, TextForm) {
-  const Diagnostic d = make(Code::P21DanglingReference, 12, 3, "#5 used by #7 attribute 1 is not defined");
+  const Diagnostic d =
+      make(Code::P21DanglingReference, 12, 3, "#5 used by #7 attribute 1 is not defined");
   EXPECT_EQ(format(d, "part.stp"),
             "part.stp:12:3: error: P21-040: #5 used by #7 attribute 1 is not defined");
 }

@@ -32,8 +32,7 @@ TEST(ReaderErrors, NulByte) {
 }
 
 TEST(ReaderErrors, NulByteInsideString) {
-  expect_one_error_and_recovery("#1=A('ab\0c',2);\n#2=GOOD(1);"s, "P21-001", 1,
-                                9);
+  expect_one_error_and_recovery("#1=A('ab\0c',2);\n#2=GOOD(1);"s, "P21-001", 1, 9);
 }
 
 TEST(ReaderErrors, InvalidCharacter) {
@@ -76,7 +75,7 @@ TEST(ReaderErrors, MissingSemicolonBeforeNextInstance) {
   ASSERT_EQ(codes(r), std::vector<std::string>{"P21-022"}) << dump(r);
   EXPECT_EQ(r.diagnostics[0].line, kFirstDataLine);
   EXPECT_EQ(r.diagnostics[0].column, 8u);  // right after the ')'
-  EXPECT_NE(r.model.find(1), nullptr);    // nothing was lost, only the ';'
+  EXPECT_NE(r.model.find(1), nullptr);     // nothing was lost, only the ';'
   EXPECT_NE(r.model.find(2), nullptr);
 }
 
@@ -140,22 +139,25 @@ TEST(ReaderErrors, DuplicateIdKeepsTheFirst) {
 }
 
 TEST(ReaderErrors, MissingMagic) {
-  const auto r = read("HEADER;FILE_DESCRIPTION((''),'2;1');ENDSEC;DATA;#1=A();ENDSEC;END-ISO-10303-21;");
+  const auto r =
+      read("HEADER;FILE_DESCRIPTION((''),'2;1');ENDSEC;DATA;#1=A();ENDSEC;END-ISO-10303-21;");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.diagnostics[0].code_id(), "P21-020");
   EXPECT_NE(r.model.find(1), nullptr);
 }
 
 TEST(ReaderErrors, MissingEndsecAndEnd) {
-  const auto r = read("ISO-10303-21;HEADER;FILE_DESCRIPTION((''),'2;1');"
-                      "FILE_NAME('','',(''),(''),'','','');FILE_SCHEMA(('S'));ENDSEC;"
-                      "DATA;#1=A();");
+  const auto r = read(
+      "ISO-10303-21;HEADER;FILE_DESCRIPTION((''),'2;1');"
+      "FILE_NAME('','',(''),(''),'','','');FILE_SCHEMA(('S'));ENDSEC;"
+      "DATA;#1=A();");
   EXPECT_EQ(codes(r), (std::vector<std::string>{"P21-025", "P21-026"})) << dump(r);
 }
 
 TEST(ReaderErrors, HeaderOrder) {
-  const auto r = read("ISO-10303-21;HEADER;FILE_SCHEMA(('S'));FILE_NAME('','',(''),(''),'','','');"
-                      "ENDSEC;DATA;ENDSEC;END-ISO-10303-21;");
+  const auto r = read(
+      "ISO-10303-21;HEADER;FILE_SCHEMA(('S'));FILE_NAME('','',(''),(''),'','','');"
+      "ENDSEC;DATA;ENDSEC;END-ISO-10303-21;");
   EXPECT_TRUE(r.ok());
   // FILE_DESCRIPTION is missing, and FILE_SCHEMA is not third.
   EXPECT_EQ(codes(r), (std::vector<std::string>{"P21-042", "P21-042"})) << dump(r);
@@ -197,9 +199,14 @@ TEST(ReaderErrors, ManyBrokenInstancesLoseNoGoodOnes) {
 }
 
 TEST(ReaderErrors, EmptyAndGarbageInputsNeverCrash) {
-  const std::vector<std::string> inputs = {
-      std::string(),       "ISO-10303-21;", ";;;;", "((((((", "#1=#2=#3=", "DATA;#1=A(",
-      std::string(1, '\0'), "ISO-10303-21;HEADER;ENDSEC;DATA;#1=A('\\X2\\"};
+  const std::vector<std::string> inputs = {std::string(),
+                                           "ISO-10303-21;",
+                                           ";;;;",
+                                           "((((((",
+                                           "#1=#2=#3=",
+                                           "DATA;#1=A(",
+                                           std::string(1, '\0'),
+                                           "ISO-10303-21;HEADER;ENDSEC;DATA;#1=A('\\X2\\"};
   for (const std::string& input : inputs) {
     const auto r = read(input);
     EXPECT_FALSE(r.ok()) << "input: " << input;

@@ -37,8 +37,8 @@ TEST(Lexer, PunctuationAndKeywords) {
             (std::vector{Tok::Magic, Tok::Semicolon, Tok::EndMagic, Tok::Semicolon, Tok::Eof}));
   EXPECT_EQ(kinds("A_B1(!USER,$,*)={}:"),
             (std::vector{Tok::Keyword, Tok::LParen, Tok::Keyword, Tok::Comma, Tok::Dollar,
-                         Tok::Comma, Tok::Star, Tok::RParen, Tok::Equals, Tok::LBrace,
-                         Tok::RBrace, Tok::Colon, Tok::Eof}));
+                         Tok::Comma, Tok::Star, Tok::RParen, Tok::Equals, Tok::LBrace, Tok::RBrace,
+                         Tok::Colon, Tok::Eof}));
 }
 
 TEST(Lexer, NumbersKeepTheirText) {
@@ -46,9 +46,8 @@ TEST(Lexer, NumbersKeepTheirText) {
   const auto lexed = lex_all(text);
   ASSERT_EQ(lexed.tokens.size(), 8u);
   const std::vector<std::pair<Tok, std::string>> expected = {
-      {Tok::Integer, "12"},  {Tok::Integer, "-3"},      {Tok::Integer, "+4"},
-      {Tok::Real, "1."},     {Tok::Real, "-2.5E-3"},    {Tok::Real, "0.5e10"},
-      {Tok::Integer, "007"}};
+      {Tok::Integer, "12"},   {Tok::Integer, "-3"},  {Tok::Integer, "+4"}, {Tok::Real, "1."},
+      {Tok::Real, "-2.5E-3"}, {Tok::Real, "0.5e10"}, {Tok::Integer, "007"}};
   for (std::size_t i = 0; i < expected.size(); ++i) {
     EXPECT_EQ(lexed.tokens[i].kind, expected[i].first) << i;
     EXPECT_EQ(text.substr(lexed.tokens[i].offset, lexed.tokens[i].length), expected[i].second);

@@ -13,9 +13,9 @@ using test::dump;
 using test::wrap;
 
 TEST(Reader, SimpleInstancesAndValues) {
-  const auto r = read(wrap(
-      "#1=CARTESIAN_POINT('p',(1.5,-2.,3.E1));\n"
-      "#2=THING($,*,42,.T.,\"1F\",#1,(),((1,2),(3)),LENGTH_MEASURE(5.));"));
+  const auto r =
+      read(wrap("#1=CARTESIAN_POINT('p',(1.5,-2.,3.E1));\n"
+                "#2=THING($,*,42,.T.,\"1F\",#1,(),((1,2),(3)),LENGTH_MEASURE(5.));"));
   ASSERT_TRUE(r.ok()) << dump(r);
   const Model& m = r.model;
   ASSERT_EQ(m.instances().size(), 2u);
@@ -59,8 +59,9 @@ TEST(Reader, ForwardReferencesResolve) {
 }
 
 TEST(Reader, ComplexInstance) {
-  const auto r = read(wrap("#10=(GEOMETRIC_CONTEXT(3)GLOBAL_UNITS((#11))REPRESENTATION_CONTEXT('','3D'));\n"
-                           "#11=UNIT();"));
+  const auto r =
+      read(wrap("#10=(GEOMETRIC_CONTEXT(3)GLOBAL_UNITS((#11))REPRESENTATION_CONTEXT('','3D'));\n"
+                "#11=UNIT();"));
   ASSERT_TRUE(r.ok()) << dump(r);
   const Model& m = r.model;
   const Instance& c = *m.find(10);
@@ -83,9 +84,10 @@ TEST(Reader, HeaderEntities) {
 }
 
 TEST(Reader, CommentBeforeMagicAndEverywhere) {
-  const auto r = read("/* before */ ISO-10303-21; /* c */ HEADER; FILE_DESCRIPTION(/*x*/('d'),'2;1');"
-                      "FILE_NAME('n','t',(''),(''),'','','');FILE_SCHEMA(('S'));ENDSEC;"
-                      "DATA;#1=/*y*/A(1/*z*/,2);ENDSEC;END-ISO-10303-21;");
+  const auto r = read(
+      "/* before */ ISO-10303-21; /* c */ HEADER; FILE_DESCRIPTION(/*x*/('d'),'2;1');"
+      "FILE_NAME('n','t',(''),(''),'','','');FILE_SCHEMA(('S'));ENDSEC;"
+      "DATA;#1=/*y*/A(1/*z*/,2);ENDSEC;END-ISO-10303-21;");
   ASSERT_TRUE(r.ok()) << dump(r);
   EXPECT_EQ(r.model.params(*r.model.find(1)).size(), 2u);
 }

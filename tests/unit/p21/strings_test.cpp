@@ -1,9 +1,10 @@
 // Every string escape of ISO 10303-21, decoded lazily through the Model and directly.
 
+#include "ncpost/p21/strings.hpp"
+
 #include <gtest/gtest.h>
 
 #include "ncpost/p21/reader.hpp"
-#include "ncpost/p21/strings.hpp"
 #include "test_support.hpp"
 
 namespace ncpost::p21 {
@@ -30,18 +31,24 @@ TEST(Strings, AlphabetDirective) {
   EXPECT_EQ(check_string("\\PE\\x").kind, StringProblem::Encoding);  // only part 1 is linear
 }
 
-TEST(Strings, ArbitraryByte) { EXPECT_EQ(decoded("\\X\\E9t\\X\\E9"), "\xC3\xA9t\xC3\xA9"); }
+TEST(Strings, ArbitraryByte) {
+  EXPECT_EQ(decoded("\\X\\E9t\\X\\E9"), "\xC3\xA9t\xC3\xA9");
+}
 
 TEST(Strings, Extended2) {
   EXPECT_EQ(decoded("\\X2\\041A0440\\X0\\"), "\xD0\x9A\xD1\x80");  // Кр
-  EXPECT_EQ(decoded("a\\X2\\00E9\\X0\\b"), "a\xC3\xA9" "b");
+  EXPECT_EQ(decoded("a\\X2\\00E9\\X0\\b"),
+            "a\xC3\xA9"
+            "b");
 }
 
 TEST(Strings, Extended2SurrogatePair) {
   EXPECT_EQ(decoded("\\X2\\D83DDE00\\X0\\"), "\xF0\x9F\x98\x80");  // U+1F600
 }
 
-TEST(Strings, Extended4) { EXPECT_EQ(decoded("\\X4\\0001F600\\X0\\"), "\xF0\x9F\x98\x80"); }
+TEST(Strings, Extended4) {
+  EXPECT_EQ(decoded("\\X4\\0001F600\\X0\\"), "\xF0\x9F\x98\x80");
+}
 
 TEST(Strings, RawUtf8IsEdition3) {
   EXPECT_EQ(decoded("caf\xC3\xA9"), "caf\xC3\xA9");
@@ -49,13 +56,23 @@ TEST(Strings, RawUtf8IsEdition3) {
 }
 
 TEST(Strings, InvalidUtf8BecomesReplacement) {
-  EXPECT_EQ(decoded("a\xD8" "b"), "a\xEF\xBF\xBD" "b");
-  EXPECT_EQ(check_string("a\xD8" "b").kind, StringProblem::Encoding);
+  EXPECT_EQ(decoded("a\xD8"
+                    "b"),
+            "a\xEF\xBF\xBD"
+            "b");
+  EXPECT_EQ(check_string("a\xD8"
+                         "b")
+                .kind,
+            StringProblem::Encoding);
 }
 
-TEST(Strings, LineBreaksAreDropped) { EXPECT_EQ(decoded("ab\r\ncd"), "abcd"); }
+TEST(Strings, LineBreaksAreDropped) {
+  EXPECT_EQ(decoded("ab\r\ncd"), "abcd");
+}
 
-TEST(Strings, PrintControlDirectivesAreDropped) { EXPECT_EQ(decoded("a\\N\\b\\F\\c"), "abc"); }
+TEST(Strings, PrintControlDirectivesAreDropped) {
+  EXPECT_EQ(decoded("a\\N\\b\\F\\c"), "abc");
+}
 
 TEST(Strings, MalformedDirectives) {
   EXPECT_EQ(check_string("\\X\\G1").kind, StringProblem::Malformed);
@@ -71,8 +88,9 @@ TEST(Strings, LoneBackslashIsLiteral) {
 }
 
 TEST(Strings, EncodeRoundTrips) {
-  for (std::string text : std::initializer_list<std::string>{"plain", "it's \\ here", "caf\xC3\xA9 \xD0\x9A", "\xF0\x9F\x98\x80 x",
-                           std::string("tab\there")}) {
+  for (std::string text :
+       std::initializer_list<std::string>{"plain", "it's \\ here", "caf\xC3\xA9 \xD0\x9A",
+                                          "\xF0\x9F\x98\x80 x", std::string("tab\there")}) {
     std::string encoded;
     encode_string(text, encoded);
     for (char c : encoded) EXPECT_TRUE(c >= 0x20 && c < 0x7F) << encoded;

@@ -1,9 +1,10 @@
 // Model → P21 → Model gives the same model, and the text is valid P21.
 
+#include "ncpost/p21/writer.hpp"
+
 #include <gtest/gtest.h>
 
 #include "ncpost/p21/compare.hpp"
-#include "ncpost/p21/writer.hpp"
 #include "test_support.hpp"
 
 namespace ncpost::p21 {
@@ -11,7 +12,8 @@ namespace {
 
 TEST(Writer, RoundTripKeepsEverything) {
   const std::string source =
-      "ISO-10303-21;HEADER;FILE_DESCRIPTION(('d'),'3;1');FILE_NAME('n','t',('a'),('o'),'p','s','z');"
+      "ISO-10303-21;HEADER;FILE_DESCRIPTION(('d'),'3;1');FILE_NAME('n','t',('a'),('o'),'p','s','z')"
+      ";"
       "FILE_SCHEMA(('A'));ENDSEC;ANCHOR;<P>=#1;ENDSEC;REFERENCE;#9=<f.stp#x>;ENDSEC;"
       "DATA('s1',('A'));#1=A('it''s \\X2\\00E9\\X0\\',(1.5,-2.,3),.T.,$,*,\"0F\",#2,#9,"
       "M(2.),#C1,@V);#2=(B(1)C('x'));ENDSEC;DATA;#3=D(());ENDSEC;END-ISO-10303-21;";

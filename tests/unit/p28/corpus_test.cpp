@@ -20,27 +20,37 @@ void leaves(const p21::Model& m, p21::Value v, std::vector<std::string>& out) {
   using p21::ValueKind;
   switch (v.kind()) {
     case ValueKind::Omitted:
-    case ValueKind::Derived: return;
+    case ValueKind::Derived:
+      return;
     case ValueKind::List:
       for (p21::Value item : m.items(v)) leaves(m, item, out);
       return;
-    case ValueKind::Typed: leaves(m, m.typed_child(v), out); return;
-    case ValueKind::Reference: out.push_back("#" + std::to_string(v.id())); return;
+    case ValueKind::Typed:
+      leaves(m, m.typed_child(v), out);
+      return;
+    case ValueKind::Reference:
+      out.push_back("#" + std::to_string(v.id()));
+      return;
     case ValueKind::Integer:
-    case ValueKind::Real: out.push_back(std::to_string(m.as_real(v) + 0.0)); return;  // -0 is 0
+    case ValueKind::Real:
+      out.push_back(std::to_string(m.as_real(v) + 0.0));
+      return;  // -0 is 0
     case ValueKind::String: {
       // Without the schema a string of digits reads back as a number, and an enumeration as
       // a string: compare numbers as numbers and text without case.
       std::string s = m.as_string(v);
-      std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
+      std::transform(s.begin(), s.end(), s.begin(),
+                     [](unsigned char c) { return std::toupper(c); });
       double d = 0;
       const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), d);
-      out.push_back(ec == std::errc() && end == s.data() + s.size() && !s.empty() ? std::to_string(d) : s);
+      out.push_back(
+          ec == std::errc() && end == s.data() + s.size() && !s.empty() ? std::to_string(d) : s);
       return;
     }
     default: {
       std::string s(m.slice(v));
-      std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
+      std::transform(s.begin(), s.end(), s.begin(),
+                     [](unsigned char c) { return std::toupper(c); });
       // Booleans: .T. in P21, "true" in ifcXML (a string without the schema).
       if (s == "T") s = "TRUE";
       if (s == "F") s = "FALSE";
@@ -52,7 +62,8 @@ void leaves(const p21::Model& m, p21::Value v, std::vector<std::string>& out) {
 
 std::string upper(std::string_view s) {
   std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::toupper(c); });
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return std::toupper(c); });
   return out;
 }
 
@@ -60,7 +71,9 @@ struct TwinCase {
   const char* xml;
   const char* twin;
 };
-void PrintTo(const TwinCase& c, std::ostream* os) { *os << c.xml; }
+void PrintTo(const TwinCase& c, std::ostream* os) {
+  *os << c.xml;
+}
 
 class P28Corpus : public ::testing::TestWithParam<TwinCase> {};
 
@@ -92,9 +105,9 @@ TEST_P(P28Corpus, ReadsLikeItsP21Twin) {
   EXPECT_EQ(compared, twin.model.instances().size());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Ifc, P28Corpus,
-    ::testing::Values(TwinCase{"p28/xbim_4walls1floorSite.ifcxml", "p28/xbim_4walls1floorSite_P21_twin.ifc"}));
+INSTANTIATE_TEST_SUITE_P(Ifc, P28Corpus,
+                         ::testing::Values(TwinCase{"p28/xbim_4walls1floorSite.ifcxml",
+                                                    "p28/xbim_4walls1floorSite_P21_twin.ifc"}));
 
 // Allplan's ifcXML numbers its instances differently from its P21 twin and leaves some out, so
 // the comparison is by entity type: no type appears more often in the XML than in the twin,
@@ -116,9 +129,8 @@ TEST(P28CorpusRenumbered, AllplanHasTheTwinsEntities) {
 
 TEST(P28CorpusOthers, EveryDocumentReadsOrGivesItsExpectedError) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
-  const std::set<std::string> ed2_documents = {"xbim_4walls1floorSite.ifcxml",
-                                               "steputils_allplan_test-01.ifcXML",
-                                               "xbim_InvalidNan.ifcxml"};
+  const std::set<std::string> ed2_documents = {
+      "xbim_4walls1floorSite.ifcxml", "steputils_allplan_test-01.ifcXML", "xbim_InvalidNan.ifcxml"};
   for (const auto& entry : std::filesystem::directory_iterator(corpus / "p28")) {
     const std::string ext = entry.path().extension().string();
     if (ext != ".ifcxml" && ext != ".ifcXML") continue;

@@ -3,8 +3,6 @@
 
 #include <libxml/parser.h>
 
-#include "xml_check.hpp"
-
 #include <memory>
 #include <string>
 
@@ -13,6 +11,7 @@
 #include "ncpost/p21/compare.hpp"
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/p28/p28.hpp"
+#include "xml_check.hpp"
 
 namespace ncpost::p28::test {
 

@@ -46,13 +46,14 @@ INSTANTIATE_TEST_SUITE_P(
                       RoundTripCase{"p21/nist_toolkit_ex1E.stp", Binding::Early, true},
                       RoundTripCase{"p21/nist_toolkit_ex1E.stp", Binding::Late, false},
                       RoundTripCase{"p21/nist_toolkit_ex1E.stp", Binding::Early, false},
-                      RoundTripCase{"p21-syntax/steptools_STEPNode_vise.stp", Binding::Early, false},
+                      RoundTripCase{"p21-syntax/steptools_STEPNode_vise.stp", Binding::Early,
+                                    false},
                       RoundTripCase{"p21-syntax/stepcode_as1-oc-214.stp", Binding::Late, false}));
 
 TEST(P28RoundTripAp238, AimFileWithItsLongFormSchema) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
-  const express::ParseResult ap238 = express::parse_express(
-      ncpost::test::read_file(corpus / "express/stepcode_ap238-aim-long_integrated_cnc_schema.exp"));
+  const express::ParseResult ap238 = express::parse_express(ncpost::test::read_file(
+      corpus / "express/stepcode_ap238-aim-long_integrated_cnc_schema.exp"));
   ASSERT_TRUE(ap238.ok());
   // The file is an excerpt with dangling references; the reader reports the same ones.
   const p21::ReadResult source =
@@ -75,12 +76,16 @@ TEST(P28Late, MatchesThePapersCartesianPoint) {
   const std::string expected =
       "<entity_instance express_entity_name=\"cartesian_point\" id=\"Id66\">"
       "<inherited_attribute_instance express_attribute_name=\"name\">"
-      "<type_literal express_type_name=\"label\"><string_literal>CLAMPING_POSITION1</string_literal>"
+      "<type_literal "
+      "express_type_name=\"label\"><string_literal>CLAMPING_POSITION1</string_literal>"
       "</type_literal></inherited_attribute_instance>"
       "<attribute_instance express_attribute_name=\"coordinates\"><list_literal>"
-      "<type_literal express_type_name=\"length_measure\"><real_literal>0.000</real_literal></type_literal>"
-      "<type_literal express_type_name=\"length_measure\"><real_literal>20.000</real_literal></type_literal>"
-      "<type_literal express_type_name=\"length_measure\"><real_literal>25.000</real_literal></type_literal>"
+      "<type_literal "
+      "express_type_name=\"length_measure\"><real_literal>0.000</real_literal></type_literal>"
+      "<type_literal "
+      "express_type_name=\"length_measure\"><real_literal>20.000</real_literal></type_literal>"
+      "<type_literal "
+      "express_type_name=\"length_measure\"><real_literal>25.000</real_literal></type_literal>"
       "</list_literal></attribute_instance></entity_instance>";
   EXPECT_NE(xml.find(expected), std::string::npos) << xml.substr(0, 4000);
 }
@@ -97,14 +102,16 @@ TEST(P28Early, Edition2DefaultConfiguration) {
                      "<its_secplane><plane ref=\"i62\" xsi:nil=\"true\"/></its_secplane>"),
             std::string::npos)
       << xml.substr(0, 3000);
-  EXPECT_NE(xml.find("<coordinates ex:cType=\"list\"><length_measure pos=\"0\">0.000</length_measure>"),
-            std::string::npos);
+  EXPECT_NE(
+      xml.find("<coordinates ex:cType=\"list\"><length_measure pos=\"0\">0.000</length_measure>"),
+      std::string::npos);
 }
 
 TEST(P28, EscapingAndUnicodeRoundTrip) {
   const std::string source =
       "ISO-10303-21;HEADER;FILE_DESCRIPTION(('<&>\"'),'2;1');FILE_NAME('a','b',(''),(''),'','','');"
-      "FILE_SCHEMA(('X'));ENDSEC;DATA;#1=THING('a<b & c>d \"q\" it''s \\X2\\00E9\\X0\\ \\X4\\0001F600\\X0\\',"
+      "FILE_SCHEMA(('X'));ENDSEC;DATA;#1=THING('a<b & c>d \"q\" it''s \\X2\\00E9\\X0\\ "
+      "\\X4\\0001F600\\X0\\',"
       "\"0A\",.ENUM.,LENGTH_MEASURE(2.5),(1,(2,3)),$,*,#1);ENDSEC;END-ISO-10303-21;";
   const p21::ReadResult first = p21::read(source);
   ASSERT_TRUE(first.ok());
@@ -123,7 +130,8 @@ TEST(P28, WritesInBoundedPieces) {
     data += "#" + std::to_string(i) + "=CARTESIAN_POINT('p',(1.,2.,3.));\n";
   const p21::ReadResult r = p21::read(
       "ISO-10303-21;HEADER;FILE_DESCRIPTION((''),'2;1');FILE_NAME('','',(''),(''),'','','');"
-      "FILE_SCHEMA(('MACHINING_SCHEMA'));ENDSEC;DATA;" + data + "ENDSEC;END-ISO-10303-21;");
+      "FILE_SCHEMA(('MACHINING_SCHEMA'));ENDSEC;DATA;" +
+      data + "ENDSEC;END-ISO-10303-21;");
   ASSERT_TRUE(r.ok());
   std::size_t pieces = 0;
   std::size_t largest = 0;
@@ -138,9 +146,11 @@ TEST(P28, WritesInBoundedPieces) {
 TEST(P28, UnknownEntityIsNotedAndKeptByPosition) {
   const p21::ReadResult r = p21::read(
       "ISO-10303-21;HEADER;FILE_DESCRIPTION((''),'2;1');FILE_NAME('','',(''),(''),'','','');"
-      "FILE_SCHEMA(('MACHINING_SCHEMA'));ENDSEC;DATA;#1=NOT_IN_SCHEMA(1,$,'x');ENDSEC;END-ISO-10303-21;");
+      "FILE_SCHEMA(('MACHINING_SCHEMA'));ENDSEC;DATA;#1=NOT_IN_SCHEMA(1,$,'x');ENDSEC;END-ISO-"
+      "10303-21;");
   std::string xml;
-  const auto notes = write(r.model, &own_schema(), Binding::Late, [&](std::string_view p) { xml += p; });
+  const auto notes =
+      write(r.model, &own_schema(), Binding::Late, [&](std::string_view p) { xml += p; });
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_EQ(notes[0].code_id(), "P28-009");
   const p21::ReadResult back = read(xml, &own_schema());

@@ -34,10 +34,11 @@ TEST_F(P28Security, BillionLaughs) {
       for (int k = 0; k < 10; ++k) s += "&lol" + std::to_string(i - 1) + ";";
       return s;
     }() + "\">\n";
-  xml += "]>\n<iso_10303_28 xmlns=\"urn:ncpost:iso10303-28:late-binding\"><data_section>"
-         "<entity_instance express_entity_name=\"x\" id=\"Id1\"><attribute_instance "
-         "express_attribute_name=\"attr_1\"><string_literal>&lol9;</string_literal>"
-         "</attribute_instance></entity_instance></data_section></iso_10303_28>";
+  xml +=
+      "]>\n<iso_10303_28 xmlns=\"urn:ncpost:iso10303-28:late-binding\"><data_section>"
+      "<entity_instance express_entity_name=\"x\" id=\"Id1\"><attribute_instance "
+      "express_attribute_name=\"attr_1\"><string_literal>&lol9;</string_literal>"
+      "</attribute_instance></entity_instance></data_section></iso_10303_28>";
   const p21::ReadResult r = read(xml, nullptr);
   EXPECT_FALSE(r.ok());
   EXPECT_TRUE(has_code(r, "P28-002")) << test::dump(r.diagnostics);
@@ -66,9 +67,10 @@ TEST_F(P28Security, ExternalDtd) {
 }
 
 TEST_F(P28Security, DeepNesting) {
-  std::string xml = "<iso_10303_28 xmlns=\"urn:ncpost:iso10303-28:late-binding\"><data_section>"
-                    "<entity_instance express_entity_name=\"x\" id=\"Id1\"><attribute_instance "
-                    "express_attribute_name=\"attr_1\">";
+  std::string xml =
+      "<iso_10303_28 xmlns=\"urn:ncpost:iso10303-28:late-binding\"><data_section>"
+      "<entity_instance express_entity_name=\"x\" id=\"Id1\"><attribute_instance "
+      "express_attribute_name=\"attr_1\">";
   for (int i = 0; i < 50000; ++i) xml += "<list_literal>";
   const p21::ReadResult r = read(xml, nullptr);
   EXPECT_FALSE(r.ok());
@@ -85,13 +87,14 @@ TEST_F(P28Security, SizeLimit) {
 TEST_F(P28Security, NotXmlAndNotP28) {
   EXPECT_TRUE(has_code(read("ISO-10303-21;", nullptr), "P28-001"));
   EXPECT_TRUE(has_code(read("<html><body/></html>", nullptr), "P28-005"));
-  EXPECT_TRUE(has_code(read("<iso_10303_28 xmlns=\"urn:ncpost:iso10303-28:late-binding\"><data_section>"
-                            "<entity_instance express_entity_name=\"x\" id=\"Id1\">"
-                            "<attribute_instance express_attribute_name=\"attr_1\"><real_literal>NaN"
-                            "</real_literal></attribute_instance></entity_instance></data_section>"
-                            "</iso_10303_28>",
-                            nullptr),
-                       "P28-007"));
+  EXPECT_TRUE(
+      has_code(read("<iso_10303_28 xmlns=\"urn:ncpost:iso10303-28:late-binding\"><data_section>"
+                    "<entity_instance express_entity_name=\"x\" id=\"Id1\">"
+                    "<attribute_instance express_attribute_name=\"attr_1\"><real_literal>NaN"
+                    "</real_literal></attribute_instance></entity_instance></data_section>"
+                    "</iso_10303_28>",
+                    nullptr),
+               "P28-007"));
 }
 
 }  // namespace

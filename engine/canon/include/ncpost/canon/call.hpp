@@ -273,12 +273,12 @@ struct Cycle {
   // PeckDrill with full retract: the rapid back into the hole stops this far above the
   // previous peck's depth (LinuxCNC uses 0.254 mm / 0.010 in).
   double peck_clearance = 0;
-  double pitch = 0;          // Tap: thread pitch, length units per revolution
-  double spindle_speed = 0;  // Tap: rpm, for controllers whose tapping cycle takes S
-  bool left_hand = false;    // Tap: left-hand thread (spindle counter-clockwise going in)
-  bool spindle_stop = false; // Bore: stop the spindle at the bottom and rapid out (G86)
-  std::optional<Rotary> rotary{};       // copied to every motion of the expansion
-  std::optional<Direction> tool_axis{}; // copied to every motion of the expansion
+  double pitch = 0;                // Tap: thread pitch, length units per revolution
+  double spindle_speed = 0;        // Tap: rpm, for controllers whose tapping cycle takes S
+  bool left_hand = false;          // Tap: left-hand thread (spindle counter-clockwise going in)
+  bool spindle_stop = false;       // Bore: stop the spindle at the bottom and rapid out (G86)
+  std::optional<Rotary> rotary{};  // copied to every motion of the expansion
+  std::optional<Direction> tool_axis{};  // copied to every motion of the expansion
   friend bool operator==(const Cycle&, const Cycle&) = default;
 };
 
@@ -287,25 +287,25 @@ struct Cycle {
 // A std::variant rather than a tagged struct: each call has exactly its own arguments, and
 // std::visit makes every writer handle every call (a missing case does not compile). Most
 // alternatives are a few doubles; strings and NURBS vectors are the exceptions.
-using Call = std::variant<
-    UseLengthUnits, SetOriginOffsets, SetFeedReference, SelectPlane,                 //
-    StraightTraverse, StraightFeed, ArcFeed, NurbsFeed,                               //
-    SetFeedRate, SetSpindleSpeed, StartSpindleClockwise, StartSpindleCounterclockwise, //
-    StopSpindleTurning, SpindleRetract,                                               //
-    SelectTool, ChangeTool, UseToolLengthOffset,                                      //
-    FloodOn, FloodOff, MistOn, MistOff,                                               //
-    Dwell, Comment, Message, OptionalProgramStop, ProgramStop, ProgramEnd,            //
-    Begin, End, Cycle>;
+using Call = std::variant<UseLengthUnits, SetOriginOffsets, SetFeedReference, SelectPlane,  //
+                          StraightTraverse, StraightFeed, ArcFeed, NurbsFeed,               //
+                          SetFeedRate, SetSpindleSpeed, StartSpindleClockwise,
+                          StartSpindleCounterclockwise,                                           //
+                          StopSpindleTurning, SpindleRetract,                                     //
+                          SelectTool, ChangeTool, UseToolLengthOffset,                            //
+                          FloodOn, FloodOff, MistOn, MistOff,                                     //
+                          Dwell, Comment, Message, OptionalProgramStop, ProgramStop, ProgramEnd,  //
+                          Begin, End, Cycle>;
 
 // The function name as the trace prints it and the XML names its element, e.g.
-// "STRAIGHT_FEED", "WORKINGSTEP_BEGIN", "PROJECT_END", "PECK_DRILL_CYCLE"; a tilted-plane arc is still
-// "ARC_FEED" here (the trace prints it as ARC_FEED_3D).
+// "STRAIGHT_FEED", "WORKINGSTEP_BEGIN", "PROJECT_END", "PECK_DRILL_CYCLE"; a tilted-plane arc is
+// still "ARC_FEED" here (the trace prints it as ARC_FEED_3D).
 [[nodiscard]] std::string_view name(const Call& call) noexcept;
 [[nodiscard]] std::string_view marker_name(Scope scope, bool begin) noexcept;  // "SETUP_END"
-[[nodiscard]] std::string_view name(Scope scope) noexcept;      // "PROJECT", "SETUP", ...
-[[nodiscard]] std::string_view name(CycleKind kind) noexcept;   // "DRILL_CYCLE", ...
-[[nodiscard]] std::string_view name(Units units) noexcept;      // "CANON_UNITS_MM", ...
-[[nodiscard]] std::string_view name(Plane plane) noexcept;      // "CANON_PLANE_XY", ...
+[[nodiscard]] std::string_view name(Scope scope) noexcept;              // "PROJECT", "SETUP", ...
+[[nodiscard]] std::string_view name(CycleKind kind) noexcept;           // "DRILL_CYCLE", ...
+[[nodiscard]] std::string_view name(Units units) noexcept;              // "CANON_UNITS_MM", ...
+[[nodiscard]] std::string_view name(Plane plane) noexcept;              // "CANON_PLANE_XY", ...
 [[nodiscard]] std::string_view name(FeedReference reference) noexcept;  // "CANON_XYZ", ...
 
 // True for the calls that move the tool: traverse, feed, arc, NURBS, cycle.

@@ -41,12 +41,12 @@ namespace ncpost::canon {
 
 enum class CycleError : std::uint8_t {
   None,
-  NotFinite,        // a number is NaN or infinite
-  BadHeights,       // not safe_z >= r_z >= bottom_z
-  BadFeed,          // feed <= 0
-  BadPeck,          // PeckDrill with peck <= 0, or peck_retract / peck_clearance < 0
-  TooManyPecks,     // (r_z - bottom_z) / peck exceeds ExpandOptions::max_pecks
-  NegativeDwell,    // dwell < 0
+  NotFinite,      // a number is NaN or infinite
+  BadHeights,     // not safe_z >= r_z >= bottom_z
+  BadFeed,        // feed <= 0
+  BadPeck,        // PeckDrill with peck <= 0, or peck_retract / peck_clearance < 0
+  TooManyPecks,   // (r_z - bottom_z) / peck exceeds ExpandOptions::max_pecks
+  NegativeDwell,  // dwell < 0
 };
 
 [[nodiscard]] std::string_view describe(CycleError error) noexcept;

@@ -30,9 +30,9 @@ using KeywordId = std::uint32_t;
 struct Instance {
   std::uint64_t id = 0;      // 0 for header entities
   std::uint32_t offset = 0;  // where the instance starts in the text (for line:column)
-  KeywordId keyword = 0;     // entity name; kComplexKeyword or kExternalKeyword for the special kinds
-  std::uint32_t first = 0;   // first parameter in the value arena
-  std::uint32_t count = 0;   // number of parameters (complex: partial records, each a Typed value)
+  KeywordId keyword = 0;  // entity name; kComplexKeyword or kExternalKeyword for the special kinds
+  std::uint32_t first = 0;  // first parameter in the value arena
+  std::uint32_t count = 0;  // number of parameters (complex: partial records, each a Typed value)
 };
 static_assert(sizeof(Instance) == 24);
 

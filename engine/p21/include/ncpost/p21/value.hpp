@@ -51,9 +51,7 @@ class Value {
     return Value(ValueKind::Typed, keyword_id, child);
   }
 
-  [[nodiscard]] constexpr ValueKind kind() const {
-    return static_cast<ValueKind>(bits_ >> 60);
-  }
+  [[nodiscard]] constexpr ValueKind kind() const { return static_cast<ValueKind>(bits_ >> 60); }
   // Slices.
   [[nodiscard]] constexpr std::uint32_t offset() const { return low(); }
   [[nodiscard]] constexpr std::uint32_t length() const { return high() >> 1; }

@@ -8,8 +8,8 @@ namespace ncpost::pipeline {
 
 enum class InputFormat : std::uint8_t {
   Unknown,
-  P21,   // ISO 10303-21: "ISO-10303-21;" after optional comments and whitespace
-  P28,   // XML: "<" after an optional byte-order mark and whitespace
+  P21,  // ISO 10303-21: "ISO-10303-21;" after optional comments and whitespace
+  P28,  // XML: "<" after an optional byte-order mark and whitespace
 };
 
 [[nodiscard]] InputFormat detect_format(std::string_view bytes) noexcept;
