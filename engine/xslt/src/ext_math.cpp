@@ -1,0 +1,236 @@
+#include "ext_math.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+namespace ncpost::xslt::detail {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kTwoPi = 2 * std::numbers::pi;
+// Angles closer than this (radians) count as equal: start == end is a full circle, a point on
+// a quadrant boundary is on it.
+constexpr double kAngleTolerance = 1e-9;
+
+double degrees(double radians) {
+  return radians * 180.0 / kPi;
+}
+
+// Length in bytes of the UTF-8 sequence at `s` (1 for an invalid byte).
+std::size_t sequence_length(std::string_view s) {
+  const auto lead = static_cast<unsigned char>(s[0]);
+  std::size_t n = 1;
+  if (lead >= 0xC2 && lead <= 0xDF)
+    n = 2;
+  else if (lead >= 0xE0 && lead <= 0xEF)
+    n = 3;
+  else if (lead >= 0xF0 && lead <= 0xF4)
+    n = 4;
+  if (n == 1 || s.size() < n) return 1;
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((static_cast<unsigned char>(s[k]) & 0xC0) != 0x80) return 1;
+  }
+  return n;
+}
+
+}  // namespace
+
+std::string format_number(double value, const NumberFormat& format) {
+  const int decimals = std::clamp(format.decimals, 0, 12);
+  char buffer[400];  // DBL_MAX in fixed notation with 12 decimals fits
+  const auto done =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
+  std::string s(buffer, done.ptr);
+  // Anything that rounds to zero is "0", never "-0".
+  if (!s.empty() && s[0] == '-' && s.find_first_not_of("0.", 1) == std::string::npos) s.erase(0, 1);
+  std::size_t dot = s.find('.');
+  if (!format.trailing_zeros && dot != std::string::npos) {
+    while (s.back() == '0') s.pop_back();
+  }
+  if (dot != std::string::npos && dot + 1 == s.size()) {
+    if (!format.decimal_point) s.pop_back();
+  } else if (dot == std::string::npos && format.decimal_point) {
+    s += '.';
+  }
+  dot = s.find('.');
+  if (!format.leading_zero && dot != std::string::npos && dot + 1 < s.size()) {
+    const std::size_t first = s[0] == '-' ? 1 : 0;
+    if (dot == first + 1 && s[first] == '0') s.erase(first, 1);
+  }
+  return s;
+}
+
+std::string shortest(double value) {
+  if (value == 0) return "0";
+  char buffer[64];
+  const auto done = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, done.ptr);
+}
+
+std::optional<double> arc_sweep(const PlaneArc& a) {
+  if (a.turns == 0) return std::nullopt;
+  const double r = std::hypot(a.sx - a.cx, a.sy - a.cy);
+  if (!(r > 0) || !std::isfinite(r)) return std::nullopt;
+  const double a0 = std::atan2(a.sy - a.cy, a.sx - a.cx);
+  const double a1 = std::atan2(a.ey - a.cy, a.ex - a.cx);
+  double d = a.turns > 0 ? a1 - a0 : a0 - a1;
+  while (d <= kAngleTolerance) d += kTwoPi;
+  while (d > kTwoPi + kAngleTolerance) d -= kTwoPi;
+  const double sweep = d + kTwoPi * (std::abs(a.turns) - 1);
+  return degrees(a.turns > 0 ? sweep : -sweep);
+}
+
+std::optional<double> arc_radius(const PlaneArc& a) {
+  const std::optional<double> sweep = arc_sweep(a);
+  if (!sweep || std::abs(*sweep) >= 360.0 - 1e-7) return std::nullopt;
+  const double r = std::hypot(a.sx - a.cx, a.sy - a.cy);
+  return std::abs(*sweep) > 180.0 + 1e-7 ? -r : r;
+}
+
+std::optional<std::array<double, 2>> arc_centre(double sx, double sy, double ex, double ey,
+                                                double r, bool clockwise) {
+  const double dx = ex - sx;
+  const double dy = ey - sy;
+  const double chord = std::hypot(dx, dy);
+  const double radius = std::abs(r);
+  if (!(chord > 0) || !(radius > 0) || !std::isfinite(chord) || !std::isfinite(radius))
+    return std::nullopt;
+  const double half = chord / 2;
+  const double tolerance = 1e-9 * std::max(1.0, radius);
+  if (half > radius + tolerance) return std::nullopt;
+  const double h = std::sqrt(std::max(0.0, radius * radius - half * half));
+  // Left of the chord direction: the centre of a counter-clockwise arc under 180 degrees.
+  const double nx = -dy / chord;
+  const double ny = dx / chord;
+  const double side = (clockwise ? -1.0 : 1.0) * (r < 0 ? -1.0 : 1.0);
+  return std::array<double, 2>{sx + dx / 2 + side * h * nx, sy + dy / 2 + side * h * ny};
+}
+
+std::optional<std::vector<Point3>> arc_split(const PlaneArc& a, double sz, double ez,
+                                             double max_sweep_degrees, std::size_t max_pieces) {
+  const std::optional<double> sweep = arc_sweep(a);
+  if (!sweep || !(max_sweep_degrees > 0) || !std::isfinite(sz) || !std::isfinite(ez))
+    return std::nullopt;
+  const double pieces_real = std::ceil(std::abs(*sweep) / max_sweep_degrees - 1e-9);
+  if (!(pieces_real >= 1) || pieces_real > static_cast<double>(max_pieces)) return std::nullopt;
+  const auto pieces = static_cast<std::size_t>(pieces_real);
+  const double r = std::hypot(a.sx - a.cx, a.sy - a.cy);
+  const double a0 = std::atan2(a.sy - a.cy, a.sx - a.cx);
+  const double step = *sweep / static_cast<double>(pieces) * kPi / 180.0;
+  std::vector<Point3> points;
+  points.reserve(pieces);
+  for (std::size_t n = 1; n < pieces; ++n) {
+    const double angle = a0 + step * static_cast<double>(n);
+    const double t = static_cast<double>(n) / static_cast<double>(pieces);
+    points.push_back({a.cx + r * std::cos(angle), a.cy + r * std::sin(angle), sz + (ez - sz) * t});
+  }
+  points.push_back({a.ex, a.ey, ez});
+  return points;
+}
+
+std::optional<std::vector<Point3>> arc_split_quadrants(const PlaneArc& a, double sz, double ez,
+                                                       std::size_t max_pieces) {
+  const std::optional<double> sweep_degrees = arc_sweep(a);
+  if (!sweep_degrees || !std::isfinite(sz) || !std::isfinite(ez)) return std::nullopt;
+  const double sweep = *sweep_degrees * kPi / 180.0;
+  const double r = std::hypot(a.sx - a.cx, a.sy - a.cy);
+  const double a0 = std::atan2(a.sy - a.cy, a.sx - a.cx);
+  const double direction = sweep > 0 ? 1.0 : -1.0;
+  const double total = std::abs(sweep);
+  std::vector<Point3> points;
+  // The first boundary strictly after the start in the direction of travel.
+  const double quarter = kPi / 2;
+  double k = direction > 0 ? std::floor(a0 / quarter + kAngleTolerance) + 1
+                           : std::ceil(a0 / quarter - kAngleTolerance) - 1;
+  for (;;) {
+    const double boundary = k * quarter;
+    const double travelled = (boundary - a0) * direction;
+    if (travelled >= total - kAngleTolerance) break;
+    if (points.size() + 1 >= max_pieces) return std::nullopt;
+    const double t = travelled / total;
+    // Exact axis points: cos/sin of multiples of 90 degrees, without rounding noise.
+    const long q = std::lround(k) % 4;
+    const long quadrant = q < 0 ? q + 4 : q;
+    const double ux = quadrant == 0 ? 1 : quadrant == 2 ? -1 : 0;
+    const double uy = quadrant == 1 ? 1 : quadrant == 3 ? -1 : 0;
+    points.push_back({a.cx + r * ux, a.cy + r * uy, sz + (ez - sz) * t});
+    k += direction;
+  }
+  points.push_back({a.ex, a.ey, ez});
+  return points;
+}
+
+std::optional<Rotary> rotary_angles(double i, double j, double k, std::string_view kinematics,
+                                    double previous_c) {
+  const double length = std::sqrt(i * i + j * j + k * k);
+  if (!(length > 0) || !std::isfinite(length)) return std::nullopt;
+  i /= length;
+  j /= length;
+  k /= length;
+  Rotary r{degrees(std::acos(std::clamp(k, -1.0, 1.0))), previous_c, false};
+  const double horizontal = std::hypot(i, j);
+  if (horizontal < 1e-9) {
+    r.singular = true;
+    return r;
+  }
+  if (kinematics == "AC") {
+    r.c = degrees(std::atan2(i, -j));  // v = Rz(C) Rx(A) (0, 0, 1) = (sinA sinC, -sinA cosC, cosA)
+  } else if (kinematics == "BC") {
+    r.c = degrees(std::atan2(j, i));  // v = Rz(C) Ry(B) (0, 0, 1) = (sinB cosC, sinB sinC, cosB)
+  } else {
+    return std::nullopt;
+  }
+  if (r.c <= -180.0) r.c += 360.0;
+  if (r.c == 0) r.c = 0;  // no -0
+  return r;
+}
+
+std::string sanitize_comment(std::string_view text, const CommentRules& rules) {
+  std::string out;
+  out.reserve(text.size());
+  std::size_t count = 0;
+  while (!text.empty()) {
+    const std::size_t n = sequence_length(text);
+    char ch = text[0];
+    text.remove_prefix(n);
+    if (rules.max_length != 0 && count >= rules.max_length) break;
+    bool keep = false;
+    if (n == 1) {
+      if (rules.upper_case && ch >= 'a' && ch <= 'z') ch = static_cast<char>(ch - 'a' + 'A');
+      const auto byte = static_cast<unsigned char>(ch);
+      keep = byte >= 0x20 && byte < 0x7F && ch != '(' && ch != ')' &&
+             rules.allowed.find(ch) != std::string::npos;
+    }
+    if (keep) {
+      out += ch;
+      ++count;
+    } else if (!rules.replacement.empty()) {
+      out += rules.replacement;
+      count += characters(rules.replacement);
+    }
+  }
+  // A replacement could be longer than one character; cut again, on a character boundary.
+  if (rules.max_length != 0 && characters(out) > rules.max_length) {
+    std::size_t bytes = 0;
+    for (std::size_t c = 0; c < rules.max_length; ++c)
+      bytes += sequence_length(std::string_view(out).substr(bytes));
+    out.resize(bytes);
+  }
+  const std::size_t first = out.find_first_not_of(' ');
+  if (first == std::string::npos) return {};
+  const std::size_t last = out.find_last_not_of(' ');
+  return out.substr(first, last - first + 1);
+}
+
+std::size_t characters(std::string_view text) {
+  std::size_t count = 0;
+  while (!text.empty()) {
+    text.remove_prefix(sequence_length(text));
+    ++count;
+  }
+  return count;
+}
+
+}  // namespace ncpost::xslt::detail

@@ -1,0 +1,69 @@
+#pragma once
+// The arithmetic behind the urn:ncpost:ext functions, free of libxslt (ext.cpp wraps it).
+// Conventions are documented in docs/xslt-extensions.md.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncpost/xslt/xslt.hpp"
+
+namespace ncpost::xslt::detail {
+
+// `value` (finite, already scaled) written as `format` says; C locale.
+[[nodiscard]] std::string format_number(double value, const NumberFormat& format);
+
+// Shortest text that reads back to the same double (for numbers the functions put in nodes).
+[[nodiscard]] std::string shortest(double value);
+
+// An arc in a plane: start, end, centre; turns as the canonical program has them (positive
+// counter-clockwise, |turns| - 1 full turns before the arc to the end point, never 0).
+struct PlaneArc {
+  double sx, sy, ex, ey, cx, cy;
+  int turns;
+};
+
+// Signed sweep in degrees (positive counter-clockwise), full turns included; nothing for
+// turns == 0 or a zero radius.
+[[nodiscard]] std::optional<double> arc_sweep(const PlaneArc& arc);
+// FANUC's signed R: the radius, negative for a sweep over 180 degrees; nothing for full
+// circles (not expressible with R) and the cases arc_sweep refuses.
+[[nodiscard]] std::optional<double> arc_radius(const PlaneArc& arc);
+// Centre from a signed R (negative: the arc over 180 degrees) and the direction (clockwise or
+// not); nothing when the chord is longer than the diameter (beyond a small tolerance) or zero.
+[[nodiscard]] std::optional<std::array<double, 2>> arc_centre(double sx, double sy, double ex,
+                                                              double ey, double r, bool clockwise);
+
+struct Point3 {
+  double x, y, z;
+};
+// End points of the pieces of the arc (the last is the arc's end), z interpolated linearly
+// with the angle (helix). `max_sweep_degrees` > 0: equal pieces of at most that sweep.
+[[nodiscard]] std::optional<std::vector<Point3>> arc_split(const PlaneArc& arc, double sz,
+                                                           double ez, double max_sweep_degrees,
+                                                           std::size_t max_pieces);
+// Pieces that end where the arc crosses a quadrant boundary (0, 90, 180, 270 degrees about the
+// centre), then the arc's end.
+[[nodiscard]] std::optional<std::vector<Point3>> arc_split_quadrants(const PlaneArc& arc, double sz,
+                                                                     double ez,
+                                                                     std::size_t max_pieces);
+
+// Rotary angles (degrees) that turn the +Z tool axis into (i, j, k) for "AC" (tilt A about X,
+// then C about Z) or "BC" (tilt B about Y, then C about Z): tilt in [0, 180], C in (-180, 180].
+// For a tool axis along Z (tilt 0 or 180) C is undefined; `previous_c` is kept.
+struct Rotary {
+  double tilt;
+  double c;
+  bool singular;
+};
+[[nodiscard]] std::optional<Rotary> rotary_angles(double i, double j, double k,
+                                                  std::string_view kinematics, double previous_c);
+
+// ext:comment: sanitise as the rules say.
+[[nodiscard]] std::string sanitize_comment(std::string_view text, const CommentRules& rules);
+// Number of characters (UTF-8 code points; an invalid byte counts as one).
+[[nodiscard]] std::size_t characters(std::string_view text);
+
+}  // namespace ncpost::xslt::detail
