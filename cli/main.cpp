@@ -5,6 +5,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ncpost/p28/p28.hpp"
+#include "ncpost/xslt/xslt.hpp"
 #include "verbs.hpp"
 
 namespace {
@@ -21,8 +23,9 @@ verbs:
   schema --to xml FILE.exp                EXPRESS schema as EXPRESS-X XML
   trace [--format text|xml] [--tools TABLE] [--schemas DIR] FILE
                                           canonical machining program (explicit toolpaths)
-  post --profile ID [--profiles DIR] FILE controller code for one machine (not implemented yet)
-  profiles [--profiles DIR]               list machine profiles (not implemented yet)
+  post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] FILE
+                                          controller code for one machine profile
+  profiles [--profiles DIR]               list machine profiles
   nc parse --dialect D FILE               read G-code (not implemented yet)
   nc translate --from D --to PROFILE FILE translate G-code (not implemented yet)
 
@@ -43,6 +46,9 @@ int not_implemented(std::string_view what, std::string_view issue) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Process-wide libxml2 / libxslt set-up, once, before anything parses XML.
+  ncpost::p28::initialise_xml();
+  ncpost::xslt::initialise();
   std::vector<std::string_view> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     (args.empty() ? std::cerr : std::cout) << kUsage;
@@ -54,18 +60,15 @@ int main(int argc, char** argv) {
   }
 
   static constexpr std::array kVerbs = {
-      Verb{"inspect", ncpost::cli::run_inspect},
-      Verb{"convert", ncpost::cli::run_convert},
-      Verb{"schema", ncpost::cli::run_schema},
-      Verb{"trace", ncpost::cli::run_trace},
+      Verb{"inspect", ncpost::cli::run_inspect}, Verb{"convert", ncpost::cli::run_convert},
+      Verb{"schema", ncpost::cli::run_schema},   Verb{"trace", ncpost::cli::run_trace},
+      Verb{"post", ncpost::cli::run_post},       Verb{"profiles", ncpost::cli::run_profiles},
   };
   const std::string_view verb = args[0];
   const Args rest = Args(args).subspan(1);
   for (const auto& v : kVerbs)
     if (v.name == verb) return v.run(rest);
 
-  if (verb == "post") return not_implemented("ncpost post", "issue 6");
-  if (verb == "profiles") return not_implemented("ncpost profiles", "issue 6");
   if (verb == "nc") return not_implemented("ncpost nc", "G-code reader");
   std::cerr << "ncpost: unknown verb '" << verb << "'\n" << kUsage;
   return ncpost::cli::kExitUsage;

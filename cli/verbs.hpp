@@ -17,5 +17,7 @@ int run_inspect(Args args);
 int run_convert(Args args);
 int run_schema(Args args);
 int run_trace(Args args);
+int run_post(Args args);
+int run_profiles(Args args);
 
 }  // namespace ncpost::cli

@@ -74,6 +74,13 @@ class Interpreter {
     if (optional && (!v || v->is_omitted())) return nullptr;
     return geometry_.instance(v, type, &owner, attribute);
   }
+  // True once an error has been reported and the options say to stop there.
+  bool stopped() {
+    if (!options_.stop_at_first_error) return false;
+    for (; errors_checked_ < diagnostics_.size(); ++errors_checked_)
+      if (diagnostics_[errors_checked_].severity == diag::Severity::Error) stopped_ = true;
+    return stopped_;
+  }
   void note(const Instance& at, std::string message) {
     geometry_.error(diag::Code::StepncNote, at, std::move(message));
   }
@@ -118,6 +125,8 @@ class Interpreter {
   bool flood_ = false;
   bool mist_ = false;
   std::unordered_set<std::uint64_t> on_path_;
+  std::size_t errors_checked_ = 0;
+  bool stopped_ = false;
 };
 
 InterpretResult Interpreter::run() {
@@ -136,6 +145,11 @@ InterpretResult Interpreter::run() {
     emit(canon::SelectPlane{canon::Plane::Xy});
     const Instance* main = ref(project, "main_workplan", "workplan");
     if (main != nullptr) executable(*main, 0);
+    if (stopped()) {
+      result.diagnostics = std::move(diagnostics_);
+      result.calls = out_.count();
+      return result;  // no end sequence: the program is incomplete
+    }
     retract_to_security_plane();
     if (spindle_ && *spindle_ != 0) emit(canon::StopSpindleTurning{});
     if (flood_) emit(canon::FloodOff{});
@@ -179,6 +193,7 @@ void Interpreter::set_up(const Instance& setup) {
 }
 
 void Interpreter::executable(const Instance& e, unsigned depth) {
+  if (stopped()) return;
   if (depth > options_.max_nesting) {
     geometry_.error(diag::Code::StepncTooDeep, e,
                     detail::describe(m_, e) + " is nested more than " +

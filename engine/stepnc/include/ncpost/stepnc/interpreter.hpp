@@ -48,6 +48,10 @@ struct InterpretOptions {
   unsigned max_nesting = 64;
   // How far (mm) an arc's end points may lie off its circle before it is an error.
   double arc_tolerance = 0.001;
+  // Stop at the first executable after an error, without the program's end sequence: what is
+  // posted to a machine must not look complete when it is not. `ncpost trace` goes on, to show
+  // everything it can.
+  bool stop_at_first_error = false;
 };
 
 struct InterpretResult {

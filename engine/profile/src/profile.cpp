@@ -1,0 +1,354 @@
+// profile.json → Profile, validated by hand against the rules of stylesheets/profile.schema.json
+// (Debian has no JSON Schema library for C++). tests/unit/profile checks that both agree.
+
+#include "ncpost/profile/profile.hpp"
+
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+
+namespace ncpost::profile {
+namespace {
+
+using nlohmann::json;
+
+class Checker {
+ public:
+  explicit Checker(std::vector<diag::Diagnostic>& out) : out_(out) {}
+
+  void fail(const std::string& path, const std::string& message) {
+    ok_ = false;
+    out_.push_back(diag::make(diag::Code::ProfileInvalid, 0, 0, path + ": " + message));
+  }
+  [[nodiscard]] bool ok() const noexcept { return ok_; }
+
+  // An object with exactly these keys allowed, `required` among them.
+  const json* object(const json& parent, const std::string& path, std::string_view key,
+                     bool required, std::initializer_list<std::string_view> allowed,
+                     std::initializer_list<std::string_view> must) {
+    const json* node = member(parent, path, key, required);
+    if (!node) return nullptr;
+    const std::string here = path + "/" + std::string(key);
+    if (!node->is_object()) {
+      fail(here, "must be an object");
+      return nullptr;
+    }
+    check_keys(*node, here, allowed, must);
+    return node;
+  }
+
+  void check_keys(const json& node, const std::string& here,
+                  std::initializer_list<std::string_view> allowed,
+                  std::initializer_list<std::string_view> must) {
+    for (const auto& [k, v] : node.items()) {
+      bool known = false;
+      for (auto a : allowed) known = known || a == k;
+      if (!known) fail(here + "/" + k, "unknown field");
+    }
+    for (auto m : must)
+      if (!node.contains(std::string(m))) fail(here + "/" + std::string(m), "missing (required)");
+  }
+
+  const json* member(const json& parent, const std::string& /*path*/, std::string_view key,
+                     bool /*required*/) {
+    auto it = parent.find(std::string(key));
+    if (it == parent.end()) return nullptr;  // a missing required field is reported by check_keys
+    return &*it;
+  }
+
+  std::optional<std::string> string(const json& parent, const std::string& path,
+                                    std::string_view key, std::size_t min_length = 0,
+                                    std::size_t max_length = 200) {
+    const json* node = member(parent, path, key, false);
+    if (!node) return std::nullopt;
+    const std::string here = path + "/" + std::string(key);
+    if (!node->is_string()) {
+      fail(here, "must be a string");
+      return std::nullopt;
+    }
+    auto s = node->get<std::string>();
+    if (s.size() < min_length || s.size() > max_length) {
+      fail(here,
+           "length must be " + std::to_string(min_length) + ".." + std::to_string(max_length));
+      return std::nullopt;
+    }
+    return s;
+  }
+
+  std::optional<std::string> enumeration(const json& parent, const std::string& path,
+                                         std::string_view key,
+                                         std::initializer_list<std::string_view> values) {
+    auto s = string(parent, path, key);
+    if (!s) return std::nullopt;
+    for (auto v : values)
+      if (v == *s) return s;
+    std::string list;
+    for (auto v : values) list += (list.empty() ? "" : ", ") + std::string(v);
+    fail(path + "/" + std::string(key), "must be one of " + list);
+    return std::nullopt;
+  }
+
+  std::optional<bool> boolean(const json& parent, const std::string& path, std::string_view key) {
+    const json* node = member(parent, path, key, false);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean()) {
+      fail(path + "/" + std::string(key), "must be true or false");
+      return std::nullopt;
+    }
+    return node->get<bool>();
+  }
+
+  std::optional<double> number(const json& parent, const std::string& path, std::string_view key,
+                               double min = -1e300, double max = 1e300,
+                               bool exclusive_min = false) {
+    const json* node = member(parent, path, key, false);
+    if (!node) return std::nullopt;
+    const std::string here = path + "/" + std::string(key);
+    if (!node->is_number()) {
+      fail(here, "must be a number");
+      return std::nullopt;
+    }
+    const double v = node->get<double>();
+    if (!std::isfinite(v) || v < min || v > max || (exclusive_min && v <= min)) {
+      fail(here, "out of range");
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  std::optional<std::int64_t> integer(const json& parent, const std::string& path,
+                                      std::string_view key, std::int64_t min, std::int64_t max) {
+    const json* node = member(parent, path, key, false);
+    if (!node) return std::nullopt;
+    const std::string here = path + "/" + std::string(key);
+    if (!node->is_number_integer()) {
+      fail(here, "must be an integer");
+      return std::nullopt;
+    }
+    const auto v = node->get<std::int64_t>();
+    if (v < min || v > max) {
+      fail(here, "must be " + std::to_string(min) + ".." + std::to_string(max));
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  std::optional<std::array<double, 3>> vector3(const json& parent, const std::string& path,
+                                               std::string_view key) {
+    const json* node = member(parent, path, key, false);
+    if (!node) return std::nullopt;
+    const std::string here = path + "/" + std::string(key);
+    if (!node->is_array() || node->size() != 3) {
+      fail(here, "must be an array of 3 numbers");
+      return std::nullopt;
+    }
+    std::array<double, 3> v{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!(*node)[i].is_number()) {
+        fail(here, "must be an array of 3 numbers");
+        return std::nullopt;
+      }
+      v[i] = (*node)[i].get<double>();
+    }
+    return v;
+  }
+
+ private:
+  std::vector<diag::Diagnostic>& out_;
+  bool ok_ = true;
+};
+
+void read_format(Checker& c, const json& formats, std::string_view quantity,
+                 xslt::NumberFormat& f) {
+  const json* q = c.object(formats, "/formats", quantity, true,
+                           {"decimals", "decimal_point", "leading_zero", "trailing_zeros", "scale"},
+                           {"decimals", "decimal_point", "leading_zero", "trailing_zeros"});
+  if (!q) return;
+  const std::string path = "/formats/" + std::string(quantity);
+  if (auto v = c.integer(*q, path, "decimals", 0, 12)) f.decimals = static_cast<int>(*v);
+  if (auto v = c.boolean(*q, path, "decimal_point")) f.decimal_point = *v;
+  if (auto v = c.boolean(*q, path, "leading_zero")) f.leading_zero = *v;
+  if (auto v = c.boolean(*q, path, "trailing_zeros")) f.trailing_zeros = *v;
+  if (auto v = c.number(*q, path, "scale", 0, 1e9, true)) f.scale = *v;
+}
+
+std::optional<Range> read_range(Checker& c, const json& travel, std::string_view axis) {
+  const json* r = c.object(travel, "/limits/travel", axis, false, {"min", "max"}, {"min", "max"});
+  if (!r) return std::nullopt;
+  const std::string path = "/limits/travel/" + std::string(axis);
+  auto lo = c.number(*r, path, "min");
+  auto hi = c.number(*r, path, "max");
+  if (!lo || !hi) return std::nullopt;
+  if (*lo > *hi) {
+    c.fail(path, "min is greater than max");
+    return std::nullopt;
+  }
+  return Range{*lo, *hi};
+}
+
+}  // namespace
+
+bool valid_id(std::string_view id) noexcept {
+  if (id.empty() || id.size() > 64) return false;
+  for (std::size_t i = 0; i < id.size(); ++i) {
+    const char ch = id[i];
+    const bool alnum = (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9');
+    if (!alnum && (i == 0 || (ch != '.' && ch != '_' && ch != '-'))) return false;
+  }
+  return true;
+}
+
+std::optional<Profile> parse_profile(std::string_view text,
+                                     std::vector<diag::Diagnostic>& diagnostics) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    diagnostics.push_back(diag::make(diag::Code::ProfileJson, 0, 0, e.what()));
+    return std::nullopt;
+  }
+  Checker c(diagnostics);
+  if (!doc.is_object()) {
+    c.fail("", "must be an object");
+    return std::nullopt;
+  }
+  Profile p;
+  c.check_keys(
+      doc, "",
+      {"$schema", "id", "name", "controller", "output", "block_numbers", "formats", "units",
+       "capabilities", "setup", "limits"},
+      {"id", "name", "controller", "output", "block_numbers", "formats", "units", "capabilities"});
+  if (auto v = c.string(doc, "", "id", 1, 64)) {
+    if (valid_id(*v))
+      p.id = *v;
+    else
+      c.fail("/id", "must match ^[a-z0-9][a-z0-9._-]*$");
+  }
+  if (auto v = c.string(doc, "", "name", 1, 200)) p.name = *v;
+  if (auto v = c.string(doc, "", "controller", 1, 64)) p.controller = *v;
+
+  if (const json* o = c.object(doc, "", "output", true,
+                               {"extension", "mime_type", "line_ending", "program_number"},
+                               {"extension", "mime_type", "line_ending"})) {
+    if (auto v = c.string(*o, "/output", "extension", 0, 16)) p.extension = *v;
+    if (auto v = c.string(*o, "/output", "mime_type", 1, 100)) p.mime_type = *v;
+    if (auto v = c.enumeration(*o, "/output", "line_ending", {"lf", "crlf"}))
+      p.line_ending = *v == "lf" ? "\n" : "\r\n";
+    if (const json* pn = c.object(*o, "/output", "program_number", false, {"value", "min", "max"},
+                                  {"value", "min", "max"})) {
+      auto value = c.integer(*pn, "/output/program_number", "value", 0, 99999999);
+      auto lo = c.integer(*pn, "/output/program_number", "min", 0, 99999999);
+      auto hi = c.integer(*pn, "/output/program_number", "max", 0, 99999999);
+      if (value && lo && hi) {
+        if (*value < *lo || *value > *hi)
+          c.fail("/output/program_number/value", "outside min..max");
+        p.program_number = *value;
+        p.program_number_min = *lo;
+        p.program_number_max = *hi;
+      }
+    }
+  }
+  if (const json* b =
+          c.object(doc, "", "block_numbers", true, {"start", "increment", "maximum", "wrap"},
+                   {"start", "increment", "maximum", "wrap"})) {
+    if (auto v = c.integer(*b, "/block_numbers", "start", 0, 99999999)) p.block.start = *v;
+    if (auto v = c.integer(*b, "/block_numbers", "increment", 1, 99999999)) p.block.increment = *v;
+    if (auto v = c.integer(*b, "/block_numbers", "maximum", 1, 99999999)) p.block.maximum = *v;
+    if (auto v = c.boolean(*b, "/block_numbers", "wrap")) p.block_wrap = *v;
+    if (p.block.start > p.block.maximum) c.fail("/block_numbers/start", "greater than maximum");
+  }
+  if (const json* f =
+          c.object(doc, "", "formats", true, {"length", "angle", "feed", "speed", "dwell"},
+                   {"length", "angle", "feed", "speed", "dwell"})) {
+    read_format(c, *f, "length", p.length);
+    read_format(c, *f, "angle", p.angle);
+    read_format(c, *f, "feed", p.feed);
+    read_format(c, *f, "speed", p.speed);
+    read_format(c, *f, "dwell", p.dwell);
+  }
+  if (auto v = c.enumeration(doc, "", "units", {"mm", "inch"}))
+    p.units = *v == "mm" ? xslt::Units::Millimetre : xslt::Units::Inch;
+  if (const json* cap = c.object(doc, "", "capabilities", true,
+                                 {"arcs", "helical", "canned_cycles", "nurbs", "chord_tolerance"},
+                                 {"arcs", "helical", "canned_cycles", "nurbs"})) {
+    if (auto v = c.enumeration(*cap, "/capabilities", "arcs", {"ijk", "r", "none"}))
+      p.arcs = *v == "ijk" ? Arcs::Ijk : *v == "r" ? Arcs::R : Arcs::None;
+    if (auto v = c.boolean(*cap, "/capabilities", "helical")) p.helical = *v;
+    if (auto v = c.enumeration(*cap, "/capabilities", "canned_cycles", {"native", "expand"}))
+      p.canned_cycles = *v == "native" ? CannedCycles::Native : CannedCycles::Expand;
+    if (auto v = c.enumeration(*cap, "/capabilities", "nurbs", {"native", "linearize"}))
+      p.nurbs = *v == "native" ? NurbsMode::Native : NurbsMode::Linearize;
+    if (auto v = c.number(*cap, "/capabilities", "chord_tolerance", 0, 10, true))
+      p.chord_tolerance = *v;
+  }
+  if (const json* s =
+          c.object(doc, "", "setup", false, {"axis", "angle", "translation", "matrix"}, {})) {
+    if (s->contains("matrix")) {
+      const json& m = (*s)["matrix"];
+      bool good = m.is_array() && m.size() == 9;
+      for (std::size_t i = 0; good && i < 9; ++i) good = m[i].is_number();
+      if (!good)
+        c.fail("/setup/matrix", "must be an array of 9 numbers (row-major)");
+      else
+        for (std::size_t i = 0; i < 9; ++i) p.setup.matrix[i] = m[i].get<double>();
+      if (s->contains("axis") || s->contains("angle"))
+        c.fail("/setup", "give either matrix or axis and angle");
+      if (auto t = c.vector3(*s, "/setup", "translation")) p.setup.translation = *t;
+    } else {
+      auto axis = c.vector3(*s, "/setup", "axis").value_or(std::array<double, 3>{0, 0, 1});
+      auto angle = c.number(*s, "/setup", "angle", -360, 360).value_or(0);
+      auto t = c.vector3(*s, "/setup", "translation").value_or(std::array<double, 3>{0, 0, 0});
+      if (std::hypot(axis[0], axis[1], axis[2]) == 0)
+        c.fail("/setup/axis", "must not be the zero vector");
+      else
+        p.setup = xslt::SetupTransform::from_rotation(axis, angle, t);
+    }
+  }
+  if (const json* l = c.object(
+          doc, "", "limits", false,
+          {"travel", "max_feed", "max_spindle", "tool_number", "max_line_length", "severity"},
+          {})) {
+    if (const json* t = c.object(*l, "/limits", "travel", false, {"x", "y", "z"}, {})) {
+      p.limits.x = read_range(c, *t, "x");
+      p.limits.y = read_range(c, *t, "y");
+      p.limits.z = read_range(c, *t, "z");
+    }
+    p.limits.max_feed = c.number(*l, "/limits", "max_feed", 0, 1e9, true);
+    p.limits.max_spindle = c.number(*l, "/limits", "max_spindle", 0, 1e9, true);
+    if (const json* t =
+            c.object(*l, "/limits", "tool_number", false, {"min", "max"}, {"min", "max"})) {
+      auto lo = c.integer(*t, "/limits/tool_number", "min", 0, 99999999);
+      auto hi = c.integer(*t, "/limits/tool_number", "max", 0, 99999999);
+      if (lo && hi) {
+        if (*lo > *hi) c.fail("/limits/tool_number", "min is greater than max");
+        p.limits.tool_number = std::array<std::int64_t, 2>{*lo, *hi};
+      }
+    }
+    if (auto v = c.integer(*l, "/limits", "max_line_length", 0, 100000))
+      p.limits.max_line_length = static_cast<std::size_t>(*v);
+    if (auto v = c.enumeration(*l, "/limits", "severity", {"warning", "error"}))
+      p.limits.severity = *v == "error" ? diag::Severity::Error : diag::Severity::Warning;
+  }
+  if (!c.ok()) return std::nullopt;
+  return p;
+}
+
+xslt::JobConfig job_config(const Profile& p) {
+  xslt::JobConfig config;
+  config.units = p.units;
+  config.length = p.length;
+  config.angle = p.angle;
+  config.feed = p.feed;
+  config.speed = p.speed;
+  config.dwell = p.dwell;
+  config.block = p.block;
+  // No wrap: the counter runs on past `maximum` (the xslt API always wraps at maximum).
+  if (!p.block_wrap) config.block.maximum = std::numeric_limits<std::int64_t>::max() / 2;
+  config.setup = p.setup;
+  config.max_line_length = p.limits.max_line_length;
+  return config;
+}
+
+}  // namespace ncpost::profile

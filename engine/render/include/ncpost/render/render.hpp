@@ -1,0 +1,98 @@
+#pragma once
+// The render stage: canonical calls → (cycle expansion, NURBS linearisation, limit checks) →
+// chunks (canon::Chunker) → each chunk's XML → the profile's stylesheet with one JobState for
+// the whole program → controller text, appended to `out` as each chunk is ready.
+// docs/render.md.
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncpost/canon/call.hpp"
+#include "ncpost/canon/sink.hpp"
+#include "ncpost/canon/xml.hpp"
+#include "ncpost/profile/profile.hpp"
+#include "ncpost/xslt/xslt.hpp"
+
+namespace ncpost::render {
+
+using TextSink = std::function<void(std::string_view)>;
+
+// Evaluates a rational B-spline (clamped, as canon::NurbsFeed) at parameter u with de Boor's
+// algorithm on homogeneous coordinates.
+[[nodiscard]] canon::Point nurbs_point(const canon::NurbsFeed& nurbs, double u);
+// STRAIGHT_FEED end points that follow the curve within `tolerance` (chord deviation measured
+// at midpoints of each piece, recursively). The last point is the curve's end. Empty when the
+// NURBS is not valid (canon::valid).
+[[nodiscard]] std::vector<canon::Point> linearize(const canon::NurbsFeed& nurbs, double tolerance);
+
+struct RenderOptions {
+  canon::ChunkLimits chunk{};
+  // Render the whole program as one chunk (one transform) instead of chunk by chunk: for tests
+  // that check chunked output is byte-identical; memory then grows with the program.
+  bool single_chunk = false;
+};
+
+class Renderer final : public canon::Sink {
+ public:
+  // `profile` must outlive the renderer. `input_name` names the program in diagnostics.
+  Renderer(const profile::LoadedProfile& profile, TextSink out, RenderOptions options = {},
+           std::string input_name = "program");
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+  ~Renderer() override;
+
+  void call(const canon::Call& call) override;
+  // Renders what is left (the end chunk). Once.
+  void finish();
+
+  // Limit violations (RENDER-001), conversions (RENDER-003/004/005), transform failures
+  // (RENDER-002 + the XSLT diagnostics, with the stylesheet's file).
+  [[nodiscard]] const std::vector<xslt::FileDiagnostic>& diagnostics() const noexcept {
+    return diagnostics_;
+  }
+  [[nodiscard]] bool failed() const noexcept { return failed_; }
+  // Whether any text was handed to `out` yet.
+  [[nodiscard]] bool started() const noexcept { return started_; }
+
+ private:
+  class ChunkRenderer;
+  void forward(const canon::Call& call);
+  void check_limits(const canon::Call& call);
+  void check_point(double x, double y, double z, const canon::Call& call);
+  void report(diag::Code code, diag::Severity severity, std::string message);
+  void render_chunk(const canon::ChunkView& chunk);
+  [[nodiscard]] std::string where(const canon::Call& call) const;
+
+  const profile::LoadedProfile& profile_;
+  TextSink out_;
+  std::string input_name_;
+  xslt::JobState job_;
+  xslt::Params params_;
+  canon::XmlChunkWriter xml_writer_;
+  std::string xml_;
+  std::unique_ptr<ChunkRenderer> chunk_sink_;
+  std::unique_ptr<canon::Chunker> chunker_;
+  std::vector<xslt::FileDiagnostic> diagnostics_;
+  std::optional<canon::Entity> workingstep_;
+  std::int32_t tool_ = 0;  // in the spindle after the chunks rendered so far
+  double unit_mm_ = 1.0;   // the program's length unit, in mm
+  std::size_t limit_reports_ = 0;
+  bool single_chunk_ = false;
+  std::vector<canon::Call> whole_;
+  bool failed_ = false;
+  bool started_ = false;
+  bool finished_ = false;
+};
+
+// Renders a whole program held in memory (tests; small programs). Returns the text;
+// diagnostics are appended to `diagnostics`.
+[[nodiscard]] std::string render_program(const profile::LoadedProfile& profile,
+                                         std::span<const canon::Call> calls,
+                                         std::vector<xslt::FileDiagnostic>& diagnostics,
+                                         RenderOptions options = {});
+
+}  // namespace ncpost::render

@@ -1,0 +1,250 @@
+#include "ncpost/render/render.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "ncpost/canon/cycle.hpp"
+#include "ncpost/canon/trace.hpp"
+
+namespace ncpost::render {
+namespace {
+
+constexpr std::size_t kMaxLimitReports = 100;
+
+std::string number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4f", v);
+  return buf;
+}
+
+// Collects the calls of a cycle expansion.
+class Collect final : public canon::Sink {
+ public:
+  void call(const canon::Call& call) override { calls.push_back(call); }
+  std::vector<canon::Call> calls;
+};
+
+}  // namespace
+
+class Renderer::ChunkRenderer final : public canon::ChunkSink {
+ public:
+  explicit ChunkRenderer(Renderer& owner) : owner_(owner) {}
+  void chunk(const canon::ChunkView& chunk) override { owner_.render_chunk(chunk); }
+
+ private:
+  Renderer& owner_;
+};
+
+Renderer::Renderer(const profile::LoadedProfile& profile, TextSink out, RenderOptions options,
+                   std::string input_name)
+    : profile_(profile),
+      out_(std::move(out)),
+      input_name_(std::move(input_name)),
+      job_(profile::job_config(profile.profile)),
+      params_{{"program_number", std::to_string(profile.profile.program_number)},
+              {"profile_id", profile.profile.id},
+              {"arcs", profile.profile.arcs == profile::Arcs::R ? "r" : "ijk"},
+              {"tool", "0"}},
+      chunk_sink_(std::make_unique<ChunkRenderer>(*this)),
+      chunker_(std::make_unique<canon::Chunker>(*chunk_sink_, options.chunk)),
+      single_chunk_(options.single_chunk) {}
+
+Renderer::~Renderer() = default;
+
+void Renderer::report(diag::Code code, diag::Severity severity, std::string message) {
+  auto d = diag::make(code, 0, 0, std::move(message));
+  d.severity = severity;
+  if (severity == diag::Severity::Error) failed_ = true;
+  diagnostics_.push_back({input_name_, std::move(d)});
+}
+
+std::string Renderer::where(const canon::Call& call) const {
+  std::string s;
+  if (workingstep_)
+    s = "workingstep #" + std::to_string(workingstep_->id) + " \"" + workingstep_->name + "\"";
+  else
+    s = "outside any workingstep";
+  return s + ", " + canon::format_call(call);
+}
+
+void Renderer::check_point(double x, double y, double z, const canon::Call& call) {
+  const auto& lim = profile_.profile.limits;
+  if (!lim.x && !lim.y && !lim.z) return;
+  // Machine coordinates in the controller's unit: setup transform of the point in mm.
+  const double to_ctl = unit_mm_ / (profile_.profile.units == xslt::Units::Inch ? 25.4 : 1.0);
+  const auto& m = profile_.profile.setup.matrix;
+  const auto& t = profile_.profile.setup.translation;
+  const std::array<double, 3> p{x * to_ctl, y * to_ctl, z * to_ctl};
+  const char* names = "XYZ";
+  const std::optional<profile::Range>* ranges[3] = {&lim.x, &lim.y, &lim.z};
+  for (int a = 0; a < 3; ++a) {
+    if (!*ranges[a]) continue;
+    const auto r = static_cast<std::size_t>(a) * 3;
+    const double v =
+        m[r] * p[0] + m[r + 1] * p[1] + m[r + 2] * p[2] + t[static_cast<std::size_t>(a)];
+    const auto& range = **ranges[a];
+    if (v < range.min - 1e-9 || v > range.max + 1e-9)
+      report(diag::Code::RenderLimit, lim.severity,
+             std::string("travel ") + names[a] + number(v) + " outside " + number(range.min) +
+                 ".." + number(range.max) + " (" + where(call) + ")");
+  }
+}
+
+void Renderer::check_limits(const canon::Call& call) {
+  if (limit_reports_ >= kMaxLimitReports) return;
+  const std::size_t before = diagnostics_.size();
+  const auto& lim = profile_.profile.limits;
+  const double feed_to_ctl = unit_mm_ / (profile_.profile.units == xslt::Units::Inch ? 25.4 : 1.0);
+  auto feed = [&](double rate) {
+    if (lim.max_feed && rate * feed_to_ctl > *lim.max_feed + 1e-9)
+      report(diag::Code::RenderLimit, lim.severity,
+             "feed " + number(rate * feed_to_ctl) + " above the maximum " + number(*lim.max_feed) +
+                 " (" + where(call) + ")");
+  };
+  auto tool = [&](std::int64_t slot) {
+    if (lim.tool_number && slot != 0 &&
+        (slot < (*lim.tool_number)[0] || slot > (*lim.tool_number)[1]))
+      report(diag::Code::RenderLimit, lim.severity,
+             "tool number " + std::to_string(slot) + " outside " +
+                 std::to_string((*lim.tool_number)[0]) + ".." +
+                 std::to_string((*lim.tool_number)[1]) + " (" + where(call) + ")");
+  };
+  std::visit(
+      [&](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, canon::StraightTraverse> ||
+                      std::is_same_v<T, canon::StraightFeed>) {
+          check_point(c.to.x, c.to.y, c.to.z, call);
+        } else if constexpr (std::is_same_v<T, canon::ArcFeed>) {
+          check_point(c.end.x, c.end.y, c.end.z, call);
+        } else if constexpr (std::is_same_v<T, canon::NurbsFeed>) {
+          if (!c.points.empty())
+            check_point(c.points.back().x, c.points.back().y, c.points.back().z, call);
+        } else if constexpr (std::is_same_v<T, canon::Cycle>) {
+          check_point(c.x, c.y, c.safe_z, call);
+          check_point(c.x, c.y, c.bottom_z, call);
+          feed(c.feed);
+        } else if constexpr (std::is_same_v<T, canon::SetFeedRate>) {
+          feed(c.rate);
+        } else if constexpr (std::is_same_v<T, canon::SetSpindleSpeed>) {
+          if (lim.max_spindle && c.rpm > *lim.max_spindle + 1e-9)
+            report(diag::Code::RenderLimit, lim.severity,
+                   "spindle speed " + number(c.rpm) + " above the maximum " +
+                       number(*lim.max_spindle) + " (" + where(call) + ")");
+        } else if constexpr (std::is_same_v<T, canon::SelectTool> ||
+                             std::is_same_v<T, canon::ChangeTool>) {
+          tool(c.slot);
+        }
+      },
+      call);
+  limit_reports_ += diagnostics_.size() - before;
+}
+
+void Renderer::call(const canon::Call& call) {
+  if (finished_) return;
+  if (const auto* b = std::get_if<canon::Begin>(&call); b && b->scope == canon::Scope::Workingstep)
+    workingstep_ = b->entity;
+  if (const auto* u = std::get_if<canon::UseLengthUnits>(&call))
+    unit_mm_ = u->units == canon::Units::Inches        ? 25.4
+               : u->units == canon::Units::Centimetres ? 10.0
+                                                       : 1.0;
+  check_limits(call);
+  const auto& caps = profile_.profile;
+  if (const auto* cycle = std::get_if<canon::Cycle>(&call); cycle) {
+    if (const auto e = canon::check(*cycle); e != canon::CycleError::None) {
+      report(diag::Code::RenderCycle, diag::Severity::Error,
+             std::string(canon::describe(e)) + " (" + where(call) + ")");
+      return;
+    }
+    if (caps.canned_cycles == profile::CannedCycles::Expand) {
+      Collect expansion;
+      (void)canon::expand_cycle(*cycle, expansion);
+      for (const auto& c : expansion.calls) forward(c);
+      return;
+    }
+  }
+  if (const auto* nurbs = std::get_if<canon::NurbsFeed>(&call);
+      nurbs && caps.nurbs == profile::NurbsMode::Linearize) {
+    const auto points = linearize(*nurbs, caps.chord_tolerance);
+    if (points.empty()) {
+      report(diag::Code::RenderNurbs, diag::Severity::Error, "invalid NURBS (" + where(call) + ")");
+      return;
+    }
+    for (const auto& p : points)
+      forward(canon::StraightFeed{{p.x, p.y, p.z, nurbs->rotary, nurbs->tool_axis}});
+    return;
+  }
+  if (std::holds_alternative<canon::ArcFeed>(call) && caps.arcs == profile::Arcs::None) {
+    report(diag::Code::RenderUnsupported, diag::Severity::Error,
+           "arcs: none: linearising arcs is not implemented (" + where(call) + ")");
+    return;
+  }
+  forward(call);
+  if (const auto* e = std::get_if<canon::End>(&call); e && e->scope == canon::Scope::Workingstep)
+    workingstep_.reset();
+}
+
+void Renderer::forward(const canon::Call& call) {
+  if (failed_) return;  // an error stops the output; the rest is only checked
+  if (single_chunk_)
+    whole_.push_back(call);
+  else
+    chunker_->call(call);
+}
+
+void Renderer::render_chunk(const canon::ChunkView& chunk) {
+  if (failed_) return;
+  xml_.clear();
+  xml_writer_.append_chunk(xml_, chunk);
+  // The tool in the spindle when the chunk starts: a stylesheet cannot see a CHANGE_TOOL of an
+  // earlier chunk (G43 H needs it).
+  params_[3].second = std::to_string(tool_);
+  for (const auto& c : chunk.calls)
+    if (const auto* t = std::get_if<canon::ChangeTool>(&c)) tool_ = t->slot;
+  auto result = xslt::transform(*profile_.stylesheet, xml_, job_, params_,
+                                input_name_ + "#chunk" + std::to_string(chunk.seq));
+  for (auto& d : result.diagnostics) diagnostics_.push_back(std::move(d));
+  if (!result.ok) {
+    report(diag::Code::RenderTransform, diag::Severity::Error,
+           "the stylesheet of profile '" + profile_.profile.id + "' failed on chunk " +
+               std::to_string(chunk.seq));
+    return;
+  }
+  if (result.output.empty()) return;
+  if (profile_.profile.line_ending != "\n") {
+    std::string converted;
+    converted.reserve(result.output.size() + result.output.size() / 16);
+    for (char ch : result.output) {
+      if (ch == '\n')
+        converted += profile_.profile.line_ending;
+      else
+        converted += ch;
+    }
+    result.output.swap(converted);
+  }
+  started_ = true;
+  out_(result.output);
+}
+
+void Renderer::finish() {
+  if (finished_) return;
+  if (!failed_ && single_chunk_ && !whole_.empty())
+    render_chunk(canon::ChunkView{0, whole_});
+  else if (!failed_)
+    chunker_->finish();
+  finished_ = true;
+}
+
+std::string render_program(const profile::LoadedProfile& profile,
+                           std::span<const canon::Call> calls,
+                           std::vector<xslt::FileDiagnostic>& diagnostics, RenderOptions options) {
+  std::string text;
+  Renderer renderer(
+      profile, [&](std::string_view piece) { text.append(piece); }, options);
+  for (const auto& c : calls) renderer.call(c);
+  renderer.finish();
+  for (const auto& d : renderer.diagnostics()) diagnostics.push_back(d);
+  return text;
+}
+
+}  // namespace ncpost::render

@@ -1,0 +1,78 @@
+// Controller code from the built-in profiles (linuxcnc, fanuc-0i): golden files in
+// tests/golden/post/<profile>/<case>.nc for NIST's ex1E (from the corpus) and the project's own
+// trace cases. NCPOST_UPDATE_GOLDEN=1 rewrites them.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "corpus.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/profile/profile.hpp"
+#include "ncpost/render/render.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
+
+namespace ncpost::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string post(const fs::path& file, const std::string& profile_id) {
+  xslt::initialise();
+  static const express::SchemaRegistry registry;
+  static profile::ProfileStore store(test::source_dir() / "stylesheets");
+  std::vector<xslt::FileDiagnostic> diagnostics;
+  const auto profile = store.load(profile_id, diagnostics);
+  EXPECT_TRUE(profile) << (diagnostics.empty() ? "" : xslt::format(diagnostics[0]));
+  if (!profile) return {};
+  auto loaded = pipeline::load(test::read_file(file), registry);
+  EXPECT_TRUE(loaded.ok()) << file;
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  std::string text;
+  Renderer renderer(
+      *profile, [&](std::string_view piece) { text += piece; }, {}, file.filename().string());
+  const auto result = stepnc::interpret(loaded.model, attributes, renderer, {});
+  renderer.finish();
+  EXPECT_TRUE(result.ok());
+  EXPECT_FALSE(renderer.failed());
+  for (const auto& d : renderer.diagnostics()) ADD_FAILURE() << xslt::format(d);
+  return text;
+}
+
+void expect_golden(const std::string& actual, const fs::path& golden) {
+  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN");
+      update && std::string(update) == "1") {
+    fs::create_directories(golden.parent_path());
+    std::ofstream(golden, std::ios::binary) << actual;
+    return;
+  }
+  ASSERT_TRUE(fs::exists(golden)) << golden;
+  EXPECT_EQ(actual, test::read_file(golden)) << "differs from " << golden;
+}
+
+const char* const kProfiles[] = {"linuxcnc", "fanuc-0i"};
+
+TEST(GoldenPost, TraceCases) {
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
+  for (const char* profile_id : kProfiles)
+    for (const char* name : {"curves", "placement-rotated-setup", "executables"}) {
+      SCOPED_TRACE(std::string(profile_id) + " " + name);
+      expect_golden(post(cases / (std::string(name) + ".stp"), profile_id),
+                    test::source_dir() / "tests" / "golden" / "post" / profile_id /
+                        (std::string(name) + ".nc"));
+    }
+}
+
+TEST(GoldenPost, NistEx1E) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  for (const char* profile_id : kProfiles) {
+    SCOPED_TRACE(profile_id);
+    expect_golden(
+        post(corpus / "p21" / "nist_toolkit_ex1E.stp", profile_id),
+        test::source_dir() / "tests" / "golden" / "post" / profile_id / "nist_toolkit_ex1E.nc");
+  }
+}
+
+}  // namespace
+}  // namespace ncpost::render

@@ -1,0 +1,196 @@
+// profile.json validation (engine/profile) against the checked-in JSON Schema
+// (stylesheets/profile.schema.json): every required field, every enumeration and every bound
+// the schema declares must be refused by the C++ validation too, and the built-in profiles
+// must load and compile.
+
+#include "ncpost/profile/profile.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "corpus.hpp"
+
+namespace ncpost::profile {
+namespace {
+
+using nlohmann::json;
+
+class ProfileTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { xslt::initialise(); }
+  static std::filesystem::path stylesheets() { return test::source_dir() / "stylesheets"; }
+  static json valid() {
+    return json::parse(test::read_file(stylesheets() / "linuxcnc" / "profile.json"));
+  }
+  static json schema() {
+    return json::parse(test::read_file(stylesheets() / "profile.schema.json"));
+  }
+  static bool accepts(const json& doc) {
+    std::vector<diag::Diagnostic> d;
+    const bool ok = parse_profile(doc.dump(), d).has_value();
+    EXPECT_EQ(ok, d.empty()) << doc.dump();
+    return ok;
+  }
+};
+
+TEST_F(ProfileTest, BuiltInProfilesParse) {
+  for (const char* id : {"linuxcnc", "fanuc-0i"}) {
+    std::vector<diag::Diagnostic> d;
+    auto p = parse_profile(test::read_file(stylesheets() / id / "profile.json"), d);
+    ASSERT_TRUE(p) << id << ": " << (d.empty() ? "" : d[0].message);
+    EXPECT_EQ(p->id, id);
+  }
+}
+
+TEST_F(ProfileTest, FieldsMapOntoJobConfig) {
+  std::vector<diag::Diagnostic> d;
+  auto p = parse_profile(test::read_file(stylesheets() / "fanuc-0i" / "profile.json"), d);
+  ASSERT_TRUE(p);
+  const auto config = job_config(*p);
+  EXPECT_EQ(config.length.decimals, 3);
+  EXPECT_FALSE(config.length.leading_zero);
+  EXPECT_EQ(config.dwell.scale, 1000);
+  EXPECT_EQ(config.block.start, 10);
+  EXPECT_EQ(config.block.increment, 10);
+  EXPECT_EQ(config.max_line_length, 128u);
+  EXPECT_EQ(p->arcs, Arcs::R);
+  EXPECT_EQ(p->canned_cycles, CannedCycles::Native);
+  EXPECT_EQ(p->limits.severity, diag::Severity::Error);
+}
+
+TEST_F(ProfileTest, HandPickedInvalidExamples) {
+  auto v = valid();
+  EXPECT_TRUE(accepts(v));
+  auto a = v;
+  a["units"] = "furlong";
+  EXPECT_FALSE(accepts(a));
+  auto b = v;
+  b["formats"]["length"]["decimals"] = 13;
+  EXPECT_FALSE(accepts(b));
+  auto c = v;
+  c["capabilities"].erase("arcs");
+  EXPECT_FALSE(accepts(c));
+  auto e = v;
+  e["colour"] = "red";
+  EXPECT_FALSE(accepts(e));
+  auto f = v;
+  f["id"] = "Bad Id";
+  EXPECT_FALSE(accepts(f));
+  auto g = v;
+  g["limits"]["travel"]["x"] = json{{"min", 5}, {"max", 1}};
+  EXPECT_FALSE(accepts(g));
+  // The shared examples, which schema_check.py (ctest profile_schema_jsonschema) checks the
+  // JSON Schema refuses too.
+  const json examples = json::parse(
+      test::read_file(test::source_dir() / "tests" / "unit" / "profile" / "invalid_examples.json"));
+  ASSERT_GE(examples.size(), 10u);
+  for (const auto& example : examples) {
+    json doc = v;
+    const json set = example.value("set", json::object());
+    const json remove = example.value("remove", json::array());
+    for (const auto& [path, value] : set.items()) doc[json::json_pointer(path)] = value;
+    for (const auto& path : remove) {
+      const json::json_pointer ptr(path.get<std::string>());
+      doc[ptr.parent_pointer()].erase(ptr.back());
+    }
+    EXPECT_FALSE(accepts(doc)) << example["name"];
+  }
+  std::vector<diag::Diagnostic> d;
+  EXPECT_FALSE(parse_profile("{not json", d));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].code, diag::Code::ProfileJson);
+}
+
+// Walks the schema alongside the valid document: for each object, drop each required field
+// and add an unknown one; for each enum, try a value outside it; for each numeric bound, go
+// past it; for each type, give a value of another type. The C++ validation must refuse all.
+void mutations(const json& schema, const json& root_schema, json& doc, json& node,
+               const std::string& path, int& count) {
+  const json* s = &schema;
+  if (s->contains("$ref")) {
+    const std::string ref = (*s)["$ref"].get<std::string>();  // "#/$defs/name"
+    s = &root_schema["$defs"][ref.substr(ref.rfind('/') + 1)];
+  }
+  auto check = [&](const std::string& what) {
+    std::vector<diag::Diagnostic> d;
+    EXPECT_FALSE(parse_profile(doc.dump(), d).has_value()) << path << ": " << what;
+    ++count;
+  };
+  if (s->contains("enum")) {
+    const json saved = node;
+    node = "not-in-the-enum";
+    check("enum");
+    node = saved;
+  }
+  const std::string type = s->value("type", "");
+  if (type == "integer" || type == "number") {
+    const json saved = node;
+    if (s->contains("minimum")) {
+      node = (*s)["minimum"].get<double>() - 1;
+      if (type == "integer") node = (*s)["minimum"].get<std::int64_t>() - 1;
+      check("minimum");
+    }
+    if (s->contains("exclusiveMinimum")) {
+      node = (*s)["exclusiveMinimum"];
+      check("exclusiveMinimum");
+    }
+    if (s->contains("maximum")) {
+      node = (*s)["maximum"].get<double>() * 2 + 1;
+      if (type == "integer") node = (*s)["maximum"].get<std::int64_t>() + 1;
+      check("maximum");
+    }
+    node = "text";
+    check("type");
+    node = saved;
+  } else if (type == "boolean" || type == "array") {
+    const json saved = node;
+    node = "text";
+    check("type");
+    node = saved;
+  } else if (type == "object") {
+    for (const auto& r : s->value("required", json::array())) {
+      const std::string key = r.get<std::string>();
+      const json saved = node[key];
+      node.erase(key);
+      check("required " + key);
+      node[key] = saved;
+    }
+    node["unknown_field"] = 1;
+    check("additionalProperties");
+    node.erase("unknown_field");
+    for (const auto& [key, sub] : (*s)["properties"].items()) {
+      if (key == "$schema" || !node.contains(key)) continue;
+      mutations(sub, root_schema, doc, node[key], path + "/" + key, count);
+    }
+  }
+}
+
+TEST_F(ProfileTest, SchemaAndValidationAgree) {
+  const json s = schema();
+  json doc = valid();
+  int count = 0;
+  mutations(s, s, doc, doc, "", count);
+  EXPECT_GT(count, 80);
+  EXPECT_TRUE(accepts(doc));  // restored
+}
+
+TEST_F(ProfileTest, StoreListsAndLoadsBuiltIns) {
+  ProfileStore store(stylesheets());
+  std::vector<xslt::FileDiagnostic> d;
+  const auto list = store.list(d);
+  ASSERT_GE(list.size(), 2u);
+  EXPECT_TRUE(d.empty());
+  auto a = store.load("linuxcnc", d);
+  ASSERT_TRUE(a) << (d.empty() ? "" : xslt::format(d[0]));
+  auto b = store.load("linuxcnc", d);
+  EXPECT_EQ(a.get(), b.get());  // compiled once, cached
+  EXPECT_TRUE(store.load("fanuc-0i", d));
+  EXPECT_FALSE(store.load("no-such-profile", d));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d.back().diagnostic.code, diag::Code::ProfileUnknown);
+  EXPECT_FALSE(store.load("../etc", d));
+}
+
+}  // namespace
+}  // namespace ncpost::profile

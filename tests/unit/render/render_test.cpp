@@ -1,0 +1,253 @@
+// The render stage: chunked output equals whole-program output byte for byte, NURBS
+// linearisation (de Boor), limit checks, cycle expansion and native cycles.
+
+#include "ncpost/render/render.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "corpus.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
+
+namespace ncpost::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RenderTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { xslt::initialise(); }
+  static fs::path stylesheets() { return test::source_dir() / "stylesheets"; }
+  static std::shared_ptr<const profile::LoadedProfile> builtin(const std::string& id) {
+    static profile::ProfileStore store(stylesheets());
+    std::vector<xslt::FileDiagnostic> d;
+    auto p = store.load(id, d);
+    EXPECT_TRUE(p) << (d.empty() ? "" : xslt::format(d[0]));
+    return p;
+  }
+  static std::vector<canon::Call> program(const fs::path& file) {
+    static const express::SchemaRegistry registry;
+    auto loaded = pipeline::load(test::read_file(file), registry);
+    EXPECT_TRUE(loaded.ok()) << file;
+    const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+    canon::ProgramBuffer buffer;
+    (void)stepnc::interpret(loaded.model, attributes, buffer, {});
+    return std::move(buffer).take();
+  }
+};
+
+canon::Entity entity(std::uint64_t id, std::string type, std::string name) {
+  return canon::Entity{id, std::move(type), std::move(name)};
+}
+
+// A hand-made program with every cycle kind (the interpreter does not emit cycles yet).
+std::vector<canon::Call> cycle_program() {
+  using namespace canon;
+  std::vector<Call> calls;
+  calls.emplace_back(Begin{Scope::Project, entity(1, "PROJECT", "CYCLES")});
+  calls.emplace_back(UseLengthUnits{Units::Millimetres});
+  calls.emplace_back(Begin{Scope::Workingstep, entity(10, "MACHINING_WORKINGSTEP", "DRILL")});
+  calls.emplace_back(SelectTool{5});
+  calls.emplace_back(ChangeTool{5});
+  calls.emplace_back(UseToolLengthOffset{50});
+  calls.emplace_back(SetSpindleSpeed{1500});
+  calls.emplace_back(StartSpindleClockwise{});
+  calls.emplace_back(StraightTraverse{{0, 0, 50}});
+  Cycle drill{CycleKind::Drill, 10, 20, 10, 2, -15, 200, 0};
+  calls.emplace_back(drill);
+  Cycle dwell = drill;
+  dwell.dwell = 0.5;
+  dwell.x = 30;
+  calls.emplace_back(dwell);
+  Cycle peck = drill;
+  peck.kind = CycleKind::PeckDrill;
+  peck.x = 40;
+  peck.peck = 5;
+  calls.emplace_back(peck);
+  Cycle tap = drill;
+  tap.kind = CycleKind::Tap;
+  tap.x = 50;
+  tap.pitch = 1.25;
+  tap.spindle_speed = 160;
+  tap.feed = 200;
+  calls.emplace_back(tap);
+  Cycle bore = drill;
+  bore.kind = CycleKind::Bore;
+  bore.x = 60;
+  bore.safe_z = bore.r_z;  // G99
+  calls.emplace_back(bore);
+  calls.emplace_back(End{Scope::Workingstep, entity(10, "MACHINING_WORKINGSTEP", "DRILL")});
+  calls.emplace_back(ProgramEnd{});
+  calls.emplace_back(End{Scope::Project, entity(1, "PROJECT", "CYCLES")});
+  return calls;
+}
+
+void expect_chunked_equals_whole(const profile::LoadedProfile& p,
+                                 const std::vector<canon::Call>& calls) {
+  std::vector<xslt::FileDiagnostic> d1, d2, d3;
+  const std::string chunked = render_program(p, calls, d1);
+  const std::string whole = render_program(p, calls, d2, RenderOptions{{}, true});
+  // Tiny chunks: long workingsteps split and reopened (continued="true").
+  const std::string tiny = render_program(p, calls, d3, RenderOptions{{3}, false});
+  EXPECT_FALSE(xslt::has_errors(d1)) << (d1.empty() ? "" : xslt::format(d1[0]));
+  EXPECT_FALSE(chunked.empty());
+  EXPECT_EQ(chunked, whole);
+  EXPECT_EQ(chunked, tiny);
+}
+
+TEST_F(RenderTest, ChunkedEqualsWholeProgram) {
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
+  for (const char* id : {"linuxcnc", "fanuc-0i"}) {
+    auto p = builtin(id);
+    ASSERT_TRUE(p);
+    for (const char* c : {"curves.stp", "placement-rotated-setup.stp", "executables.stp"}) {
+      SCOPED_TRACE(std::string(id) + " " + c);
+      expect_chunked_equals_whole(*p, program(cases / c));
+    }
+    SCOPED_TRACE(std::string(id) + " cycles");
+    expect_chunked_equals_whole(*p, cycle_program());
+  }
+}
+
+TEST_F(RenderTest, ChunkedEqualsWholeProgramEx1E) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const auto calls = program(corpus / "p21" / "nist_toolkit_ex1E.stp");
+  expect_chunked_equals_whole(*builtin("linuxcnc"), calls);
+  expect_chunked_equals_whole(*builtin("fanuc-0i"), calls);
+}
+
+TEST_F(RenderTest, FanucWritesNativeCycles) {
+  std::vector<xslt::FileDiagnostic> d;
+  const std::string text = render_program(*builtin("fanuc-0i"), cycle_program(), d);
+  EXPECT_NE(text.find("G98 G81 X10. Y20. Z-15. R2. F200."), std::string::npos) << text;
+  EXPECT_NE(text.find("G98 G82 X30. Y20. Z-15. R2. P500 F200."), std::string::npos) << text;
+  EXPECT_NE(text.find("G98 G83 X40. Y20. Z-15. R2. Q5. F200."), std::string::npos) << text;
+  EXPECT_NE(text.find("G98 G84 X50."), std::string::npos) << text;
+  EXPECT_NE(text.find("G99 G85 X60."), std::string::npos) << text;
+  EXPECT_NE(text.find("O0001 (CYCLES)"), std::string::npos) << text;
+  EXPECT_NE(text.find("M30"), std::string::npos) << text;
+}
+
+TEST_F(RenderTest, LinuxcncExpandsCycles) {
+  std::vector<xslt::FileDiagnostic> d;
+  const std::string text = render_program(*builtin("linuxcnc"), cycle_program(), d);
+  EXPECT_EQ(text.find("G81"), std::string::npos) << text;
+  EXPECT_NE(text.find("G1 X10. Y20. Z-15."), std::string::npos) << text;
+  EXPECT_NE(text.find("G4 P0.5"), std::string::npos) << text;
+}
+
+// A quarter circle as a rational quadratic: centre (25, 0), radius 5 (as in curves.stp).
+canon::NurbsFeed quarter_circle() {
+  canon::NurbsFeed n;
+  n.degree = 2;
+  n.points = {{20, 0, -4, 1}, {20, 5, -4, std::sqrt(0.5)}, {25, 5, -4, 1}};
+  n.knots = {0, 0, 0, 1, 1, 1};
+  return n;
+}
+
+TEST(Nurbs, DeBoorEvaluatesRationalCurveExactly) {
+  const auto n = quarter_circle();
+  for (int i = 0; i <= 20; ++i) {
+    const auto p = nurbs_point(n, i / 20.0);
+    EXPECT_NEAR(std::hypot(p.x - 25, p.y), 5.0, 1e-12) << i;
+    EXPECT_DOUBLE_EQ(p.z, -4);
+  }
+  const auto start = nurbs_point(n, 0);
+  const auto end = nurbs_point(n, 1);
+  EXPECT_DOUBLE_EQ(start.x, 20);
+  EXPECT_DOUBLE_EQ(start.y, 0);
+  EXPECT_NEAR(end.x, 25, 1e-15);
+  EXPECT_NEAR(end.y, 5, 1e-15);
+  // Midpoint of the arc: 45 degrees.
+  const auto mid = nurbs_point(n, 0.5);
+  EXPECT_NEAR(mid.x, 25 - 5 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(mid.y, 5 / std::sqrt(2.0), 1e-12);
+}
+
+TEST(Nurbs, DeBoorMatchesBezierForOneSpan) {
+  canon::NurbsFeed n;
+  n.degree = 3;
+  n.points = {{0, 0, 0, 1}, {1, 2, 0, 1}, {3, 2, 1, 1}, {4, 0, 0, 1}};
+  n.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  for (double t : {0.0, 0.25, 0.5, 0.8, 1.0}) {
+    const double b0 = std::pow(1 - t, 3), b1 = 3 * t * std::pow(1 - t, 2), b2 = 3 * t * t * (1 - t),
+                 b3 = t * t * t;
+    const auto p = nurbs_point(n, t);
+    EXPECT_NEAR(p.x, b1 * 1 + b2 * 3 + b3 * 4, 1e-12);
+    EXPECT_NEAR(p.y, b1 * 2 + b2 * 2, 1e-12);
+    EXPECT_NEAR(p.z, b2 * 1, 1e-12);
+    (void)b0;
+  }
+}
+
+TEST(Nurbs, LinearizeStaysWithinChordTolerance) {
+  const auto n = quarter_circle();
+  for (double tol : {0.1, 0.01, 0.001}) {
+    const auto pts = linearize(n, tol);
+    ASSERT_GE(pts.size(), 2u);
+    EXPECT_EQ(pts.back().x, 25);
+    EXPECT_EQ(pts.back().y, 5);
+    // Chord sagitta of a circle: r (1 - cos(theta/2)) <= tol for every piece.
+    canon::Point prev{20, 0, -4};
+    for (const auto& p : pts) {
+      const double chord = std::hypot(p.x - prev.x, p.y - prev.y);
+      const double sagitta = 5 - std::sqrt(25 - chord * chord / 4);
+      EXPECT_LE(sagitta, tol * 1.0001);
+      prev = p;
+    }
+  }
+  canon::NurbsFeed bad = n;
+  bad.knots.pop_back();
+  EXPECT_TRUE(linearize(bad, 0.01).empty());
+}
+
+TEST_F(RenderTest, LimitViolationNamesTheWorkingstep) {
+  auto base = builtin("linuxcnc");
+  ASSERT_TRUE(base);
+  profile::LoadedProfile p = *base;
+  p.profile.limits.x = profile::Range{-5, 5};
+  p.profile.limits.max_feed = 1000;
+  p.profile.limits.max_spindle = 2000;
+  p.profile.limits.tool_number = std::array<std::int64_t, 2>{1, 99};
+  const auto calls =
+      program(test::source_dir() / "tests" / "golden" / "trace" / "cases" / "curves.stp");
+  std::vector<xslt::FileDiagnostic> d;
+  const std::string text = render_program(p, calls, d);
+  EXPECT_FALSE(text.empty());  // warnings: the output is complete
+  EXPECT_FALSE(xslt::has_errors(d));
+  bool travel = false, feed = false, spindle = false, tool = false;
+  for (const auto& x : d) {
+    EXPECT_EQ(x.diagnostic.code, diag::Code::RenderLimit);
+    const auto& m = x.diagnostic.message;
+    travel |= m.find("travel X10.0000") != std::string::npos &&
+              m.find("workingstep #10") != std::string::npos &&
+              m.find("STRAIGHT_FEED(10.0000") != std::string::npos;
+    feed |= m.find("feed 1200.0000") != std::string::npos;
+    spindle |= m.find("spindle speed 3000.0000") != std::string::npos;
+    tool |= m.find("tool number 901") != std::string::npos;
+  }
+  EXPECT_TRUE(travel && feed && spindle && tool);
+
+  // severity: error stops the output at the first chunk that would contain the violation.
+  p.profile.limits.severity = diag::Severity::Error;
+  std::vector<xslt::FileDiagnostic> e;
+  const std::string partial = render_program(p, calls, e);
+  EXPECT_TRUE(xslt::has_errors(e));
+  EXPECT_EQ(partial.find("G1 X10."), std::string::npos);
+}
+
+TEST_F(RenderTest, CrLfLineEndings) {
+  auto base = builtin("linuxcnc");
+  profile::LoadedProfile p = *base;
+  p.profile.line_ending = "\r\n";
+  std::vector<xslt::FileDiagnostic> d;
+  const std::string text = render_program(p, cycle_program(), d);
+  EXPECT_EQ(text.substr(0, 3), "%\r\n");
+  EXPECT_EQ(text.find("\n", 0), text.find("\r\n", 0) + 1);
+}
+
+}  // namespace
+}  // namespace ncpost::render
