@@ -9,6 +9,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "ncpost/stepnc/program_info.hpp"
+
 namespace ncpost::cli {
 
 Options::Options(Args args, std::vector<std::string_view> value_options) {
@@ -117,6 +119,38 @@ void add_builtin_report(LoadedSchemas& schemas, const pipeline::LoadedModel& loa
   if (loaded.schema != &builtin.set()) return;
   auto problems = schemas.registry.builtin_diagnostics();
   if (!problems.empty()) schemas.reports.push_back({builtin.origin, std::move(problems)});
+}
+
+std::optional<ProgramJob> load_program_job(const Options& options) {
+  ProgramJob job;
+  job.schemas = load_schemas(options.value("schemas"));
+  if (const auto table = options.value("tools")) {
+    auto text = read_input(*table);
+    if (!text) return std::nullopt;
+    std::vector<diag::Diagnostic> table_diagnostics;
+    job.interpret.tools = stepnc::read_tool_table(text->bytes, table_diagnostics);
+    print_diagnostics(table_diagnostics, *table);
+    if (has_errors(table_diagnostics)) return std::nullopt;
+  }
+  auto input = read_input(options.positionals().front());
+  if (!input) {
+    print_schema_reports(job.schemas.reports);
+    return std::nullopt;
+  }
+  job.name = input->name;
+  job.loaded = pipeline::load(std::move(input->bytes), job.schemas.registry);
+  add_builtin_report(job.schemas, job.loaded);
+  print_schema_reports(job.schemas.reports);
+  // A schema directory that cannot be read, or a broken built-in, stops the job as inspect does.
+  if (has_errors(job.schemas.reports)) return std::nullopt;
+  if (!job.loaded.ok()) {
+    // Say what the file is, too, when it is not a program at all (an AP238 AIM excerpt, say).
+    if (job.loaded.model.instances_of("PROJECT").empty())
+      job.loaded.diagnostics.push_back(stepnc::no_program_diagnostic(job.loaded.model));
+    print_diagnostics(job.loaded.diagnostics, job.name);
+    return std::nullopt;
+  }
+  return job;
 }
 
 }  // namespace ncpost::cli

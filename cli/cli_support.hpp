@@ -9,6 +9,7 @@
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
 #include "verbs.hpp"
 
 namespace ncpost::cli {
@@ -60,5 +61,16 @@ void add_builtin_report(LoadedSchemas& schemas, const pipeline::LoadedModel& loa
 // Prints each report's diagnostics with its file name.
 void print_schema_reports(const std::vector<express::SchemaFileReport>& reports);
 [[nodiscard]] bool has_errors(const std::vector<express::SchemaFileReport>& reports);
+
+// What `trace` and `post` interpret: the schemas (--schemas DIR), the tool table (--tools
+// TABLE) and the program (the one positional FILE), loaded and checked. Every diagnostic of these
+// steps is printed here; nullopt means the job cannot go on (exit status 1).
+struct ProgramJob {
+  std::string name;  // for diagnostics
+  LoadedSchemas schemas;
+  pipeline::LoadedModel loaded;
+  stepnc::InterpretOptions interpret;
+};
+[[nodiscard]] std::optional<ProgramJob> load_program_job(const Options& options);
 
 }  // namespace ncpost::cli

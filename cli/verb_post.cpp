@@ -36,30 +36,12 @@ int run_post(Args args) {
   print_file_diagnostics(profile_diagnostics);
   if (!loaded_profile) return kExitRejected;
 
-  LoadedSchemas schemas = load_schemas(options.value("schemas"));
-  print_schema_reports(schemas.reports);
-  stepnc::InterpretOptions interpret_options;
+  auto job = load_program_job(options);
+  if (!job) return kExitRejected;
+  const pipeline::LoadedModel& loaded = job->loaded;
+  stepnc::InterpretOptions& interpret_options = job->interpret;
   interpret_options.stop_at_first_error = true;
-  std::vector<diag::Diagnostic> table_diagnostics;
-  if (const auto table = options.value("tools")) {
-    auto text = read_input(*table);
-    if (!text) return kExitRejected;
-    interpret_options.tools = stepnc::read_tool_table(text->bytes, table_diagnostics);
-    print_diagnostics(table_diagnostics, *table);
-    if (has_errors(table_diagnostics)) return kExitRejected;
-  }
-  auto input = read_input(options.positionals()[0]);
-  if (!input) return kExitRejected;
-  const std::string name = input->name;
-  pipeline::LoadedModel loaded = pipeline::load(std::move(input->bytes), schemas.registry);
-  add_builtin_report(schemas, loaded);
-  print_schema_reports(schemas.reports);
-  if (!loaded.ok()) {
-    if (loaded.model.instances_of("PROJECT").empty())
-      loaded.diagnostics.push_back(stepnc::no_program_diagnostic(loaded.model));
-    print_diagnostics(loaded.diagnostics, name);
-    return kExitRejected;
-  }
+  const std::string& name = job->name;
   std::ios::sync_with_stdio(false);
   const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
   render::Renderer renderer(

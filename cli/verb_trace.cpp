@@ -31,30 +31,11 @@ int run_trace(Args args) {
   if (format != "text" && format != "xml")
     return usage_error("trace", "--format must be text or xml");
 
-  LoadedSchemas schemas = load_schemas(options.value("schemas"));
-  print_schema_reports(schemas.reports);
-  stepnc::InterpretOptions interpret_options;
-  std::vector<diag::Diagnostic> table_diagnostics;
-  if (const auto table = options.value("tools")) {
-    auto text = read_input(*table);
-    if (!text) return kExitRejected;
-    interpret_options.tools = stepnc::read_tool_table(text->bytes, table_diagnostics);
-    print_diagnostics(table_diagnostics, *table);
-    if (has_errors(table_diagnostics)) return kExitRejected;
-  }
-  auto input = read_input(options.positionals()[0]);
-  if (!input) return kExitRejected;
-  const std::string name = input->name;
-  pipeline::LoadedModel loaded = pipeline::load(std::move(input->bytes), schemas.registry);
-  add_builtin_report(schemas, loaded);
-  print_schema_reports(schemas.reports);
-  if (!loaded.ok()) {
-    // Say what the file is, too, when it is not a program at all (an AP238 AIM excerpt, say).
-    if (loaded.model.instances_of("PROJECT").empty())
-      loaded.diagnostics.push_back(stepnc::no_program_diagnostic(loaded.model));
-    print_diagnostics(loaded.diagnostics, name);
-    return kExitRejected;
-  }
+  auto job = load_program_job(options);
+  if (!job) return kExitRejected;
+  const pipeline::LoadedModel& loaded = job->loaded;
+  const stepnc::InterpretOptions& interpret_options = job->interpret;
+  const std::string& name = job->name;
   std::ios::sync_with_stdio(false);
   const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
   stepnc::InterpretResult result;
