@@ -37,3 +37,50 @@ if command -v hyperfine >/dev/null; then
     "build/bin/ncpost convert --to p21 $large > /dev/null"
   cat "$work/convert.md"
 fi
+
+echo "== render (issue 6): transform vs xsltproc, cached vs recompiled stylesheet, end to end post"
+ex1e=$corpus/p21/nist_toolkit_ex1E.stp
+mid=$work/large-5.stp
+[[ -f $mid ]] || build/bin/make_large_stepnc "$ex1e" 5 "$mid"
+build/bin/ncpost trace --format xml "$ex1e" > "$work/ex1e.xml"
+build/bin/ncpost trace --format xml "$mid" > "$work/large-5.xml"
+# The profiles' post.xsl call urn:ncpost:ext functions that xsltproc does not have, so the
+# side-by-side comparison uses a plain XSLT 1.0 stylesheet of comparable work (render_bench
+# writes it). Both sides time parse of the document + apply + serialise, stylesheet compiled once.
+build/bin/render_bench plain-xsl "$work/plain.xsl"
+xsltproc_ms() {  # median over $2 runs of xsltproc's own parse-document + apply + save times
+  for _ in $(seq "$2"); do
+    xsltproc --timing "$work/plain.xsl" "$1" 2>&1 >/dev/null |
+      awk '/Parsing document|Applying stylesheet|Saving result/ {s += $(NF-1)} END {print s}'
+  done | sort -n | awk '{v[NR] = $1} END {print "xsltproc parse+apply+save median_ms=" v[int((NR+1)/2)] " best_ms=" v[1]}'
+}
+for xml in "$work/ex1e.xml" "$work/large-5.xml"; do
+  for round in 1 2; do
+    echo "-- $xml round $round"
+    build/bin/render_bench transform "$work/plain.xsl" "$xml" 10
+    xsltproc_ms "$xml" 10
+  done
+  xsltproc --timing --repeat "$work/plain.xsl" "$xml" 2>&1 >/dev/null | grep Applying
+  build/bin/render_bench transform fanuc-0i "$xml" 5
+  build/bin/render_bench transform linuxcnc "$xml" 5
+done
+for profile in fanuc-0i linuxcnc; do
+  build/bin/render_bench cache "$profile" tests/golden/trace/cases/curves.stp 50
+  build/bin/render_bench cache "$profile" "$ex1e" 20
+done
+# fanuc-0i rejects the generated file (its renumbered tool slots exceed 9999: RENDER-001 errors,
+# exit 1), so the end-to-end figure is taken with linuxcnc too.
+for profile in fanuc-0i linuxcnc; do
+  build/bin/render_bench pipeline "$profile" "$large" 3 2>/dev/null || echo "render_bench pipeline $profile: post failed"
+done
+if command -v hyperfine >/dev/null; then
+  hyperfine -i --runs 3 --export-markdown "$work/post.md" \
+    "build/bin/ncpost post --profile fanuc-0i $large > /dev/null 2>&1" \
+    "build/bin/ncpost post --profile linuxcnc $large > /dev/null 2>&1"
+  cat "$work/post.md"
+fi
+for profile in fanuc-0i linuxcnc; do
+  /usr/bin/time -v build/bin/ncpost post --profile "$profile" "$large" 2>&1 >/dev/null |
+    grep -E 'Maximum resident|Elapsed|Exit status' || true
+done
+build/bin/p21_read_bench --rss "$large"
