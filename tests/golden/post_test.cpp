@@ -1,6 +1,6 @@
-// Controller code from the built-in profiles (linuxcnc, fanuc-0i): golden files in
-// tests/golden/post/<profile>/<case>.nc for NIST's ex1E (from the corpus) and the project's own
-// trace cases. NCPOST_UPDATE_GOLDEN=1 rewrites them.
+// Controller code from the built-in profiles (linuxcnc, fanuc-0i, haas-ngc, mitsubishi-m80,
+// hnc-21): golden files in tests/golden/post/<profile>/<case>.nc for NIST's ex1E (from the
+// corpus) and the project's own trace cases. NCPOST_UPDATE_GOLDEN=1 rewrites them.
 
 #include <gtest/gtest.h>
 
@@ -51,7 +51,7 @@ void expect_golden(const std::string& actual, const fs::path& golden) {
   EXPECT_EQ(actual, test::read_file(golden)) << "differs from " << golden;
 }
 
-const char* const kProfiles[] = {"linuxcnc", "fanuc-0i"};
+const char* const kProfiles[] = {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "hnc-21"};
 
 TEST(GoldenPost, TraceCases) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
@@ -72,6 +72,18 @@ TEST(GoldenPost, NistEx1E) {
         post(corpus / "p21" / "nist_toolkit_ex1E.stp", profile_id),
         test::source_dir() / "tests" / "golden" / "post" / profile_id / "nist_toolkit_ex1E.nc");
   }
+}
+
+// hnc-21 carries the XSLT paper's set-up (90 degrees about Z, Z shifted by -14.7 mm): program
+// (x, y, z) is machine (y, -x, z - 14.7). By hand: curves.stp's G1 to (10, 0, 0) is machine
+// (0, -10, -14.7); its rapid to (0, 0, 50) is (0, 0, 35.3).
+TEST(GoldenPost, HncSetupTransform) {
+  const fs::path curves =
+      test::source_dir() / "tests" / "golden" / "trace" / "cases" / "curves.stp";
+  const std::string text = post(curves, "hnc-21");
+  EXPECT_NE(text.find(" G01 X0.0000 Y-10.0000 Z-14.7000\n"), std::string::npos) << text;
+  EXPECT_NE(text.find(" G00 X0.0000 Y0.0000 Z35.3000\n"), std::string::npos) << text;
+  EXPECT_EQ(text.rfind("%1234\n", 0), 0u) << text;
 }
 
 }  // namespace

@@ -255,5 +255,13 @@ TEST(Rs274Interop, FanucProfile) {
   check_ex1e(corpus, "fanuc-0i");
 }
 
+// Haas NGC: FANUC syntax without N words; its G4 P is in seconds (dwells are not compared).
+TEST(Rs274Interop, HaasNgcProfile) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_profile("haas-ngc");
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  check_ex1e(corpus, "haas-ngc");
+}
+
 }  // namespace
 }  // namespace ncpost::interop
