@@ -1,6 +1,6 @@
 <?xml version="1.0" encoding="UTF-8"?>
-<!-- Mitsubishi M80 (M system): FANUC-like (a copy of fanuc-0i's stylesheet: imports may not
-     reach another profile's folder). "%", O number, N block numbers (ext:block), R arcs when the
+<!-- Mitsubishi M80 (M system): the FANUC family templates (common/fanuc-family.xsl) with
+     these choices: "%", O number, N block numbers (ext:block), R arcs when the
      sweep allows it, native drilling cycles G81/G82/G83/G73/G84/G74/G85/G86/G89 with G98/G99 and
      G80, dwell G4 X in seconds with a decimal point, M30, "%". NURBS curves are written natively
      with G06.2 (NURBS interpolation; the profile says capabilities.nurbs = native):
@@ -11,41 +11,11 @@
      Knots and weights have at most 4 decimals (weights 0.0001 to 99.9999). -->
 <xsl:stylesheet version="1.0" xmlns:xsl="http://www.w3.org/1999/XSL/Transform"
     xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
-  <xsl:import href="../common/ncpost-common.xsl"/>
+  <xsl:import href="../common/fanuc-family.xsl"/>
   <xsl:output method="text" encoding="UTF-8"/>
   <xsl:variable name="numbered" select="'yes'"/>
-
-  <xsl:template match="PROJECT_BEGIN">
-    <xsl:text>%&#10;</xsl:text>
-    <xsl:value-of select="concat('O', substring('0000', string-length($program_number) + 1), $program_number,
-                                 ' (', ext:comment(@name), ')')"/>
-    <xsl:text>&#10;</xsl:text>
-    <xsl:variable name="units">
-      <xsl:choose><xsl:when test="ext:units() = 'inch'">G20</xsl:when><xsl:otherwise>G21</xsl:otherwise></xsl:choose>
-    </xsl:variable>
-    <xsl:value-of select="substring(ext:modal('plane', 'G17'), 1, 0)"/>
-    <xsl:call-template name="block">
-      <xsl:with-param name="text" select="concat($units, ' G17 G90 G94 G40 G49 G80')"/>
-    </xsl:call-template>
-  </xsl:template>
-
-  <!-- R for arcs of less than a full turn when the profile says arcs: r; IJK otherwise. -->
-  <xsl:template name="arc-centre">
-    <xsl:variable name="sx" select="ext:position('x')"/>
-    <xsl:variable name="sy" select="ext:position('y')"/>
-    <xsl:choose>
-      <xsl:when test="$arcs = 'r' and @plane = 'xy' and (@rotation = 1 or @rotation = -1) and
-                      ext:arc-sweep($sx, $sy, @x, @y, @cx, @cy, @rotation) &lt; 359.999 and
-                      ext:arc-sweep($sx, $sy, @x, @y, @cx, @cy, @rotation) &gt; -359.999">
-        <xsl:value-of select="concat(' R', ext:format(ext:arc-r($sx, $sy, @x, @y, @cx, @cy, @rotation), 'length'))"/>
-      </xsl:when>
-      <xsl:otherwise><xsl:call-template name="arc-ijk"/></xsl:otherwise>
-    </xsl:choose>
-  </xsl:template>
-  <!-- Mitsubishi: G4 X in seconds, with a decimal point (the profile's dwell format). -->
-  <xsl:template match="DWELL">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('G4 X', ext:format(@seconds, 'dwell'))"/></xsl:call-template>
-  </xsl:template>
+  <xsl:variable name="o_padding" select="'0000'"/>
+  <xsl:variable name="dwell_word" select="'X'"/>
 
   <!-- NURBS interpolation, G06.2. The feed is modal: the F in force (SET_FEED_RATE, written
        before) applies, so the block carries no F (a chunk cannot see an earlier chunk's feed). -->
@@ -75,47 +45,4 @@
     <xsl:value-of select="ext:moved-to(point[last()]/@x, point[last()]/@y, point[last()]/@z)"/>
   </xsl:template>
 
-  <!-- Cycles: G0 to the safe level over the hole, then the cycle with G98 (return to the
-       initial level = safe_z), or G99 when safe_z = r_z, then G80. -->
-  <xsl:template match="DRILL_CYCLE | PECK_DRILL_CYCLE | TAP_CYCLE | BORE_CYCLE | REAM_CYCLE">
-    <xsl:variable name="code">
-      <xsl:choose>
-        <xsl:when test="self::DRILL_CYCLE and @dwell &gt; 0">G82</xsl:when>
-        <xsl:when test="self::DRILL_CYCLE">G81</xsl:when>
-        <xsl:when test="self::PECK_DRILL_CYCLE and @peck_retract &gt; 0">G73</xsl:when>
-        <xsl:when test="self::PECK_DRILL_CYCLE">G83</xsl:when>
-        <xsl:when test="self::TAP_CYCLE and @hand = 'left'">G74</xsl:when>
-        <xsl:when test="self::TAP_CYCLE">G84</xsl:when>
-        <xsl:when test="self::BORE_CYCLE and @spindle_stop = 'true'">G86</xsl:when>
-        <xsl:when test="@dwell &gt; 0">G89</xsl:when>
-        <xsl:otherwise>G85</xsl:otherwise>
-      </xsl:choose>
-    </xsl:variable>
-    <xsl:variable name="return">
-      <xsl:choose><xsl:when test="@safe_z = @r_z">G99</xsl:when><xsl:otherwise>G98</xsl:otherwise></xsl:choose>
-    </xsl:variable>
-    <xsl:variable name="safe"><xsl:call-template name="xyz"><xsl:with-param name="z" select="@safe_z"/></xsl:call-template></xsl:variable>
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('G0', $safe)"/></xsl:call-template>
-    <xsl:variable name="q">
-      <xsl:if test="self::PECK_DRILL_CYCLE"><xsl:value-of select="concat(' Q', ext:format(@peck, 'length'))"/></xsl:if>
-    </xsl:variable>
-    <xsl:variable name="p">
-      <xsl:if test="@dwell &gt; 0"><xsl:value-of select="concat(' P', ext:format(@dwell, 'dwell'))"/></xsl:if>
-    </xsl:variable>
-    <xsl:call-template name="block">
-      <xsl:with-param name="text" select="concat($return, ' ', $code,
-          ' X', ext:format(ext:setup-x(@x, @y, @bottom_z), 'length'),
-          ' Y', ext:format(ext:setup-y(@x, @y, @bottom_z), 'length'),
-          ' Z', ext:format(ext:setup-z(@x, @y, @bottom_z), 'length'),
-          ' R', ext:format(ext:setup-z(@x, @y, @r_z), 'length'), $q, $p,
-          ' F', ext:format(@feed, 'feed'))"/>
-    </xsl:call-template>
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'G80'"/></xsl:call-template>
-    <xsl:value-of select="ext:moved-to(@x, @y, @safe_z)"/>
-  </xsl:template>
-
-  <xsl:template match="PROGRAM_END">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M30'"/></xsl:call-template>
-  </xsl:template>
-  <xsl:template match="PROJECT_END"><xsl:text>%&#10;</xsl:text></xsl:template>
 </xsl:stylesheet>
