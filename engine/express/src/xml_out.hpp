@@ -12,7 +12,7 @@
 namespace ncpost::express::detail {
 
 // Appends `text` to `out`, escaped for element content (quote = false) or for a double-quoted
-// attribute value (quote = true).
+// attribute value (quote = true): xmltext::append_escaped, the project's one XML escaper.
 void append_escaped(std::string& out, std::string_view text, bool quote);
 
 struct XmlAttribute {
