@@ -7,11 +7,8 @@
 #include <iostream>
 
 #include "cli_support.hpp"
-#include "ncpost/pipeline/load.hpp"
+#include "ncpost/pipeline/post.hpp"
 #include "ncpost/profile/profile.hpp"
-#include "ncpost/render/render.hpp"
-#include "ncpost/stepnc/interpreter.hpp"
-#include "ncpost/stepnc/program_info.hpp"
 
 namespace ncpost::cli {
 namespace {
@@ -38,41 +35,21 @@ int run_post(Args args) {
 
   auto job = load_program_job(options);
   if (!job) return kExitRejected;
-  const pipeline::LoadedModel& loaded = job->loaded;
-  stepnc::InterpretOptions& interpret_options = job->interpret;
-  interpret_options.stop_at_first_error = true;
-  const std::string& name = job->name;
   std::ios::sync_with_stdio(false);
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
-  render::Renderer renderer(
-      *loaded_profile,
+  pipeline::PostOptions post_options;
+  post_options.input_name = job->name;
+  post_options.tools = std::move(job->interpret.tools);
+  const pipeline::PostResult result = pipeline::post(
+      job->loaded, *loaded_profile,
       [](std::string_view piece) {
         std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
         std::cout.flush();
       },
-      {}, name);
-  const stepnc::InterpretResult result =
-      stepnc::interpret(loaded.model, attributes, renderer, interpret_options);
-  renderer.finish();
-  const bool ok = result.ok() && !renderer.failed();
-  if (!ok && renderer.started()) {
-    std::string first;
-    for (const auto& d : result.diagnostics)
-      if (d.severity == diag::Severity::Error && first.empty())
-        first = std::string(d.code_id()) + " " + d.message;
-    for (const auto& d : renderer.diagnostics())
-      if (d.diagnostic.severity == diag::Severity::Error && first.empty())
-        first = std::string(d.diagnostic.code_id()) + " " + d.diagnostic.message;
-    for (char& ch : first)
-      if (ch == '(' || ch == ')' || ch == '\n' || ch == '\r') ch = ' ';
-    std::cout << "(ERROR: " << first << " - the program is incomplete)"
-              << loaded_profile->profile.line_ending;
-  }
+      post_options);
   std::cout.flush();
-  print_diagnostics(loaded.diagnostics, name);
-  print_diagnostics(result.diagnostics, name);
-  print_file_diagnostics(renderer.diagnostics());
-  return ok ? kExitOk : kExitRejected;
+  print_diagnostics(job->loaded.diagnostics, job->name);
+  print_file_diagnostics(result.diagnostics);
+  return result.ok ? kExitOk : kExitRejected;
 }
 
 }  // namespace ncpost::cli

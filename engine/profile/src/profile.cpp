@@ -229,13 +229,21 @@ std::optional<Profile> parse_profile(std::string_view text,
   if (auto v = c.string(doc, "", "name", 1, 200)) p.name = *v;
   if (auto v = c.string(doc, "", "controller", 1, 64)) p.controller = *v;
 
-  if (const json* o = c.object(doc, "", "output", true,
-                               {"extension", "mime_type", "line_ending", "program_number"},
-                               {"extension", "mime_type", "line_ending"})) {
+  if (const json* o =
+          c.object(doc, "", "output", true,
+                   {"extension", "mime_type", "line_ending", "program_number", "error_marker"},
+                   {"extension", "mime_type", "line_ending"})) {
     if (auto v = c.string(*o, "/output", "extension", 0, 16)) p.extension = *v;
     if (auto v = c.string(*o, "/output", "mime_type", 1, 100)) p.mime_type = *v;
     if (auto v = c.enumeration(*o, "/output", "line_ending", {"lf", "crlf"}))
       p.line_ending = *v == "lf" ? "\n" : "\r\n";
+    if (o->contains("error_marker")) {
+      if (auto v = c.string(*o, "/output", "error_marker", 9, 200)) {
+        if (v->find("{message}") == std::string::npos)
+          c.fail("/output/error_marker", "must contain {message}");
+        p.error_marker = *v;
+      }
+    }
     if (const json* pn = c.object(*o, "/output", "program_number", false, {"value", "min", "max"},
                                   {"value", "min", "max"})) {
       auto value = c.integer(*pn, "/output/program_number", "value", 0, 99999999);

@@ -76,7 +76,9 @@ class Interpreter {
   }
   // True once an error has been reported and the options say to stop there.
   bool stopped() {
-    if (!options_.stop_at_first_error) return false;
+    if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed))
+      stopped_ = true;
+    if (!options_.stop_at_first_error) return stopped_;
     for (; errors_checked_ < diagnostics_.size(); ++errors_checked_)
       if (diagnostics_[errors_checked_].severity == diag::Severity::Error) stopped_ = true;
     return stopped_;

@@ -45,6 +45,9 @@ struct Profile {
   std::string extension = ".nc";
   std::string mime_type = "text/plain";
   std::string line_ending = "\n";  // "\n" or "\r\n"
+  // The last line of a program that failed or was cancelled after output started; {message}
+  // stands for the first error, sanitised by the comment rules.
+  std::string error_marker = "(ERROR: {message} - the program is incomplete)";
   std::int64_t program_number = 1;
   std::int64_t program_number_min = 1;
   std::int64_t program_number_max = 9999;

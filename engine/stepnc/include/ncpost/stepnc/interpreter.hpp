@@ -13,6 +13,7 @@
 // or not), NC functions, and NON_SEQUENTIAL / PARALLEL / SELECTIVE / IF / WHILE with the
 // behaviour docs/interpreter.md states.
 
+#include <atomic>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,6 +53,9 @@ struct InterpretOptions {
   // posted to a machine must not look complete when it is not. `ncpost trace` goes on, to show
   // everything it can.
   bool stop_at_first_error = false;
+  // Checked before each executable: a cancelled job (its client went away, or it ran out of
+  // time) stops there, without the program's end sequence. Null: never cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct InterpretResult {

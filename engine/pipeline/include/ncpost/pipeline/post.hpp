@@ -1,0 +1,51 @@
+#pragma once
+// A post job after loading: interpret the model and render it through one machine profile,
+// handing controller text to `out` chunk by chunk as it is ready. `ncpost post` and ncpostd's
+// POST /v1/posts both run this, so a program posted either way is byte-identical.
+
+#include <atomic>
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/profile/profile.hpp"
+#include "ncpost/render/render.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/xslt/xslt.hpp"
+
+namespace ncpost::pipeline {
+
+struct PostOptions {
+  std::string input_name = "program";  // names the program in diagnostics
+  std::optional<stepnc::ToolTable> tools;
+  render::RenderOptions render{};
+  // Set by another thread to stop the job (client gone, time limit): checked between
+  // executables and before each chunk is handed on. Null: never cancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct PostResult {
+  // Interpreter and renderer diagnostics, in that order; the renderer's carry the stylesheet's
+  // file where they come from it (otherwise the input name).
+  std::vector<xslt::FileDiagnostic> diagnostics;
+  bool ok = false;
+  bool started = false;    // some text reached `out`
+  bool cancelled = false;  // stopped by PostOptions::cancel
+  std::size_t calls = 0;   // canonical calls interpreted
+  std::chrono::nanoseconds interpret_and_render{0};
+};
+
+// Interprets `loaded` (which must be ok()) and renders it with `profile`. The interpreter stops
+// at the first error. When the job fails or is cancelled after text went out, the last piece
+// is the profile's error marker (profile.error_marker), so that a partial program never looks
+// complete to the controller or to the operator.
+[[nodiscard]] PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile,
+                              const render::TextSink& out, const PostOptions& options = {});
+
+// The profile's error marker with `message` made safe for a comment of that controller.
+[[nodiscard]] std::string error_marker(const profile::Profile& profile, std::string_view message);
+
+}  // namespace ncpost::pipeline
