@@ -10,15 +10,18 @@
 //   render_bench cache PROFILE FILE [RUNS]
 //       time per post of a small program: the profile's cached compiled stylesheet against
 //       xslt::compile of post.xsl for every post (interpretation done once, outside the timing).
-//   render_bench pipeline PROFILE FILE [RUNS]
+//   render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES]
 //       `ncpost post` without the output: load → interpret → render to a sink that drops the
-//       text; MB/s of P21 in and peak RSS (after the load, after the render).
+//       text; MB/s of P21 in, time to the first text, pieces of text handed on, and peak RSS
+//       (after the load, after the render). BATCH_BYTES sets RenderOptions::batch_bytes
+//       (0: one transform per chunk, as before batching); default: the renderer's default.
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -191,6 +194,7 @@ int cache(const std::string& id, const std::string& file, int runs) {
                                                  loaded->directory.parent_path() / "common"};
   std::vector<double> cached_times;
   std::vector<double> compile_times;
+  std::vector<double> compile_only_times;
   std::size_t out_bytes = 0;
   for (int i = 0; i < runs; ++i) {
     std::vector<ncpost::xslt::FileDiagnostic> diagnostics;
@@ -200,12 +204,13 @@ int cache(const std::string& id, const std::string& file, int runs) {
 
     start = Clock::now();
     auto compiled = ncpost::xslt::compile(post, roots);
+    compile_only_times.push_back(seconds_since(start));
     if (!compiled.ok()) {
       print(compiled.diagnostics);
       return 1;
     }
-    const ncpost::profile::LoadedProfile fresh{loaded->profile, loaded->directory,
-                                               compiled.stylesheet};
+    ncpost::profile::LoadedProfile fresh = *loaded;
+    fresh.stylesheet = compiled.stylesheet;
     const auto text = ncpost::render::render_program(fresh, calls.calls, diagnostics);
     compile_times.push_back(seconds_since(start));
     if (text.size() != out_bytes || ncpost::xslt::has_errors(diagnostics)) {
@@ -215,22 +220,29 @@ int cache(const std::string& id, const std::string& file, int runs) {
   }
   const Stats c = stats(cached_times);
   const Stats r = stats(compile_times);
+  const Stats k = stats(compile_only_times);
   std::cout << "profile=" << id << " file=" << file << " calls=" << calls.calls.size()
             << " out_bytes=" << out_bytes << " runs=" << runs << " cached_best_ms=" << c.best * 1e3
             << " cached_median_ms=" << c.median * 1e3 << " recompile_best_ms=" << r.best * 1e3
-            << " recompile_median_ms=" << r.median * 1e3
+            << " recompile_median_ms=" << r.median * 1e3 << " compile_only_best_ms=" << k.best * 1e3
+            << " compile_only_median_ms=" << k.median * 1e3
             << " speedup_median=" << r.median / c.median << '\n';
   return 0;
 }
 
-int pipeline(const std::string& id, const std::string& file, int runs) {
+int pipeline(const std::string& id, const std::string& file, int runs,
+             std::optional<std::size_t> batch_bytes) {
   const auto loaded = load_profile(id);
   if (!loaded) return 1;
   const ncpost::express::SchemaRegistry registry;
   std::vector<double> times;
   double mb = 0;
   double rss_after_load = 0;
+  std::vector<double> first_text;
   std::size_t out_bytes = 0;
+  std::size_t pieces = 0;
+  ncpost::render::RenderOptions render_options;
+  if (batch_bytes) render_options.batch_bytes = *batch_bytes;
   for (int i = 0; i < runs; ++i) {
     std::string bytes = ncpost::bench::slurp(file);
     mb = static_cast<double>(bytes.size()) / 1e6;
@@ -239,8 +251,14 @@ int pipeline(const std::string& id, const std::string& file, int runs) {
     if (i == 0) rss_after_load = ncpost::bench::peak_rss_mib();
     const ncpost::stepnc::AttributeReader attributes(model.model, *model.schema);
     out_bytes = 0;
-    ncpost::render::Renderer renderer(*loaded,
-                                      [&out_bytes](std::string_view s) { out_bytes += s.size(); });
+    pieces = 0;
+    ncpost::render::Renderer renderer(
+        *loaded,
+        [&](std::string_view s) {
+          if (pieces++ == 0) first_text.push_back(seconds_since(start));
+          out_bytes += s.size();
+        },
+        render_options);
     ncpost::stepnc::InterpretOptions options;
     options.stop_at_first_error = true;
     const auto result = ncpost::stepnc::interpret(model.model, attributes, renderer, options);
@@ -253,9 +271,12 @@ int pipeline(const std::string& id, const std::string& file, int runs) {
     }
   }
   const Stats s = stats(times);
-  std::cout << "profile=" << id << " file_mb=" << mb << " out_bytes=" << out_bytes
+  const Stats f = stats(first_text);
+  std::cout << "profile=" << id << " batch_bytes=" << render_options.batch_bytes
+            << " file_mb=" << mb << " out_bytes=" << out_bytes << " pieces=" << pieces
             << " runs=" << runs << " post_best_s=" << s.best << " post_median_s=" << s.median
-            << " mb_per_s_median=" << mb / s.median << " peak_rss_after_load_mib=" << rss_after_load
+            << " mb_per_s_median=" << mb / s.median << " mb_per_s_best=" << mb / s.best
+            << " first_text_median_s=" << f.median << " peak_rss_after_load_mib=" << rss_after_load
             << " peak_rss_after_post_mib=" << ncpost::bench::peak_rss_mib() << '\n';
   return 0;
 }
@@ -269,14 +290,17 @@ int main(int argc, char** argv) {
     std::cerr << "usage: render_bench plain-xsl OUT.xsl\n"
                  "       render_bench transform XSL|PROFILE XML [RUNS]\n"
                  "       render_bench cache PROFILE FILE [RUNS]\n"
-                 "       render_bench pipeline PROFILE FILE [RUNS]\n";
+                 "       render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES]\n";
     return 2;
   }
   ncpost::xslt::initialise();
   const int runs = args.size() > 3 ? std::stoi(args[3]) : 5;
   if (args[0] == "transform") return transform(args[1], args[2], runs);
   if (args[0] == "cache") return cache(args[1], args[2], runs);
-  if (args[0] == "pipeline") return pipeline(args[1], args[2], runs);
+  if (args[0] == "pipeline")
+    return pipeline(
+        args[1], args[2], runs,
+        args.size() > 4 ? std::optional<std::size_t>(std::stoull(args[4])) : std::nullopt);
   std::cerr << "render_bench: unknown mode " << args[0] << '\n';
   return 2;
 }

@@ -73,6 +73,32 @@ done
 for profile in fanuc-0i linuxcnc; do
   build/bin/render_bench pipeline "$profile" "$large" 3 2>/dev/null || echo "render_bench pipeline $profile: post failed"
 done
+# Batching (docs/render.md): one transform per chunk (0, as before batching) against batch
+# budgets of 16 KiB .. 1 MiB of chunk XML, same binary, same file, one after the other.
+for batch in 0 16384 65536 262144 1048576; do
+  build/bin/render_bench pipeline linuxcnc "$large" 3 "$batch"
+done
+# The peer of an optimisation is the build before it: set BEFORE=DIR to a directory holding the
+# render_bench of the previous build, and it runs side by side here.
+if [[ -n ${BEFORE:-} && -x $BEFORE/render_bench ]]; then
+  for round in 1 2; do
+    echo "-- before/after round $round"
+    "$BEFORE/render_bench" pipeline linuxcnc "$large" 3
+    build/bin/render_bench pipeline linuxcnc "$large" 3
+    "$BEFORE/render_bench" cache linuxcnc tests/golden/trace/cases/curves.stp 50
+    build/bin/render_bench cache linuxcnc tests/golden/trace/cases/curves.stp 50
+  done
+fi
+# Instruction counts do not depend on the machine's load: the same post under callgrind
+# (1 MB file, one copy of ex1E's workingsteps x 10), before and after.
+if command -v valgrind >/dev/null; then
+  small=$work/large-1.stp
+  [[ -f $small ]] || build/bin/make_large_stepnc "$ex1e" 1 "$small"
+  for bin in ${BEFORE:+$BEFORE/render_bench} build/bin/render_bench; do
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" pipeline linuxcnc "$small" 1 2>&1 |
+      grep -E 'refs' | sed "s|^|$bin: |"
+  done
+fi
 if command -v hyperfine >/dev/null; then
   hyperfine -i --runs 3 --export-markdown "$work/post.md" \
     "build/bin/ncpost post --profile fanuc-0i $large > /dev/null 2>&1" \

@@ -26,6 +26,8 @@ verbs:
   post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] FILE
                                           controller code for one machine profile
   profiles [--profiles DIR]               list machine profiles
+  verify [--format text|json] [--tolerance MM] [--grid MM] [--tools TABLE] [--schemas DIR] FILE
+                                          check the motions against the features they machine
   nc parse --dialect D FILE               read G-code (not implemented yet)
   nc translate --from D --to PROFILE FILE translate G-code (not implemented yet)
 
@@ -63,6 +65,7 @@ int main(int argc, char** argv) {
       Verb{"inspect", ncpost::cli::run_inspect}, Verb{"convert", ncpost::cli::run_convert},
       Verb{"schema", ncpost::cli::run_schema},   Verb{"trace", ncpost::cli::run_trace},
       Verb{"post", ncpost::cli::run_post},       Verb{"profiles", ncpost::cli::run_profiles},
+      Verb{"verify", ncpost::cli::run_verify},
   };
   const std::string_view verb = args[0];
   const Args rest = Args(args).subspan(1);

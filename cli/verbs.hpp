@@ -19,5 +19,6 @@ int run_schema(Args args);
 int run_trace(Args args);
 int run_post(Args args);
 int run_profiles(Args args);
+int run_verify(Args args);
 
 }  // namespace ncpost::cli

@@ -28,6 +28,12 @@ case "${1:-all}" in
   *) echo "usage: $0 [build|all|peers]" >&2; exit 2 ;;
 esac
 
+# The OpenAPI linter (tests/package.json, ctest openapi_lint) runs on node; Debian's nodejs and
+# npm when the machine has no npm (a NodeSource nodejs brings its own and conflicts with them).
+if [[ ${1:-all} != build ]] && ! command -v npm >/dev/null 2>&1; then
+  want+=(nodejs npm)
+fi
+
 missing=()
 for p in "${want[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
@@ -49,5 +55,15 @@ if ((${#missing[@]} + ${#interop_missing[@]})); then
   fi
   if ((${#interop_missing[@]})); then
     $SUDO apt-get install -y -qq --no-install-recommends "${interop_missing[@]}"
+  fi
+fi
+
+# npm test tools, pinned by tests/package-lock.json (@redocly/cli); again only when the lock
+# file changed since the last install.
+if [[ ${1:-all} != build ]]; then
+  tests_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests"
+  if [[ ! -x $tests_dir/node_modules/.bin/redocly ||
+        $tests_dir/package-lock.json -nt $tests_dir/node_modules/.package-lock.json ]]; then
+    npm ci --prefix "$tests_dir" --no-audit --no-fund
   fi
 fi

@@ -1,6 +1,7 @@
 // Controller code from the built-in profiles (linuxcnc, fanuc-0i, haas-ngc, mitsubishi-m80,
-// hnc-21): golden files in tests/golden/post/<profile>/<case>.nc for NIST's ex1E (from the
-// corpus) and the project's own trace cases. NCPOST_UPDATE_GOLDEN=1 rewrites them.
+// hnc-21, siemens-840d, heidenhain-tnc640, okuma-osp, kuka-krl, abb-rapid): golden files in
+// tests/golden/post/<profile>/<case>.nc for NIST's ex1E (from the corpus) and the project's own
+// trace cases. NCPOST_UPDATE_GOLDEN=1 rewrites them.
 
 #include <gtest/gtest.h>
 
@@ -51,7 +52,9 @@ void expect_golden(const std::string& actual, const fs::path& golden) {
   EXPECT_EQ(actual, test::read_file(golden)) << "differs from " << golden;
 }
 
-const char* const kProfiles[] = {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "hnc-21"};
+const char* const kProfiles[] = {"linuxcnc", "fanuc-0i",     "haas-ngc",          "mitsubishi-m80",
+                                 "hnc-21",   "siemens-840d", "heidenhain-tnc640", "okuma-osp",
+                                 "kuka-krl", "abb-rapid"};
 
 TEST(GoldenPost, TraceCases) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";

@@ -16,12 +16,7 @@
 #include <sstream>
 
 #include "corpus.hpp"
-#include "ncpost/canon/cycle.hpp"
-#include "ncpost/express/registry.hpp"
-#include "ncpost/pipeline/load.hpp"
-#include "ncpost/profile/profile.hpp"
-#include "ncpost/render/render.hpp"
-#include "ncpost/stepnc/interpreter.hpp"
+#include "motions.hpp"
 
 namespace ncpost::interop {
 namespace {
@@ -29,54 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kRs274 = "/usr/bin/rs274";
-constexpr double kTolerance = 0.001;
-
-// One motion, in rs274's terms: kind, six numbers (x y z, or the arc's first_end second_end
-// first_axis second_axis rotation axis_end_point) and the feed rate in force.
-struct Motion {
-  std::string kind;
-  std::vector<double> values;
-  double feed = 0;
-};
-
-std::string describe(const Motion& m) {
-  std::ostringstream s;
-  s << m.kind << "(";
-  for (std::size_t i = 0; i < m.values.size(); ++i) s << (i ? ", " : "") << m.values[i];
-  s << ") F" << m.feed;
-  return s.str();
-}
-
-// Our canonical program, after what the renderer does before the stylesheet for this profile
-// (cycles expanded, NURBS linearised with the profile's chord tolerance).
-class Motions final : public canon::Sink {
- public:
-  explicit Motions(const profile::Profile& p) : profile_(p) {}
-  void call(const canon::Call& call) override {
-    if (const auto* f = std::get_if<canon::SetFeedRate>(&call)) feed_ = f->rate;
-    if (const auto* t = std::get_if<canon::StraightTraverse>(&call))
-      motions.push_back({"STRAIGHT_TRAVERSE", {t->to.x, t->to.y, t->to.z}, feed_});
-    if (const auto* t = std::get_if<canon::StraightFeed>(&call))
-      motions.push_back({"STRAIGHT_FEED", {t->to.x, t->to.y, t->to.z}, feed_});
-    if (const auto* a = std::get_if<canon::ArcFeed>(&call)) {
-      const auto p = canon::plane_arc(*a);
-      ASSERT_TRUE(p) << "tilted arc";
-      motions.push_back({"ARC_FEED",
-                         {p->first_end, p->second_end, p->first_axis, p->second_axis,
-                          double(p->rotation), p->axis_end_point},
-                         feed_});
-    }
-    if (const auto* n = std::get_if<canon::NurbsFeed>(&call))
-      for (const auto& q : render::linearize(*n, profile_.chord_tolerance))
-        motions.push_back({"STRAIGHT_FEED", {q.x, q.y, q.z}, feed_});
-    if (const auto* c = std::get_if<canon::Cycle>(&call)) (void)canon::expand_cycle(*c, *this);
-  }
-  std::vector<Motion> motions;
-
- private:
-  const profile::Profile& profile_;
-  double feed_ = 0;
-};
 
 // rs274's lines: "   30 N..... STRAIGHT_TRAVERSE(91.9000, -13.5000, 30.0000, 0.0000, 0.0000,
 // 0.0000)".
@@ -110,36 +57,18 @@ std::string read_all(const fs::path& p) {
   return test::read_file(p);
 }
 
-struct Outcome {
-  std::size_t compared = 0;
-  double max_deviation = 0;
-};
-
 Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
                            const std::string& profile_id) {
-  xslt::initialise();
-  static const express::SchemaRegistry registry;
-  static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  std::vector<xslt::FileDiagnostic> diagnostics;
-  const auto profile = store.load(profile_id, diagnostics);
-  EXPECT_TRUE(profile);
-  if (!profile) return {};
-
   // Ours: the canonical program, and the posted text.
-  auto loaded = pipeline::load(test::read_file(input), registry);
-  EXPECT_TRUE(loaded.ok());
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
-  canon::ProgramBuffer buffer;
-  (void)stepnc::interpret(loaded.model, attributes, buffer, {});
-  Motions ours(profile->profile);
+  const Posted posted = post_file(input, profile_id);
+  if (!posted.profile) return {};
+  const auto ours = motions_of(posted.calls, options_for(posted.profile->profile));
   std::set<int> tools;
-  for (const auto& c : buffer.calls()) {
-    ours.call(c);
+  for (const auto& c : posted.calls) {
     if (const auto* t = std::get_if<canon::ChangeTool>(&c); t && t->slot > 0) tools.insert(t->slot);
     if (const auto* t = std::get_if<canon::SelectTool>(&c); t && t->slot > 0) tools.insert(t->slot);
   }
-  std::vector<xslt::FileDiagnostic> render_diagnostics;
-  std::string ngc = render::render_program(*profile, buffer.calls(), render_diagnostics);
+  std::string ngc = posted.text;
   if (profile_id != "linuxcnc") {
     // FANUC's "O0001 (name)" is a subroutine label to LinuxCNC: the one line dropped.
     std::string kept;
@@ -148,7 +77,6 @@ Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
       if (l.empty() || l[0] != 'O') kept += l + "\n";
     ngc = kept;
   }
-  EXPECT_FALSE(xslt::has_errors(render_diagnostics));
 
   // A work folder with the program and a tool table of the tools it uses. Tool lengths are 0,
   // so rs274's positions are the programmed ones (our canonical program does not apply them).
@@ -176,29 +104,7 @@ Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
                                                                  << read_all(dir / "rs274.log");
   const auto theirs = parse_rs274(canon_text);
 
-  Outcome outcome;
-  EXPECT_EQ(ours.motions.size(), theirs.size());
-  const std::size_t n = std::min(ours.motions.size(), theirs.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& a = ours.motions[i];
-    const auto& b = theirs[i];
-    if (a.kind != b.kind || a.values.size() != b.values.size()) {
-      ADD_FAILURE() << "motion " << i << ": ours " << describe(a) << ", rs274 " << describe(b);
-      break;
-    }
-    double dev = std::abs(a.feed - b.feed);
-    if (a.kind != "STRAIGHT_TRAVERSE")
-      EXPECT_LE(dev, kTolerance) << "feed of motion " << i << ": " << describe(a) << " vs "
-                                 << describe(b);
-    else
-      dev = 0;
-    for (std::size_t k = 0; k < a.values.size(); ++k)
-      dev = std::max(dev, std::abs(a.values[k] - b.values[k]));
-    EXPECT_LE(dev, kTolerance) << "motion " << i << ": ours " << describe(a) << ", rs274 "
-                               << describe(b);
-    outcome.max_deviation = std::max(outcome.max_deviation, dev);
-  }
-  outcome.compared = n;
+  const Outcome outcome = expect_same_motions(ours, theirs, "rs274");
   std::error_code ec;
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
   return outcome;

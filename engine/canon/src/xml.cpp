@@ -246,35 +246,48 @@ void append_xml_number(std::string& out, double value) {
 }
 
 void XmlChunkWriter::append_chunk(std::string& out, const ChunkView& chunk) {
+  open(out, chunk.seq);
+  append(out, chunk.calls);
+  close(out);
+}
+
+void XmlChunkWriter::open(std::string& out, std::uint64_t seq) {
   out += "<chunk seq=\"";
-  append_integer(out, chunk.seq);
+  append_integer(out, seq);
   out += "\">\n";
   // A workingstep left open by the previous chunk (split at the size limit) goes on here.
-  bool open_here = false;
+  open_here_ = false;
   if (open_workingstep_) {
     open_workingstep(out, *open_workingstep_, true);
-    open_here = true;
+    open_here_ = true;
   }
-  for (const Call& call : chunk.calls) {
+}
+
+void XmlChunkWriter::append(std::string& out, std::span<const Call> calls) {
+  for (const Call& call : calls) {
     if (const auto* b = std::get_if<Begin>(&call); b != nullptr && b->scope == Scope::Workingstep) {
       // Workingsteps do not nest; a second begin closes the first so the XML stays well-formed.
-      if (open_here) out += "  </workingstep>\n";
+      if (open_here_) out += "  </workingstep>\n";
       open_workingstep(out, b->entity, false);
       open_workingstep_ = b->entity;
-      open_here = true;
+      open_here_ = true;
       continue;
     }
     if (const auto* e = std::get_if<End>(&call);
-        e != nullptr && e->scope == Scope::Workingstep && open_here) {
+        e != nullptr && e->scope == Scope::Workingstep && open_here_) {
       out += "  </workingstep>\n";
       open_workingstep_.reset();
-      open_here = false;
+      open_here_ = false;
       continue;
     }
     // Everything else, including a WORKINGSTEP_END without its begin, is an element.
-    std::visit(ElementWriter(out, open_here ? 4 : 2), call);
+    std::visit(ElementWriter(out, open_here_ ? 4 : 2), call);
   }
-  if (open_here) out += "  </workingstep>\n";
+}
+
+void XmlChunkWriter::close(std::string& out) {
+  if (open_here_) out += "  </workingstep>\n";
+  open_here_ = false;
   out += "</chunk>\n";
 }
 

@@ -1,5 +1,7 @@
 #include "ncpost/pipeline/post.hpp"
 
+#include "ncpost/render/raw.hpp"
+
 namespace ncpost::pipeline {
 namespace {
 
@@ -47,6 +49,20 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
                 const render::TextSink& out, const PostOptions& options) {
   const auto started_at = std::chrono::steady_clock::now();
   PostResult result;
+  if (profile.profile.mode == profile::Mode::Raw) {
+    // The stylesheet reads the model itself (the XSLT paper's post-processor): no
+    // interpretation, one transform, the text in one piece only when it succeeded.
+    if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) {
+      result.cancelled = true;
+      return result;
+    }
+    auto raw = render::render_raw(loaded.model, loaded.schema, profile, out, options.input_name);
+    result.diagnostics = std::move(raw.diagnostics);
+    result.ok = raw.ok;
+    result.started = raw.started;
+    result.interpret_and_render = std::chrono::steady_clock::now() - started_at;
+    return result;
+  }
   stepnc::InterpretOptions interpret_options;
   interpret_options.tools = options.tools;
   interpret_options.stop_at_first_error = true;

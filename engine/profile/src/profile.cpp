@@ -217,7 +217,7 @@ std::optional<Profile> parse_profile(std::string_view text,
   Profile p;
   c.check_keys(
       doc, "",
-      {"$schema", "id", "name", "controller", "output", "block_numbers", "formats", "units",
+      {"$schema", "id", "name", "controller", "mode", "output", "block_numbers", "formats", "units",
        "capabilities", "setup", "limits"},
       {"id", "name", "controller", "output", "block_numbers", "formats", "units", "capabilities"});
   if (auto v = c.string(doc, "", "id", 1, 64)) {
@@ -228,6 +228,8 @@ std::optional<Profile> parse_profile(std::string_view text,
   }
   if (auto v = c.string(doc, "", "name", 1, 200)) p.name = *v;
   if (auto v = c.string(doc, "", "controller", 1, 64)) p.controller = *v;
+  if (auto v = c.enumeration(doc, "", "mode", {"canonical", "raw"}))
+    p.mode = *v == "raw" ? Mode::Raw : Mode::Canonical;
 
   if (const json* o =
           c.object(doc, "", "output", true,

@@ -47,13 +47,20 @@ Renderer::Renderer(const profile::LoadedProfile& profile, TextSink out, RenderOp
               {"tool", "0"}},
       chunk_sink_(std::make_unique<ChunkRenderer>(*this)),
       chunker_(std::make_unique<canon::Chunker>(*chunk_sink_, options.chunk)),
-      single_chunk_(options.single_chunk) {}
+      single_chunk_(options.single_chunk),
+      batch_bytes_(options.batch_bytes),
+      batch_delay_(options.batch_delay) {}
 
 Renderer::~Renderer() = default;
 
 void Renderer::report(diag::Code code, diag::Severity severity, std::string message) {
   auto d = diag::make(code, 0, 0, std::move(message));
   d.severity = severity;
+  if (severity == diag::Severity::Error && !failed_ && !in_batch_) {
+    // The chunks gathered so far were complete before the error: without batching they would
+    // have been rendered already, so they are now, and the output ends where it did.
+    render_batch();
+  }
   if (severity == diag::Severity::Error) failed_ = true;
   diagnostics_.push_back({input_name_, std::move(d)});
 }
@@ -194,10 +201,72 @@ void Renderer::forward(const canon::Call& call) {
 
 void Renderer::render_chunk(const canon::ChunkView& chunk) {
   if (failed_) return;
+  // The first chunk (the program start) goes alone so the first text leaves at once; without
+  // batching every chunk does.
+  if (batch_bytes_ == 0 || !first_rendered_) {
+    first_rendered_ = true;
+    transform_chunk(chunk);
+    return;
+  }
+  if (batch_chunks_.empty()) {
+    batch_job_ = job_;
+    batch_writer_ = xml_writer_;
+    batch_tool_ = tool_;
+    if (batch_delay_.count() > 0) batch_started_ = std::chrono::steady_clock::now();
+    xml_.clear();
+    xml_writer_.open(xml_, chunk.seq);
+  }
+  xml_writer_.append(xml_, chunk.calls);
+  batch_calls_.insert(batch_calls_.end(), chunk.calls.begin(), chunk.calls.end());
+  batch_chunks_.emplace_back(chunk.seq, batch_calls_.size());
+  for (const auto& c : chunk.calls)
+    if (const auto* t = std::get_if<canon::ChangeTool>(&c)) tool_ = t->slot;
+  if (xml_.size() >= batch_bytes_ ||
+      (batch_delay_.count() > 0 &&
+       std::chrono::steady_clock::now() - batch_started_ >= batch_delay_))
+    render_batch();
+}
+
+void Renderer::render_batch() {
+  if (batch_chunks_.empty() || failed_) return;
+  in_batch_ = true;
+  xml_writer_.close(xml_);
+  // The tool in the spindle when the batch starts: a stylesheet cannot see a CHANGE_TOOL of an
+  // earlier transform (G43 H needs it).
+  params_[3].second = std::to_string(batch_tool_);
+  const std::uint64_t first = batch_chunks_.front().first;
+  const std::uint64_t last = batch_chunks_.back().first;
+  auto result = xslt::transform(*profile_.stylesheet, xml_, job_, params_,
+                                input_name_ + "#chunk" + std::to_string(first) +
+                                    (last != first ? "-" + std::to_string(last) : std::string()));
+  if (result.ok) {
+    for (auto& d : result.diagnostics) diagnostics_.push_back(std::move(d));
+    emit(result.output);
+  } else {
+    // Rendered chunk by chunk from the batch's start instead, the failure is reported as it
+    // would have been without batching: the text of the chunks before the failing one is
+    // written and the diagnostics name that chunk. The failed run's state and diagnostics are
+    // dropped.
+    job_ = batch_job_;
+    xml_writer_ = batch_writer_;
+    tool_ = batch_tool_;
+    std::size_t begin = 0;
+    for (const auto& [seq, end] : batch_chunks_) {
+      transform_chunk(canon::ChunkView{
+          seq, std::span<const canon::Call>(batch_calls_).subspan(begin, end - begin)});
+      begin = end;
+      if (failed_) break;
+    }
+  }
+  batch_calls_.clear();
+  batch_chunks_.clear();
+  in_batch_ = false;
+}
+
+void Renderer::transform_chunk(const canon::ChunkView& chunk) {
+  if (failed_) return;
   xml_.clear();
   xml_writer_.append_chunk(xml_, chunk);
-  // The tool in the spindle when the chunk starts: a stylesheet cannot see a CHANGE_TOOL of an
-  // earlier chunk (G43 H needs it).
   params_[3].second = std::to_string(tool_);
   for (const auto& c : chunk.calls)
     if (const auto* t = std::get_if<canon::ChangeTool>(&c)) tool_ = t->slot;
@@ -210,28 +279,34 @@ void Renderer::render_chunk(const canon::ChunkView& chunk) {
                std::to_string(chunk.seq));
     return;
   }
-  if (result.output.empty()) return;
+  emit(result.output);
+}
+
+void Renderer::emit(std::string& text) {
+  if (text.empty()) return;
   if (profile_.profile.line_ending != "\n") {
     std::string converted;
-    converted.reserve(result.output.size() + result.output.size() / 16);
-    for (char ch : result.output) {
+    converted.reserve(text.size() + text.size() / 16);
+    for (char ch : text) {
       if (ch == '\n')
         converted += profile_.profile.line_ending;
       else
         converted += ch;
     }
-    result.output.swap(converted);
+    text.swap(converted);
   }
   started_ = true;
-  out_(result.output);
+  out_(text);
 }
 
 void Renderer::finish() {
   if (finished_) return;
-  if (!failed_ && single_chunk_ && !whole_.empty())
-    render_chunk(canon::ChunkView{0, whole_});
-  else if (!failed_)
+  if (!failed_ && single_chunk_ && !whole_.empty()) {
+    transform_chunk(canon::ChunkView{0, whole_});
+  } else if (!failed_) {
     chunker_->finish();
+    if (!failed_) render_batch();
+  }
   finished_ = true;
 }
 

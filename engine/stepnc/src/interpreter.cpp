@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "curves.hpp"
+#include "features/generator.hpp"
 #include "geometry.hpp"
 #include "ncpost/stepnc/program_info.hpp"
 
@@ -31,6 +32,11 @@ canon::Pose pose(Vec3 p, const std::optional<Vec3>& axis = std::nullopt) {
   canon::Pose out{p.x, p.y, p.z, std::nullopt, std::nullopt};
   if (axis) out.tool_axis = canon::Direction{axis->x, axis->y, axis->z};
   return out;
+}
+
+// A three-axis pose (generated paths carry no tool axis).
+canon::Pose flat_pose(Vec3 p) {
+  return {p.x, p.y, p.z, std::nullopt, std::nullopt};
 }
 
 class CountingSink final : public canon::Sink {
@@ -107,6 +113,9 @@ class Interpreter {
   void approach(Vec3 start, bool rapid_only);
   void toolpaths(const Instance* list, const Frame& frame, bool rapid);
   void motion(const std::vector<Segment>& segments, const Frame& frame, bool rapid);
+  void generated(const Instance& ws, const Instance& operation, const Instance* feature,
+                 const Instance& tool_instance, const Frame& frame);
+  void spindle(double speed);
 
   const p21::Model& m_;
   const AttributeReader& a_;
@@ -333,20 +342,24 @@ void Interpreter::technology(const Instance* tech) {
   if (!geometry_.is_a(*tech, "milling_technology")) return;
   if (const auto s = geometry_.number(*tech, "spindle")) {
     // NIST's convention (ex1.stp's notes): a negative speed turns clockwise.
-    const double rpm = std::abs(*s) * kSpindleToRpm;
-    if (!spindle_ || *spindle_ != *s) {
-      if (*s == 0) {
-        emit(canon::StopSpindleTurning{});
-      } else {
-        emit(canon::SetSpindleSpeed{rpm});
-        if (*s < 0)
-          emit(canon::StartSpindleClockwise{});
-        else
-          emit(canon::StartSpindleCounterclockwise{});
-      }
-    }
-    spindle_ = *s;
+    spindle(*s);
   }
+}
+
+void Interpreter::spindle(double s) {
+  const double rpm = std::abs(s) * kSpindleToRpm;
+  if (!spindle_ || *spindle_ != s) {
+    if (s == 0) {
+      emit(canon::StopSpindleTurning{});
+    } else {
+      emit(canon::SetSpindleSpeed{rpm});
+      if (s < 0)
+        emit(canon::StartSpindleClockwise{});
+      else
+        emit(canon::StartSpindleCounterclockwise{});
+    }
+  }
+  spindle_ = s;
 }
 
 void Interpreter::machine_functions(const Instance* functions) {
@@ -398,8 +411,8 @@ void Interpreter::motion(const std::vector<Segment>& segments, const Frame& fram
   bool selected_xy = true;
   for (const Segment& s : segments) {
     const Vec3 end = frame.point(s.end);
-    const auto axis =
-        s.tool_axis ? std::optional<Vec3>(frame.direction(*s.tool_axis)) : std::nullopt;
+    std::optional<Vec3> axis;
+    if (s.tool_axis) axis = frame.direction(*s.tool_axis);
     switch (s.kind) {
       case Segment::Kind::Line:
         if (rapid)
@@ -533,17 +546,99 @@ void Interpreter::workingstep(const Instance& ws) {
       machine_functions(ref(*operation, "its_machine_functions", "machine_functions"));
       const Instance* list = ref(*operation, "its_toolpath", "toolpath_list", true);
       if (list == nullptr) {
-        geometry_.error(diag::Code::StepncNotImplemented, ws,
-                        detail::describe(m_, ws) + ": " + detail::describe(m_, *operation) +
-                            (feature ? " on " + detail::describe(m_, *feature) : std::string()) +
-                            " has no explicit toolpath; generating toolpaths from features "
-                            "(conformance class 3) is not implemented yet");
+        generated(ws, *operation, feature, *tool_instance, frame);
       } else {
         toolpaths(list, frame, false);
       }
     }
   }
   emit(canon::End{canon::Scope::Workingstep, entity(ws)});
+}
+
+// A workingstep without explicit toolpaths (conformance class 3): the path is generated from the
+// feature (features/, docs/features.md) in the feature's coordinates and played like an
+// explicit one: the first rapid is the approach from the security plane.
+void Interpreter::generated(const Instance& ws, const Instance& operation, const Instance* feature,
+                            const Instance& tool_instance, const Frame& frame) {
+  features::Request request{&ws, &operation, feature, &tool_instance, feed_, spindle_};
+  const features::Path path = features::generate(geometry_, request, options_.features);
+  if (!path.ok) return;
+  const bool upright = std::abs(frame.z.z - 1) < 1e-9;
+  bool first = true;
+  for (const features::Move& mv : path.moves) {
+    switch (mv.kind) {
+      case features::Move::Kind::Rapid:
+        if (first)
+          approach(frame.point(mv.to), false);
+        else
+          emit(canon::StraightTraverse{flat_pose(frame.point(mv.to))});
+        position_ = frame.point(mv.to);
+        first = false;
+        break;
+      case features::Move::Kind::Feed:
+        emit(canon::StraightFeed{flat_pose(frame.point(mv.to))});
+        position_ = frame.point(mv.to);
+        break;
+      case features::Move::Kind::Arc: {
+        const Vec3 end = frame.point(mv.to);
+        const Vec3 centre = frame.point(mv.centre);
+        const Vec3 normal = frame.z;
+        emit(canon::ArcFeed{flat_pose(end),
+                            {centre.x, centre.y, centre.z},
+                            {normal.x, normal.y, normal.z},
+                            mv.turns});
+        position_ = end;
+        break;
+      }
+      case features::Move::Kind::FeedRate:
+        if (!feed_ || *feed_ != mv.value) emit(canon::SetFeedRate{mv.value});
+        feed_ = mv.value;
+        break;
+      case features::Move::Kind::Spindle:
+        spindle(mv.value);
+        break;
+      case features::Move::Kind::Dwell:
+        emit(canon::Dwell{mv.value});
+        break;
+      case features::Move::Kind::Cycle: {
+        if (!upright) {
+          geometry_.error(diag::Code::StepncFeatureNotImplemented, ws,
+                          detail::describe(m_, ws) +
+                              ": a hole cycle along an axis other than "
+                              "+Z (" +
+                              detail::describe(m_, *feature) + ") is not implemented");
+          return;
+        }
+        // Over the hole at the security plane (the cycle's initial level), then the cycle.
+        const Vec3 top = frame.point({mv.to.x, mv.to.y, mv.to.z});
+        const double safe = std::max(security_z_.value_or(top.z), top.z);
+        approach({top.x, top.y, safe}, false);
+        canon::Cycle c;
+        c.kind = mv.cycle == features::Move::CycleKind::Drill  ? canon::CycleKind::Drill
+                 : mv.cycle == features::Move::CycleKind::Peck ? canon::CycleKind::PeckDrill
+                 : mv.cycle == features::Move::CycleKind::Tap  ? canon::CycleKind::Tap
+                 : mv.cycle == features::Move::CycleKind::Bore ? canon::CycleKind::Bore
+                                                               : canon::CycleKind::Ream;
+        c.x = top.x;
+        c.y = top.y;
+        c.safe_z = safe;
+        c.r_z = top.z;
+        c.bottom_z = frame.point({mv.to.x, mv.to.y, mv.bottom}).z;
+        c.feed = mv.feed;
+        c.dwell = mv.dwell;
+        c.peck = mv.peck;
+        c.peck_retract = mv.peck_retract;
+        c.pitch = mv.pitch;
+        c.spindle_speed = mv.rpm;
+        c.left_hand = mv.left_hand;
+        c.spindle_stop = mv.spindle_stop;
+        emit(c);
+        position_ = Vec3{top.x, top.y, safe};
+        first = false;
+        break;
+      }
+    }
+  }
 }
 
 void Interpreter::rapid_movement(const Instance& rm) {

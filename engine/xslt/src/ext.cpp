@@ -1,8 +1,7 @@
 // The urn:ncpost:ext extension module: functions a profile calls from XPath, with state per
-// job. Registered once (initialise) with xsltRegisterExtModule; its init function runs once per
-// transform context and finds the job through ctxt->_private (set by transform()); the data it
-// returns is what xsltGetExtData(ctxt, URI) gives the functions. Reference and examples:
-// docs/xslt-extensions.md.
+// job. Registered once (initialise) with xsltRegisterExtModule. The functions find the job
+// through ctxt->_private, which transform() sets to its run (checked: the run names the
+// context). Reference and examples: docs/xslt-extensions.md.
 
 #include <libxml/xpath.h>
 #include <libxml/xpathInternals.h>
@@ -11,6 +10,8 @@
 #include <libxslt/variables.h>
 #include <libxslt/xsltutils.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <new>
@@ -50,16 +51,29 @@ void ext_shutdown(xsltTransformContextPtr, const xmlChar*, void* data) {
 constexpr std::size_t kMaxPieces = 100000;
 
 // One call of an extension function: pops its arguments, reports errors against the
-// stylesheet instruction, pushes exactly one result.
+// stylesheet instruction, pushes exactly one result. A profile calls these functions several
+// times per motion, so the common paths allocate nothing of their own: arguments sit in a
+// fixed array, the job is found through ctxt->_private (xsltGetExtData is a hash look-up per
+// call), numbers are read straight from a single attribute's text, strings are viewed in place.
 class Call {
  public:
+  static constexpr int kMaxArgs = 12;  // more than any function takes
+
   Call(xmlXPathParserContextPtr x, int nargs, const char* name, int min_args, int max_args)
       : x_(x), name_(name) {
-    for (int n = 0; n < nargs; ++n) args_.insert(args_.begin(), valuePop(x_));
+    for (int n = nargs - 1; n >= 0; --n) {
+      xmlXPathObjectPtr value = valuePop(x_);
+      if (n < kMaxArgs)
+        args_[static_cast<std::size_t>(n)] = value;
+      else
+        xmlXPathFreeObject(value);
+    }
+    count_ = static_cast<std::size_t>(std::clamp(nargs, 0, kMaxArgs));
     tctxt_ = xsltXPathGetTransformContext(x_);
     if (tctxt_ != nullptr) {
-      auto* data = static_cast<ExtData*>(xsltGetExtData(tctxt_, ns()));
-      if (data != nullptr && data->run != nullptr) run_ = data->run;
+      // transform() puts its run there; a context it did not start is not ours.
+      auto* run = static_cast<TransformRun*>(tctxt_->_private);
+      if (run != nullptr && run->ctxt == tctxt_) run_ = run;
     }
     if (run_ == nullptr) {
       fail("needs a transform started by ncpost::xslt::transform()");
@@ -71,28 +85,37 @@ class Call {
     }
   }
   ~Call() {
-    for (xmlXPathObjectPtr a : args_) xmlXPathFreeObject(a);
+    for (std::size_t n = 0; n < count_; ++n) xmlXPathFreeObject(args_[n]);
+    for (xmlChar* text : casts_)
+      if (text != nullptr) xmlFree(text);
     if (!pushed_) valuePush(x_, xmlXPathNewCString(""));
   }
   Call(const Call&) = delete;
   Call& operator=(const Call&) = delete;
 
   [[nodiscard]] bool ok() const noexcept { return !failed_; }
-  [[nodiscard]] std::size_t count() const noexcept { return args_.size(); }
+  [[nodiscard]] std::size_t count() const noexcept { return count_; }
   JobState& job() { return *run_->job; }
   const JobConfig& config() { return run_->job->config(); }
 
   double number(std::size_t n, const char* what) {
-    const double v = args_[n] != nullptr ? xmlXPathCastToNumber(args_[n]) : std::nan("");
+    const double v = to_number(args_[n]);
     if (!failed_ && !std::isfinite(v)) fail(std::string(what) + " is not a finite number");
     return v;
   }
-  std::string string(std::size_t n) {
-    if (args_[n] == nullptr) return {};
-    xmlChar* s = xmlXPathCastToString(args_[n]);
-    std::string out = s != nullptr ? reinterpret_cast<const char*>(s) : "";
-    xmlFree(s);
-    return out;
+  std::string string(std::size_t n) { return std::string(view(n)); }
+  // The string value of argument n, valid until the call ends.
+  std::string_view view(std::size_t n) {
+    xmlXPathObjectPtr a = args_[n];
+    if (a == nullptr) return {};
+    const xmlChar* text = nullptr;
+    if (a->type == XPATH_STRING) {
+      text = a->stringval;
+    } else {
+      if (casts_[n] == nullptr) casts_[n] = xmlXPathCastToString(a);
+      text = casts_[n];
+    }
+    return text != nullptr ? std::string_view(reinterpret_cast<const char*>(text)) : "";
   }
   [[nodiscard]] bool is_string(std::size_t n) const {
     return args_[n] != nullptr && args_[n]->type == XPATH_STRING;
@@ -116,6 +139,17 @@ class Call {
     if (pushed_) return;
     pushed_ = true;
     valuePush(x_, xmlXPathNewString(reinterpret_cast<const xmlChar*>(s.c_str())));
+  }
+  // Pushes argument n back as the result when it is a string already (no copy).
+  void push_argument(std::size_t n) {
+    if (pushed_) return;
+    if (!is_string(n)) {
+      push_string(std::string(view(n)));
+      return;
+    }
+    pushed_ = true;
+    valuePush(x_, args_[n]);
+    args_[n] = nullptr;
   }
   void push_number(double v) {
     if (pushed_) return;
@@ -145,9 +179,27 @@ class Call {
   }
 
  private:
+  // As xmlXPathCastToNumber, without its copy of the text when the argument is one attribute
+  // (a coordinate: @x), which is what profiles pass almost always.
+  static double to_number(xmlXPathObjectPtr a) {
+    if (a == nullptr) return std::nan("");
+    if (a->type == XPATH_NUMBER) return a->floatval;
+    if (a->type == XPATH_NODESET && a->nodesetval != nullptr && a->nodesetval->nodeNr == 1) {
+      const xmlNode* node = a->nodesetval->nodeTab[0];
+      if (node != nullptr && node->type == XML_ATTRIBUTE_NODE && node->children != nullptr &&
+          node->children->next == nullptr && node->children->type == XML_TEXT_NODE &&
+          node->children->content != nullptr) {
+        return xmlXPathStringEvalNumber(node->children->content);
+      }
+    }
+    return xmlXPathCastToNumber(a);
+  }
+
   xmlXPathParserContextPtr x_;
   const char* name_;
-  std::vector<xmlXPathObjectPtr> args_;
+  std::array<xmlXPathObjectPtr, kMaxArgs> args_{};
+  std::size_t count_ = 0;
+  std::array<xmlChar*, kMaxArgs> casts_{};  // string values of non-string arguments
   xsltTransformContextPtr tctxt_ = nullptr;
   TransformRun* run_ = nullptr;
   bool failed_ = false;
@@ -209,7 +261,7 @@ double output_unit_mm(const JobConfig& config) {
 void fn_format(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "format", 2, 2);
   if (!call.ok()) return;
-  const std::string quantity = call.string(1);
+  const std::string_view quantity = call.view(1);
   const JobConfig& config = call.config();
   const NumberFormat* format = nullptr;
   double scale = 1.0;
@@ -226,7 +278,8 @@ void fn_format(xmlXPathParserContextPtr x, int nargs) {
   } else if (quantity == "dwell") {
     format = &config.dwell;
   } else {
-    call.fail("unknown quantity '" + quantity + "' (length, angle, feed, speed or dwell)");
+    call.fail("unknown quantity '" + std::string(quantity) +
+              "' (length, angle, feed, speed or dwell)");
     return;
   }
   const double value = call.number(0, "the value");
@@ -248,7 +301,7 @@ void fn_units(xmlXPathParserContextPtr x, int nargs) {
 void fn_program_units(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "program-units", 1, 1);
   if (!call.ok()) return;
-  const std::string units = call.string(0);
+  const std::string_view units = call.view(0);
   double mm = 0;
   if (units == "mm")
     mm = 1.0;
@@ -257,7 +310,8 @@ void fn_program_units(xmlXPathParserContextPtr x, int nargs) {
   else if (units == "cm")
     mm = 10.0;
   if (mm == 0) {
-    call.fail("unknown units '" + units + "' (mm, inch or cm, as USE_LENGTH_UNITS/@units)");
+    call.fail("unknown units '" + std::string(units) +
+              "' (mm, inch or cm, as USE_LENGTH_UNITS/@units)");
     return;
   }
   Access::program_unit_mm(call.job()) = mm;
@@ -269,8 +323,8 @@ void fn_program_units(xmlXPathParserContextPtr x, int nargs) {
 void fn_modal(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "modal", 2, 2);
   if (!call.ok()) return;
-  std::string group = call.string(0);
-  std::string word = call.string(1);
+  const std::string_view group = call.view(0);
+  const std::string_view word = call.view(1);
   auto& modal = Access::modal(call.job());
   const auto found = modal.find(group);
   if (found != modal.end()) {
@@ -284,9 +338,9 @@ void fn_modal(xmlXPathParserContextPtr x, int nargs) {
       call.fail("more than " + std::to_string(call.config().max_modal_groups) + " modal groups");
       return;
     }
-    modal.emplace(std::move(group), word);
+    modal.emplace(std::string(group), std::string(word));
   }
-  call.push_string(word);
+  call.push_argument(1);
 }
 
 void fn_modal_reset(xmlXPathParserContextPtr x, int nargs) {
@@ -317,9 +371,9 @@ void fn_moved_to(xmlXPathParserContextPtr x, int nargs) {
 void fn_position(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "position", 1, 1);
   if (!call.ok()) return;
-  const std::string axis = call.string(0);
+  const std::string_view axis = call.view(0);
   if (axis != "x" && axis != "y" && axis != "z") {
-    call.fail("axis '" + axis + "' is not x, y or z");
+    call.fail("axis '" + std::string(axis) + "' is not x, y or z");
     return;
   }
   if (!Access::has_position(call.job())) {
@@ -547,17 +601,17 @@ void fn_comment(xmlXPathParserContextPtr x, int nargs) {
 void fn_line(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "line", 1, 1);
   if (!call.ok()) return;
-  std::string text = call.string(0);
+  const std::string_view text = call.view(0);
   const std::size_t limit = call.config().max_line_length;
   if (limit != 0) {
     const std::size_t length = characters(text);
     if (length > limit) {
-      call.warn(diag::Code::XsltLineTooLong, "block of " + std::to_string(length) +
-                                                 " characters; the controller takes " +
-                                                 std::to_string(limit) + ": " + text.substr(0, 80));
+      call.warn(diag::Code::XsltLineTooLong,
+                "block of " + std::to_string(length) + " characters; the controller takes " +
+                    std::to_string(limit) + ": " + std::string(text.substr(0, 80)));
     }
   }
-  call.push_string(text);
+  call.push_argument(0);
 }
 
 // No C++ exception may cross libxml2's C frames: an allocation failure inside a function

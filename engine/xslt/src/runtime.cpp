@@ -17,6 +17,7 @@
 #include <libxslt/xsltutils.h>
 #include <malloc.h>
 
+#include <array>
 #include <atomic>
 #include <cstdarg>
 #include <cstdio>
@@ -64,33 +65,105 @@ void trip(Budget& b, Budget::Trip why) noexcept {
   }
 }
 
-void account_alloc(Budget& b, void* p) noexcept {
-  b.live += malloc_usable_size(p);
+void account_alloc(Budget& b, std::size_t usable) noexcept {
+  b.live += usable;
   if (b.live > b.peak) b.peak = b.live;
   if (b.max_bytes != 0 && b.live > b.max_bytes) trip(b, Budget::Trip::Memory);
-  if (b.has_deadline && (++b.ticks & 31u) == 0 && std::chrono::steady_clock::now() > b.deadline) {
+  if (b.has_deadline && (++b.ticks & 255u) == 0 && std::chrono::steady_clock::now() > b.deadline) {
     trip(b, Budget::Trip::Time);
   }
 }
 
-void account_free(Budget& b, void* p) noexcept {
-  const std::size_t size = malloc_usable_size(p);
-  b.live = size > b.live ? 0 : b.live - size;
+void account_free(Budget& b, std::size_t usable) noexcept {
+  b.live = usable > b.live ? 0 : b.live - usable;
 }
 
+// A per-thread cache of freed small blocks, by glibc's size classes. A transform allocates and
+// frees hundreds of small objects per motion (nodes, XPath objects, strings) in bursts larger
+// than glibc's own per-thread cache (7 blocks per size), so most of them went through glibc's
+// slower paths: about a quarter of a transform's instructions. Blocks stay glibc blocks (any
+// thread may free or realloc them), a block handed out has exactly the usable size glibc would
+// give for the request (so the accounting is unchanged), and the cache is bounded. Off under
+// AddressSanitizer, which must see every free.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kBlockCache = false;
+#else
+constexpr bool kBlockCache = true;
+#endif
+
+class BlockCache {
+ public:
+  BlockCache() = default;
+  BlockCache(const BlockCache&) = delete;
+  BlockCache& operator=(const BlockCache&) = delete;
+  ~BlockCache() {
+    for (Node*& head : heads_) {
+      while (head != nullptr) {
+        Node* n = head;
+        head = n->next;
+        std::free(n);
+      }
+    }
+    bytes_ = kMaxBytes;  // a free after this (another thread_local's destructor) goes to glibc
+  }
+
+  // A cached block for a request of `size` bytes, with its usable size; null if none.
+  void* take(std::size_t size, std::size_t& usable) noexcept {
+    const std::size_t c = size <= kMinUsable ? 0 : (size - kMinUsable + kStep - 1) / kStep;
+    if (c >= kClasses || heads_[c] == nullptr) return nullptr;
+    Node* n = heads_[c];
+    heads_[c] = n->next;
+    usable = kMinUsable + c * kStep;
+    bytes_ -= usable;
+    return n;
+  }
+  // Keeps a block being freed, if it is small and the cache has room.
+  bool keep(void* p, std::size_t usable) noexcept {
+    if (usable < kMinUsable || (usable - kMinUsable) % kStep != 0) return false;
+    const std::size_t c = (usable - kMinUsable) / kStep;
+    if (c >= kClasses || bytes_ + usable > kMaxBytes) return false;
+    auto* n = static_cast<Node*>(p);
+    n->next = heads_[c];
+    heads_[c] = n;
+    bytes_ += usable;
+    return true;
+  }
+
+ private:
+  struct Node {
+    Node* next;
+  };
+  // glibc (64-bit): chunks of 32, 48, 64, ... bytes, usable 8 bytes less.
+  static constexpr std::size_t kMinUsable = 24;
+  static constexpr std::size_t kStep = 16;
+  static constexpr std::size_t kClasses = 32;                       // usable sizes up to 520 bytes
+  static constexpr std::size_t kMaxBytes = std::size_t{256} << 10;  // per thread
+  std::array<Node*, kClasses> heads_{};
+  std::size_t bytes_ = 0;
+};
+
+thread_local BlockCache t_blocks;
+
 void* counting_malloc(std::size_t size) {
-  void* p = std::malloc(size);
-  if (p != nullptr && t_budget != nullptr) account_alloc(*t_budget, p);
+  std::size_t usable = 0;
+  void* p = kBlockCache ? t_blocks.take(size, usable) : nullptr;
+  if (p == nullptr) {
+    p = std::malloc(size);
+    if (p == nullptr) return nullptr;
+    if (t_budget == nullptr) return p;
+    usable = malloc_usable_size(p);
+  }
+  if (t_budget != nullptr) account_alloc(*t_budget, usable);
   return p;
 }
 
 void* counting_realloc(void* old, std::size_t size) {
   Budget* b = t_budget;
-  if (b != nullptr && old != nullptr) account_free(*b, old);
+  if (b != nullptr && old != nullptr) account_free(*b, malloc_usable_size(old));
   void* p = std::realloc(old, size);
   if (b != nullptr) {
     if (p != nullptr) {
-      account_alloc(*b, p);
+      account_alloc(*b, malloc_usable_size(p));
     } else if (old != nullptr) {
       b->live += malloc_usable_size(old);  // the old block is still there
     }
@@ -99,8 +172,14 @@ void* counting_realloc(void* old, std::size_t size) {
 }
 
 void counting_free(void* p) {
-  if (p != nullptr && t_budget != nullptr) account_free(*t_budget, p);
-  std::free(p);
+  if (p == nullptr) return;
+  if (!kBlockCache && t_budget == nullptr) {
+    std::free(p);
+    return;
+  }
+  const std::size_t usable = malloc_usable_size(p);
+  if (t_budget != nullptr) account_free(*t_budget, usable);
+  if (!kBlockCache || !t_blocks.keep(p, usable)) std::free(p);
 }
 
 char* counting_strdup(const char* s) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "corpus.hpp"
@@ -87,15 +88,23 @@ std::vector<canon::Call> cycle_program() {
 
 void expect_chunked_equals_whole(const profile::LoadedProfile& p,
                                  const std::vector<canon::Call>& calls) {
-  std::vector<xslt::FileDiagnostic> d1, d2, d3;
+  std::vector<xslt::FileDiagnostic> d1, d2, d3, d4, d5, d6;
   const std::string chunked = render_program(p, calls, d1);
   const std::string whole = render_program(p, calls, d2, RenderOptions{{}, true});
   // Tiny chunks: long workingsteps split and reopened (continued="true").
   const std::string tiny = render_program(p, calls, d3, RenderOptions{{3}, false});
+  // Without batching (one transform per chunk), and with batches of a few chunks each (the
+  // default batches these small programs into two transforms).
+  const std::string unbatched = render_program(p, calls, d4, RenderOptions{{}, false, 0});
+  const std::string tiny_unbatched = render_program(p, calls, d5, RenderOptions{{3}, false, 0});
+  const std::string small_batches = render_program(p, calls, d6, RenderOptions{{3}, false, 600});
   EXPECT_FALSE(xslt::has_errors(d1)) << (d1.empty() ? "" : xslt::format(d1[0]));
   EXPECT_FALSE(chunked.empty());
   EXPECT_EQ(chunked, whole);
   EXPECT_EQ(chunked, tiny);
+  EXPECT_EQ(chunked, unbatched);
+  EXPECT_EQ(chunked, tiny_unbatched);
+  EXPECT_EQ(chunked, small_batches);
 }
 
 TEST_F(RenderTest, ChunkedEqualsWholeProgram) {
@@ -237,6 +246,52 @@ TEST_F(RenderTest, LimitViolationNamesTheWorkingstep) {
   const std::string partial = render_program(p, calls, e);
   EXPECT_TRUE(xslt::has_errors(e));
   EXPECT_EQ(partial.find("G1 X10."), std::string::npos);
+}
+
+// A failure inside a batch of chunks: the batch is rendered again chunk by chunk, so the text
+// before the failing chunk and the diagnostics are those of rendering without batching.
+TEST_F(RenderTest, FailureInABatchEndsWhereUnbatchedDoes) {
+  using namespace canon;
+  std::vector<Call> calls;
+  calls.emplace_back(Begin{Scope::Project, entity(1, "PROJECT", "BATCH")});
+  calls.emplace_back(UseLengthUnits{Units::Millimetres});
+  for (std::uint64_t ws = 10; ws < 16; ++ws) {
+    calls.emplace_back(Begin{Scope::Workingstep, entity(ws, "MACHINING_WORKINGSTEP", "WS")});
+    calls.emplace_back(StraightTraverse{{0, 0, 10}});
+    calls.emplace_back(StraightFeed{{static_cast<double>(ws), 0, 0}});
+    if (ws == 13)  // in a tilted plane: no G2/G3 form, the stylesheet stops
+      calls.emplace_back(ArcFeed{{1, 1, 0}, {0.5, 0.5, 0}, {0.6, 0, 0.8}, 1});
+    calls.emplace_back(End{Scope::Workingstep, entity(ws, "MACHINING_WORKINGSTEP", "WS")});
+  }
+  calls.emplace_back(ProgramEnd{});
+  calls.emplace_back(End{Scope::Project, entity(1, "PROJECT", "BATCH")});
+  auto p = builtin("linuxcnc");
+  ASSERT_TRUE(p);
+  std::vector<xslt::FileDiagnostic> batched_d, unbatched_d;
+  const std::string batched = render_program(*p, calls, batched_d);
+  const std::string unbatched = render_program(*p, calls, unbatched_d, RenderOptions{{}, false, 0});
+  EXPECT_TRUE(xslt::has_errors(batched_d));
+  EXPECT_NE(batched.find("G1 X12."), std::string::npos) << batched;
+  EXPECT_EQ(batched.find("G1 X13."), std::string::npos) << batched;
+  EXPECT_EQ(batched, unbatched);
+  ASSERT_EQ(batched_d.size(), unbatched_d.size());
+  for (std::size_t i = 0; i < batched_d.size(); ++i)
+    EXPECT_EQ(xslt::format(batched_d[i]), xslt::format(unbatched_d[i]));
+
+  // An error found before the transform (a limit) ends the output where it did too.
+  profile::LoadedProfile limited = *p;
+  limited.profile.limits.x = profile::Range{-1, 12.5};
+  limited.profile.limits.severity = diag::Severity::Error;
+  calls.erase(std::remove_if(calls.begin(), calls.end(),
+                             [](const Call& c) { return std::holds_alternative<ArcFeed>(c); }),
+              calls.end());
+  std::vector<xslt::FileDiagnostic> e1, e2;
+  const std::string batched_limit = render_program(limited, calls, e1);
+  const std::string unbatched_limit =
+      render_program(limited, calls, e2, RenderOptions{{}, false, 0});
+  EXPECT_TRUE(xslt::has_errors(e1));
+  EXPECT_NE(batched_limit.find("G1 X12."), std::string::npos) << batched_limit;
+  EXPECT_EQ(batched_limit, unbatched_limit);
 }
 
 TEST_F(RenderTest, CrLfLineEndings) {

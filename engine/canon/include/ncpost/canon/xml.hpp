@@ -38,14 +38,27 @@ void append_xml_number(std::string& out, double value);
 // Writes chunks one by one. It remembers one thing between chunks: a workingstep split over
 // several chunks (ChunkLimits::max_calls) is closed at the end of each and reopened, with
 // continued="true", at the start of the next, so every chunk stays well-formed on its own.
+//
+// The same element can also be written piece by piece, open() + append()... + close(): the
+// calls of several consecutive chunks then form one `<chunk>`, byte for byte what
+// append_chunk() writes for one chunk holding all of them. The renderer uses this to run one
+// transform over a batch of chunks. The writer is a small value: copy it to remember its state
+// (the renderer does, to re-render a failed batch chunk by chunk).
 class XmlChunkWriter {
  public:
   // Appends `<chunk seq="N">\n ... </chunk>\n`.
   void append_chunk(std::string& out, const ChunkView& chunk);
 
+  // Starts `<chunk seq="N">`; reopens a workingstep left open by the previous chunk.
+  void open(std::string& out, std::uint64_t seq);
+  // Appends the calls, inside the element that open() started.
+  void append(std::string& out, std::span<const Call> calls);
+  // Closes an open workingstep (remembered for the next chunk) and the element.
+  void close(std::string& out);
+
  private:
-  void append_calls(std::string& out, std::span<const Call> calls);
   std::optional<Entity> open_workingstep_;
+  bool open_here_ = false;  // a <workingstep> element is open in the current chunk
 };
 
 // A ChunkSink that hands the XML text of each chunk to a callback (for rendering chunk by

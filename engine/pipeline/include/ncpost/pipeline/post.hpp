@@ -38,10 +38,11 @@ struct PostResult {
   std::chrono::nanoseconds interpret_and_render{0};
 };
 
-// Interprets `loaded` (which must be ok()) and renders it with `profile`. The interpreter stops
-// at the first error. When the job fails or is cancelled after text went out, the last piece
-// is the profile's error marker (profile.error_marker), so that a partial program never looks
-// complete to the controller or to the operator.
+// Interprets `loaded` (which must be ok()) and renders it with `profile`; a raw-mode profile
+// (profile::Mode::Raw) instead transforms the model as one P28 document (render/raw.hpp). The
+// interpreter stops at the first error. When the job fails or is cancelled after text went out, the
+// last piece is the profile's error marker (profile.error_marker), so that a partial program never
+// looks complete to the controller or to the operator.
 [[nodiscard]] PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile,
                               const render::TextSink& out, const PostOptions& options = {});
 

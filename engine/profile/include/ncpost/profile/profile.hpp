@@ -4,6 +4,7 @@
 // ProfileStore). docs/profiles.md describes every field.
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -22,6 +23,9 @@ namespace ncpost::profile {
 enum class Arcs : std::uint8_t { Ijk, R, None };
 enum class CannedCycles : std::uint8_t { Native, Expand };
 enum class NurbsMode : std::uint8_t { Native, Linearize };
+// Canonical: the stylesheet renders chunks of the canonical program (docs/render.md). Raw: it
+// consumes the whole model as one late-bound P28 document, in one transform (render/raw.hpp).
+enum class Mode : std::uint8_t { Canonical, Raw };
 
 struct Range {
   double min = 0;
@@ -41,6 +45,7 @@ struct Profile {
   std::string id;
   std::string name;
   std::string controller;  // controller family: "linuxcnc", "fanuc", ...
+  Mode mode = Mode::Canonical;
   // output
   std::string extension = ".nc";
   std::string mime_type = "text/plain";
@@ -76,40 +81,116 @@ struct Profile {
 [[nodiscard]] xslt::JobConfig job_config(const Profile& profile);
 
 // A profile ready to render: validated data and its compiled stylesheet (shared, read-only).
+// A job keeps its shared_ptr for its whole run, so a profile replaced meanwhile does not change
+// under it.
 struct LoadedProfile {
   Profile profile;
+  // The folder the files were read from: for an uploaded profile the version's own folder
+  // (DIR/.<id>.<hash>), which is removed when a later version replaces it.
   std::filesystem::path directory;
   std::shared_ptr<const xslt::CompiledStylesheet> stylesheet;
+  // SHA-256 (hex) of profile.json, post.xsl and every stylesheet it imports, in import order:
+  // changes whenever the output of the profile can change (part of the server's ETag).
+  std::string version;
+  std::string json;        // profile.json as stored (what GET /v1/profiles/{id} returns)
+  bool read_only = false;  // a built-in profile of a store's fallback, or of a read-only store
 };
 
 struct ProfileSummary {
   std::string id;
   std::string name;
   std::string controller;
+  bool read_only =
+      false;  // from the read-only layer (the built-ins): PUT overrides, DELETE refuses
 };
 
 // The built-in profile directory (${PROJECT_SOURCE_DIR}/stylesheets, compiled in).
 [[nodiscard]] std::filesystem::path builtin_directory();
 
-// Profiles in a directory: every sub-folder with a profile.json (except common/). Loading
-// compiles post.xsl once (imports allowed from the profile's folder and <dir>/common/) and
-// caches the result; later loads of the same id return the cached profile. Thread-safe.
+struct StoreOptions {
+  // put() and remove() are allowed (ncpostd --profiles DIR). Otherwise they refuse
+  // (PutResult diagnostics PROFILE-006, RemoveOutcome::ReadOnly).
+  bool writable = false;
+  // A read-only directory behind the main one (ncpostd: the built-ins), for ids the main one
+  // does not have. Its profiles import from its own common/.
+  std::optional<std::filesystem::path> fallback;
+};
+
+struct PutResult {
+  std::shared_ptr<const LoadedProfile> profile;   // the new active version; null when rejected
+  std::vector<xslt::FileDiagnostic> diagnostics;  // why it was rejected; warnings otherwise
+  bool created = false;  // no profile with this id was visible before (HTTP 201, else 200)
+};
+
+enum class RemoveOutcome : std::uint8_t {
+  Removed,   // gone from the writable directory (a built-in of the same id shows again)
+  NotFound,  // no such id (or not a valid id)
+  ReadOnly,  // a built-in only, or the store is not writable
+};
+
+struct CacheStats {
+  std::uint64_t hits = 0;    // load() answered from the compiled-stylesheet cache
+  std::uint64_t misses = 0;  // load() had to read and compile
+};
+
+// Profiles in a directory: every sub-folder with a profile.json (except common/ and hidden
+// names). Loading compiles post.xsl once (imports allowed from the profile's folder and
+// <dir>/common/) and caches the result; later loads of the same id return the cached profile
+// until reload() finds its files changed. Thread-safe.
+//
+// A writable store keeps each uploaded version in its own folder DIR/.<id>.<hash>/ and makes
+// DIR/<id> a symbolic link to it, swapped with one rename(2): both files change together, and
+// a crash at any moment leaves the old or the new version (docs/profile-admin.md).
 class ProfileStore {
  public:
-  explicit ProfileStore(std::filesystem::path directory = builtin_directory());
+  explicit ProfileStore(std::filesystem::path directory = builtin_directory(),
+                        StoreOptions options = {});
 
   [[nodiscard]] const std::filesystem::path& directory() const noexcept { return directory_; }
-  // Sorted by id; folders whose profile.json does not parse are reported and left out.
+  [[nodiscard]] bool writable() const noexcept { return options_.writable; }
+  // Sorted by id, both layers (the main directory shadows the fallback); folders whose
+  // profile.json does not parse are reported and left out.
   [[nodiscard]] std::vector<ProfileSummary> list(
       std::vector<xslt::FileDiagnostic>& diagnostics) const;
   // Null with diagnostics (PROFILE-00x, XSLT-0xx) when the profile is unknown or broken.
   [[nodiscard]] std::shared_ptr<const LoadedProfile> load(
       std::string_view id, std::vector<xslt::FileDiagnostic>& diagnostics);
 
+  // Validates and activates a new version of profile `id`: the id, profile.json against the
+  // schema (its "id" must equal `id`), then post.xsl must compile with the same security as a
+  // built-in (imports only from its own folder and common/). On any failure nothing changes
+  // and the previous version stays active. Diagnostics name the files "profile.json" and
+  // "post.xsl" (never the server's paths). Writers are serialised.
+  [[nodiscard]] PutResult put(std::string_view id, std::string_view profile_json,
+                              std::string_view stylesheet);
+  [[nodiscard]] RemoveOutcome remove(std::string_view id);
+
+  // Drops every cached profile whose files changed on disk (or disappeared); the next load()
+  // reads them again. Cheap (stat only): call it on SIGHUP or from a timer.
+  void reload();
+  // Whether reload() would drop anything, or a profile folder was added or removed, since the
+  // last reload() (or construction). Stat only; for a polling loop.
+  [[nodiscard]] bool changed_since_last_scan() const;
+
+  [[nodiscard]] CacheStats cache_stats() const noexcept;
+
  private:
+  struct Entry;
+  struct Layer {
+    std::filesystem::path directory;
+    bool read_only = true;
+  };
+  [[nodiscard]] std::optional<Layer> find_layer(std::string_view id) const;
+  [[nodiscard]] std::string scan_signature() const;
+
   std::filesystem::path directory_;
-  std::mutex mutex_;
-  std::map<std::string, std::shared_ptr<const LoadedProfile>, std::less<>> cache_;
+  StoreOptions options_;
+  mutable std::mutex mutex_;  // cache_ and signature_
+  std::map<std::string, std::shared_ptr<const Entry>, std::less<>> cache_;
+  std::string signature_;   // of the folder listings at the last reload()
+  std::mutex write_mutex_;  // one put()/remove() at a time
+  std::atomic<std::uint64_t> hits_{0};
+  std::atomic<std::uint64_t> misses_{0};
 };
 
 // A profile id is a folder name: [a-z0-9][a-z0-9._-]*, at most 64 characters.

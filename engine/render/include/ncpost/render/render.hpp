@@ -1,12 +1,15 @@
 #pragma once
 // The render stage: canonical calls → (cycle expansion, NURBS linearisation, limit checks) →
-// chunks (canon::Chunker) → each chunk's XML → the profile's stylesheet with one JobState for
-// the whole program → controller text, appended to `out` as each chunk is ready.
-// docs/render.md.
+// chunks (canon::Chunker) → batches of chunks as one XML <chunk> → the profile's stylesheet
+// with one JobState for the whole program → controller text, appended to `out` as each batch
+// is rendered (the program's first chunk at once). docs/render.md.
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,6 +37,15 @@ struct RenderOptions {
   // Render the whole program as one chunk (one transform) instead of chunk by chunk: for tests
   // that check chunked output is byte-identical; memory then grows with the program.
   bool single_chunk = false;
+  // Batching (docs/render.md): consecutive chunks go through one transform, as one <chunk>,
+  // until their XML reaches `batch_bytes`; checked after each chunk, so a batch holds at most
+  // one chunk beyond it. Per-transform costs (parsing set-up, transform context, extension
+  // set-up) are then paid per batch, not per workingstep. 0: one transform per chunk.
+  // The program's first chunk always goes alone, so the first text leaves at once.
+  std::size_t batch_bytes = std::size_t{64} << 10;
+  // A batch is also rendered at the first chunk boundary after it has been open this long, so
+  // text keeps flowing while a slow interpretation fills it. 0: no time limit.
+  std::chrono::milliseconds batch_delay{50};
 };
 
 class Renderer final : public canon::Sink {
@@ -65,6 +77,9 @@ class Renderer final : public canon::Sink {
   void check_point(double x, double y, double z, const canon::Call& call);
   void report(diag::Code code, diag::Severity severity, std::string message);
   void render_chunk(const canon::ChunkView& chunk);
+  void transform_chunk(const canon::ChunkView& chunk);
+  void render_batch();
+  void emit(std::string& text);
   [[nodiscard]] std::string where(const canon::Call& call) const;
 
   const profile::LoadedProfile& profile_;
@@ -83,6 +98,18 @@ class Renderer final : public canon::Sink {
   std::size_t limit_reports_ = 0;
   bool single_chunk_ = false;
   std::vector<canon::Call> whole_;
+  // The batch being gathered: its XML (in xml_, an open <chunk>), its calls and chunk ends
+  // (to re-render it chunk by chunk if it fails), and the state at its start.
+  std::size_t batch_bytes_ = 0;
+  std::chrono::milliseconds batch_delay_{0};
+  std::vector<canon::Call> batch_calls_;
+  std::vector<std::pair<std::uint64_t, std::size_t>> batch_chunks_;  // seq, end in batch_calls_
+  xslt::JobState batch_job_;
+  canon::XmlChunkWriter batch_writer_;
+  std::int32_t batch_tool_ = 0;
+  std::chrono::steady_clock::time_point batch_started_{};
+  bool first_rendered_ = false;
+  bool in_batch_ = false;  // render_batch() is running
   bool failed_ = false;
   bool started_ = false;
   bool finished_ = false;

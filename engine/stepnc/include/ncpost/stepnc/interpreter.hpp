@@ -23,6 +23,7 @@
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/p21/model.hpp"
 #include "ncpost/stepnc/attributes.hpp"
+#include "ncpost/stepnc/features.hpp"
 
 namespace ncpost::stepnc {
 
@@ -56,6 +57,8 @@ struct InterpretOptions {
   // Checked before each executable: a cancelled job (its client went away, or it ran out of
   // time) stops there, without the program's end sequence. Null: never cancelled.
   const std::atomic<bool>* cancel = nullptr;
+  // Toolpath generation for workingsteps without explicit toolpaths (docs/features.md).
+  FeatureOptions features{};
 };
 
 struct InterpretResult {

@@ -1,0 +1,29 @@
+#pragma once
+// Toolpath generation from ISO 14649 features (conformance class 3): the knobs the standard
+// leaves to the NC. A workingstep whose operation has no explicit toolpath gets its motion
+// generated from the feature, the operation, its strategy and the tool (docs/features.md);
+// anything the generator cannot do is a diagnostic naming the instances, never a guessed path.
+
+#include <cstddef>
+
+namespace ncpost::stepnc {
+
+struct FeatureOptions {
+  // Height (mm) above the feature's top where rapid approaches end and feeding starts when the
+  // operation has no retract_plane.
+  double clearance = 2.0;
+  // How far (mm) a drill's full diameter goes past the bottom of a through hole.
+  double through_clearance = 1.0;
+  // Planar faces: how far (as a multiple of the tool radius) each pass runs past the face's
+  // ends, so that the tool enters and leaves outside the material.
+  double overtravel = 1.5;
+  // Helical entry when the operation names no approach: helix radius as a share of the tool
+  // radius, and its descent angle (degrees), as NIST's ex1E does.
+  double default_helix_radius = 0.8;
+  double default_helix_angle = 10.0;
+  // A workingstep whose generated path would need more motions than this is refused
+  // (STEPNC-103): a hostile stepover or depth must not exhaust memory.
+  std::size_t max_moves = 1'000'000;
+};
+
+}  // namespace ncpost::stepnc

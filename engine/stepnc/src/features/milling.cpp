@@ -1,0 +1,779 @@
+// PLANAR_FACE (plane milling) and CLOSED_POCKET (bottom-and-side milling): equal depth levels,
+// each machined by the strategy's pattern; see docs/features.md for every decision and the
+// comparison with NIST's explicit toolpaths for the same part.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "context.hpp"
+#include "shapes.hpp"
+
+namespace ncpost::stepnc::features {
+namespace {
+
+constexpr double kEps = 1e-9;
+// With no overlap in the strategy: half the diameter between neighbouring passes.
+constexpr double kDefaultOverlap = 0.5;
+// Rings with sharp corners leave a cusp at each corner unless the step between them is at most
+// (2 - √2)⁻¹ · R ≈ 1.707 R; a little less keeps the cusp inside the tool.
+constexpr double kSharpCornerStep = 1.7;
+
+double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
+
+// Stepover from the strategy's overlap (ISO 14649-11: the share of the tool diameter that
+// neighbouring passes have in common) and the operation's radial depth, whichever is smaller.
+double stepover(Context& ctx, const Tool& tool, const OperationData& o, double& overlap) {
+  overlap = kDefaultOverlap;
+  if (o.strategy != nullptr) {
+    if (auto v = ctx.number(*o.strategy, "overlap")) overlap = *v;
+  }
+  double step = 2 * tool.radius * (1 - overlap);
+  if (o.radial && *o.radial > 0) step = std::min(step, *o.radial);
+  return step;
+}
+
+bool check_overlap(Context& ctx, const OperationData& o, double overlap) {
+  if (overlap >= 0 && overlap < 1) return true;
+  return ctx.bad(o.strategy ? *o.strategy : ctx.op(), ctx.d(o.strategy ? *o.strategy : ctx.op()) +
+                                                          " overlap " + std::to_string(overlap) +
+                                                          " is not in [0, 1)");
+}
+
+// The cutting edge must take the deepest level step (the wall height cut at once).
+bool check_edge(Context& ctx, const Tool& tool, const std::vector<double>& z) {
+  double deepest = -z.front();
+  for (std::size_t i = 1; i < z.size(); ++i) deepest = std::max(deepest, z[i - 1] - z[i]);
+  if (!tool.edge_length || *tool.edge_length + kEps >= deepest) return true;
+  return ctx.unfit(*tool.instance, ctx.d(*tool.instance) + " cutting edge length " +
+                                       fmt(*tool.edge_length) + " is shorter than the " +
+                                       fmt(deepest) + " axial depth per level that " +
+                                       ctx.d(ctx.op()) + " needs on " + ctx.d(ctx.feature()));
+}
+
+// Axial levels; allow_multiple_passes .F. asks for the whole depth at once.
+std::optional<std::vector<double>> depth_levels(Context& ctx, const OperationData& o,
+                                                double depth) {
+  bool multiple = true;
+  if (o.strategy != nullptr)
+    multiple = ctx.boolean(*o.strategy, "allow_multiple_passes").value_or(true);
+  if (!multiple && o.axial && *o.axial + kEps < depth) {
+    ctx.unfit(*o.strategy, ctx.d(*o.strategy) + " forbids multiple passes, but " + ctx.d(ctx.op()) +
+                               " cuts at most " + fmt(*o.axial) + " deep and " +
+                               ctx.d(ctx.feature()) + " is " + fmt(depth) + " deep");
+    return std::nullopt;
+  }
+  if (multiple && o.axial && *o.axial > 0 &&
+      depth / *o.axial > static_cast<double>(ctx.opt.max_moves)) {
+    ctx.limit_reached();
+    return std::nullopt;
+  }
+  return levels(depth, multiple ? o.axial : std::nullopt);
+}
+
+}  // namespace
+
+// ---- PLANAR_FACE ------------------------------------------------------------------------------
+
+bool generate_face(Context& ctx) {
+  const Instance& f = ctx.feature();
+  if (!ctx.is(&ctx.op(), "plane_milling"))
+    return ctx.not_implemented(ctx.d(ctx.op()) + " on " + ctx.d(f) +
+                               " (a planar face takes plane rough or finish milling)");
+  if (ctx.set(f, "face_boundary")) return ctx.not_implemented(ctx.d(f) + " with a face_boundary");
+  if (const auto bosses = ctx.g.get(f, "its_boss"); bosses && bosses->is_list() && bosses->count())
+    return ctx.not_implemented(ctx.d(f) + " with bosses");
+  const Instance* travel = ctx.ref(f, "course_of_travel", "linear_path");
+  const Instance* removal = ctx.ref(f, "removal_boundary", "linear_profile");
+  if (travel == nullptr || removal == nullptr)
+    return ctx.bad(f, ctx.d(f) + " needs a course_of_travel and a removal_boundary");
+  if (ctx.set(*travel, "placement") || ctx.set(*removal, "placement"))
+    return ctx.not_implemented(ctx.d(f) + " with a placed course_of_travel or removal_boundary");
+  const auto length = ctx.toleranced(*travel, "distance");
+  const auto along = ctx.direction(*travel, "its_direction");
+  const Instance* width_parameter = ctx.ref(*removal, "profile_length", "numeric_parameter");
+  const double width =
+      width_parameter ? ctx.number(*width_parameter, "its_parameter_value").value_or(0) : 0;
+  if (!length || !along || !(length->size > 0) || !(width > 0) || std::abs(along->z) > kEps)
+    return ctx.bad(f, ctx.d(f) +
+                          " needs a positive travel distance and profile length, and a "
+                          "course of travel in its plane");
+  const auto depth = ctx.depth();
+  const auto tool = ctx.tool();
+  if (!depth || !tool) return false;
+  const OperationData o = ctx.operation();
+
+  // Strategy: bidirectional unless it says otherwise.
+  bool bidirectional = true;
+  std::optional<Vec3> feed_dir;
+  bool left = true;
+  if (o.strategy != nullptr) {
+    if (ctx.is(o.strategy, "bidirectional_milling")) {
+      left = ctx.enumeration(*o.strategy, "stepover_direction") != "RIGHT";
+      if (ctx.set(*o.strategy, "its_stroke_connection_strategy") &&
+          ctx.enumeration(*o.strategy, "its_stroke_connection_strategy") != "STRAIGHTLINE")
+        return ctx.not_implemented(ctx.d(*o.strategy) +
+                                   " with a stroke connection other than "
+                                   "straightline");
+    } else if (ctx.is(o.strategy, "unidirectional_milling")) {
+      bidirectional = false;
+      if (ctx.set(*o.strategy, "cutmode"))
+        ctx.note(*o.strategy, ctx.d(*o.strategy) +
+                                  ": cutmode has no effect on a planar face, whose passes run "
+                                  "past the material on both sides");
+    } else {
+      return ctx.not_implemented(ctx.d(*o.strategy) + " on " + ctx.d(f) +
+                                 " (planar faces take unidirectional or bidirectional milling)");
+    }
+    feed_dir = ctx.direction(*o.strategy, "feed_direction");
+  }
+  if (o.approach != nullptr && !ctx.is(o.approach, "plunge_strategy"))
+    return ctx.not_implemented(ctx.d(*o.approach) + " as the approach of " + ctx.d(ctx.op()));
+  if (o.approach != nullptr && !ctx.is(o.approach, "plunge_toolaxis"))
+    ctx.note(*o.approach, ctx.d(*o.approach) + ": every pass of " + ctx.d(f) +
+                              " starts outside the material, so the tool goes down along its "
+                              "axis there");
+
+  // Face rectangle: from the placement origin along the course of travel, and to its right.
+  const Vec3 z{0, 0, 1};
+  const Vec3 t = *along;
+  const Vec3 p = t.cross(z);
+  Vec3 u = feed_dir.value_or(t);
+  if (std::abs(u.z) > kEps)
+    return ctx.bad(*o.strategy, ctx.d(*o.strategy) + " feed_direction is not in the face");
+  u = u * (1.0 / u.length());
+  const bool parallel = std::abs(std::abs(u.dot(t)) - 1) < 1e-9;
+  const bool across = std::abs(std::abs(u.dot(p)) - 1) < 1e-9;
+  if (!parallel && !across)
+    return ctx.not_implemented(ctx.d(*o.strategy) +
+                               " feed_direction oblique to the course of "
+                               "travel of " +
+                               ctx.d(f));
+  const Vec3 v = z.cross(u);  // left of the feed direction
+  const Vec3 corners[4] = {{0, 0, 0}, t * length->size, p * width, t * length->size + p * width};
+  double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
+  for (const Vec3& c : corners) {
+    u0 = std::min(u0, c.dot(u));
+    u1 = std::max(u1, c.dot(u));
+    v0 = std::min(v0, c.dot(v));
+    v1 = std::max(v1, c.dot(v));
+  }
+
+  double overlap = 0;
+  const double step = stepover(ctx, *tool, o, overlap);
+  if (!check_overlap(ctx, o, overlap)) return false;
+  const double r = tool->radius;
+  const double hang = overlap * 2 * r;  // how far the tool passes each side edge
+  const double over = ctx.opt.overtravel * r;
+  const double finish = *depth - o.allowance_bottom;
+  if (!(finish > 0))
+    return ctx.bad(ctx.op(), ctx.d(ctx.op()) + " leaves the whole depth of " + ctx.d(f));
+  const auto z_levels = depth_levels(ctx, o, finish);
+  if (!z_levels || !check_edge(ctx, *tool, *z_levels)) return false;
+
+  // Passes from one side edge (tool overhanging it by the overlap) until the tool reaches past
+  // the other edge by the overlap.
+  std::vector<double> passes;
+  const double first = left ? v0 + r - hang : v1 - r + hang;
+  for (std::size_t k = 0;; ++k) {
+    const double c = first + (left ? 1 : -1) * static_cast<double>(k) * step;
+    passes.push_back(c);
+    if (left ? c + r >= v1 + hang - kEps : c - r <= v0 - hang + kEps) break;
+    if (passes.size() * z_levels->size() > ctx.opt.max_moves) return ctx.limit_reached();
+  }
+
+  const double top = 0;
+  const double clear = top + ctx.opt.clearance;
+  const double retract = top + o.retract_plane.value_or(ctx.opt.clearance);
+  const auto at = [&](double uu, double vv, double zz) { return u * uu + v * vv + z * zz; };
+  const double ua = u0 - over;
+  const double ub = u1 + over;
+  ctx.rapid(at(ua, passes.front(), std::max(retract, clear)));
+  for (std::size_t level = 0; level < z_levels->size(); ++level) {
+    const double zz = (*z_levels)[level];
+    if (level > 0 || retract > clear) ctx.rapid(at(ua, passes.front(), clear));
+    ctx.feed(at(ua, passes.front(), zz));
+    for (std::size_t k = 0; k < passes.size(); ++k) {
+      const bool forward = !bidirectional || k % 2 == 0;
+      const double from = forward ? ua : ub;
+      const double to = forward ? ub : ua;
+      if (k > 0) {
+        if (bidirectional) {
+          ctx.feed(at(from, passes[k], zz));  // step over, outside the face
+        } else {
+          ctx.rapid(at(ctx.path.moves.back().to.dot(u), passes[k - 1], clear));
+          ctx.rapid(at(from, passes[k], clear));
+          ctx.feed(at(from, passes[k], zz));
+        }
+      }
+      ctx.feed(at(to, passes[k], zz));
+    }
+    const Vec3 end = ctx.path.moves.back().to;
+    ctx.rapid({end.x, end.y, clear});
+  }
+  const Vec3 end = ctx.path.moves.back().to;
+  if (retract > clear) ctx.rapid({end.x, end.y, retract});
+  return true;
+}
+
+// ---- CLOSED_POCKET
+// -------------------------------------------------------------------------------
+
+namespace {
+
+// How the tool gets from `from_z` down to `to_z` at the pattern's start point p0.
+struct Entry {
+  enum class Kind { Plunge, Ramp, Helix } kind = Kind::Helix;
+  double radius = 0;  // helix
+  double angle = 0;   // ramp/helix/zigzag descent, radians
+  double width = 0;   // zigzag leg
+};
+
+// `x` is the profile's x axis: the helix starts at p0 + radius · x, where the caller put the tool.
+void enter(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double ramp_length,
+           bool ccw, double from_z, double to_z) {
+  switch (e.kind) {
+    case Entry::Kind::Plunge:
+      ctx.feed({p0.x, p0.y, to_z});
+      return;
+    case Entry::Kind::Helix: {
+      // Whole turns about p0, so the helix ends where it began; its descent is at most `angle`.
+      const double per_turn = 2 * std::numbers::pi * e.radius * std::tan(e.angle);
+      const int turns = std::max(1, static_cast<int>(std::ceil((from_z - to_z) / per_turn - 1e-9)));
+      const Vec3 start = p0 + x * e.radius + Vec3{0, 0, to_z - p0.z};
+      ctx.arc(start, {p0.x, p0.y, to_z}, ccw ? turns : -turns);
+      ctx.feed({p0.x, p0.y, to_z});
+      return;
+    }
+    case Entry::Kind::Ramp: {
+      const double drop = ramp_length * std::tan(e.angle);
+      double z = from_z;
+      bool out = true;
+      Vec3 here{p0.x, p0.y, from_z};
+      p0.z = from_z;
+      while (z > to_z + kEps) {
+        const double share = std::min(1.0, (z - to_z) / drop);
+        z = std::max(to_z, z - drop);
+        const Vec3 target =
+            out ? p0 + ramp_dir * (ramp_length * share) : here - ramp_dir * (ramp_length * share);
+        here = {target.x, target.y, z};
+        ctx.feed(here);
+        out = !out;
+        if (ctx.too_many()) return;
+      }
+      ctx.feed({p0.x, p0.y, to_z});  // back over the last leg at depth
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// What a pocket-like feature (closed pocket, slot) gives the region clearing.
+struct Region {
+  Shape shape;
+  bool through = false;
+  std::optional<Toleranced> fillet;  // floor radius
+  // Corners that lie outside the material (open slot ends) need no corner check.
+  bool corners_in_material = true;
+  // Only the centre line may be cut (center milling): the tool must fill the width.
+  bool centre_only = false;
+  // Side milling: only the wall ring at each level (the inside is the bottom operation's).
+  bool walls_only = false;
+};
+
+bool clear_region(Context& ctx, const Region& region);
+
+}  // namespace
+
+bool generate_pocket(Context& ctx) {
+  const Instance& f = ctx.feature();
+  if (!ctx.is(&ctx.op(), "bottom_and_side_milling") && !ctx.is(&ctx.op(), "side_milling"))
+    return ctx.not_implemented(ctx.d(ctx.op()) + " on " + ctx.d(f) +
+                               " (pockets take bottom-and-side or side milling)");
+  if (const auto bosses = ctx.g.get(f, "its_boss"); bosses && bosses->is_list() && bosses->count())
+    return ctx.not_implemented(ctx.d(f) + " with bosses (islands)");
+  if (const auto slope = ctx.number(f, "slope"); slope && std::abs(*slope) > kEps)
+    return ctx.not_implemented(ctx.d(f) + " with sloped walls");
+  const Instance* bottom = ctx.ref(f, "bottom_condition", "pocket_bottom_condition");
+  if (bottom == nullptr) return ctx.bad(f, ctx.d(f) + " has no bottom_condition");
+  const bool through = ctx.is(bottom, "through_pocket_bottom_condition");
+  if (!through && !ctx.is(bottom, "planar_pocket_bottom_condition"))
+    return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(*bottom));
+  const Instance* boundary = ctx.ref(f, "feature_boundary", "closed_profile");
+  if (boundary == nullptr) return ctx.bad(f, ctx.d(f) + " has no feature_boundary");
+
+  // The profile, in the pocket's coordinates.
+  Shape shape;
+  const auto corner = ctx.toleranced(f, "orthogonal_radius");
+  if (ctx.is(boundary, "rectangular_closed_profile")) {
+    const auto w = ctx.toleranced(*boundary, "profile_width");
+    const auto l = ctx.toleranced(*boundary, "profile_length");
+    if (!w || !l || !(w->size > 0) || !(l->size > 0))
+      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive width and length");
+    // Length along the profile's x axis, width along y: as NIST's ex1/ex1E pair places it.
+    shape = Shape::rectangle(l->size / 2, w->size / 2, corner ? corner->size : 0);
+    if (shape.corner > std::min(shape.a, shape.b) + kEps)
+      return ctx.bad(f, ctx.d(f) + " orthogonal_radius " + fmt(shape.corner) +
+                            " is more than half the width of " + ctx.d(*boundary));
+  } else if (ctx.is(boundary, "circular_closed_profile")) {
+    const auto dia = ctx.toleranced(*boundary, "diameter");
+    if (!dia || !(dia->size > 0))
+      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive diameter");
+    shape = Shape::circle(dia->size / 2);
+  } else {
+    return ctx.not_implemented(ctx.d(f) + " bounded by " + ctx.d(*boundary));
+  }
+  if (ctx.set(*boundary, "placement")) {
+    const auto frame = ctx.g.placement(ctx.g.get(*boundary, "placement"));
+    if (!frame) return false;
+    if (std::abs(frame->z.z - 1) > 1e-9 || std::abs(frame->origin.z) > kEps)
+      return ctx.not_implemented(ctx.d(*boundary) + " placed out of the pocket's plane");
+    shape.frame = *frame;
+  }
+  Region region;
+  region.shape = shape;
+  region.through = through;
+  region.fillet = ctx.toleranced(f, "planar_radius");
+  region.walls_only = ctx.is(&ctx.op(), "side_milling");
+  return clear_region(ctx, region);
+}
+
+namespace {
+
+bool clear_region(Context& ctx, const Region& region) {
+  const Instance& f = ctx.feature();
+  const Shape& shape = region.shape;
+  const bool through = region.through;
+  const auto depth = ctx.depth();
+  const auto tool = ctx.tool();
+  if (!depth || !tool) return false;
+  const OperationData o = ctx.operation();
+  // Bottom fillet: the tool's corner radius makes it.
+  if (const auto& fillet = region.fillet) {
+    if (tool->corner_radius > fillet->size + fillet->upper + o.allowance_bottom + kEps)
+      return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " edge radius " +
+                                            fmt(tool->corner_radius) + " > planar (floor) radius " +
+                                            fmt(fillet->size) + " + allowance " +
+                                            fmt(o.allowance_bottom) + " of " + ctx.d(f));
+    if (tool->corner_radius + fillet->lower + kEps < fillet->size)
+      return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " edge radius " +
+                                            fmt(tool->corner_radius) + " < planar (floor) radius " +
+                                            fmt(fillet->size) + " of " + ctx.d(f) +
+                                            ": the tool would cut the fillet away");
+  }
+
+  const double inset = tool->radius + o.allowance_side;
+  if (region.corners_in_material && shape.kind == Shape::Kind::Rectangle &&
+      shape.corner + kEps < inset)
+    return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " radius " + fmt(tool->radius) +
+                                          " + allowance " + fmt(o.allowance_side) + " of " +
+                                          ctx.d(ctx.op()) + " > corner radius " +
+                                          fmt(shape.corner) + " of " + ctx.d(f));
+  const double room = std::max(0.0, shape.inradius() - inset);
+  if (shape.inradius() - inset < -kEps)
+    return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " diameter " +
+                                          fmt(2 * tool->radius) + " + allowances does not fit " +
+                                          ctx.d(f));
+  if (region.centre_only && room > 1e-3)
+    return ctx.unfit(*tool->instance,
+                     ctx.d(*tool->instance) + " diameter " + fmt(2 * tool->radius) +
+                         " + allowances is " + fmt(2 * room) + " narrower than " + ctx.d(f) +
+                         ", which " + ctx.d(o.strategy) + " (center milling) cuts in one pass");
+
+  // Strategy: contour-parallel (the default for pockets).
+  bool ccw = false;
+  const bool spindle_cw = !ctx.req.spindle || *ctx.req.spindle <= 0;  // NIST: negative = CW
+  // Pattern: contour-parallel rings (the default), or parallel lines, with a contour ring
+  // before or after them for the combined strategies.
+  enum class Pattern { Rings, Lines, LinesThenRing, RingThenLines } pattern = Pattern::Rings;
+  bool zigzag = true;
+  bool along_x = true;
+  bool lines_up = true;  // lines from -y (-x) to +y (+x)
+  if (o.strategy != nullptr && !ctx.is(o.strategy, "contour_parallel") &&
+      !(region.centre_only && ctx.is(o.strategy, "center_milling"))) {
+    if (region.centre_only)
+      return ctx.not_implemented(ctx.d(*o.strategy) + " on " + ctx.d(f) +
+                                 ", which only a centre pass can machine");
+    if (ctx.is(o.strategy, "bidirectional_milling")) {
+      pattern = Pattern::Lines;
+    } else if (ctx.is(o.strategy, "unidirectional_milling")) {
+      pattern = Pattern::Lines;
+      zigzag = false;
+    } else if (ctx.is(o.strategy, "bidirectional_contour")) {
+      pattern = Pattern::LinesThenRing;
+    } else if (ctx.is(o.strategy, "contour_bidirectional")) {
+      pattern = Pattern::RingThenLines;
+    } else {
+      return ctx.not_implemented(ctx.d(*o.strategy) + " on " + ctx.d(f));
+    }
+    if (const auto dir = ctx.direction(*o.strategy, "feed_direction")) {
+      const Vec3 fx = shape.frame.x;
+      const Vec3 fy = shape.frame.y;
+      if (std::abs(std::abs(dir->dot(fx)) - 1) < 1e-9)
+        along_x = true;
+      else if (std::abs(std::abs(dir->dot(fy)) - 1) < 1e-9)
+        along_x = false;
+      else
+        return ctx.not_implemented(ctx.d(*o.strategy) + " feed_direction oblique to the sides of " +
+                                   ctx.d(f));
+      // Left of the feed direction is where the next line goes for stepover_direction LEFT.
+      const Vec3 feed_local{dir->dot(fx), dir->dot(fy), 0};
+      const Vec3 left{-feed_local.y, feed_local.x, 0};
+      lines_up = (along_x ? left.y : left.x) > 0;
+    }
+    if (ctx.enumeration(*o.strategy, "stepover_direction") == "RIGHT") lines_up = !lines_up;
+  }
+  {
+    // A pocket's wall is outside the path: going counter-clockwise it is on the tool's right,
+    // which with a clockwise spindle is climb milling.
+    const std::string_view cutmode =
+        o.strategy ? ctx.enumeration(*o.strategy, "cutmode") : std::string_view();
+    const std::string_view rotation =
+        o.strategy ? ctx.enumeration(*o.strategy, "rotation_direction") : std::string_view();
+    const bool climb_ccw = spindle_cw;
+    if (!rotation.empty()) {
+      ccw = rotation == "CCW";
+      if (!cutmode.empty() && (cutmode == "CLIMB") != (ccw == climb_ccw))
+        ctx.note(*o.strategy, ctx.d(*o.strategy) + ": rotation_direction ." +
+                                  std::string(rotation) +
+                                  ". is followed; with this spindle it "
+                                  "mills " +
+                                  (ccw == climb_ccw ? "climb" : "conventional") + ", not ." +
+                                  std::string(cutmode) + ".");
+    } else {
+      ccw = cutmode == "CONVENTIONAL" ? !climb_ccw : climb_ccw;
+    }
+  }
+  double overlap = 0;
+  double step = stepover(ctx, *tool, o, overlap);
+  if (!check_overlap(ctx, o, overlap)) return false;
+  if (shape.kind == Shape::Kind::Rectangle) step = std::min(step, kSharpCornerStep * tool->radius);
+
+  const double finish = *depth - (through ? -ctx.opt.through_clearance : o.allowance_bottom);
+  if (!(finish > 0))
+    return ctx.bad(ctx.op(), ctx.d(ctx.op()) + " leaves the whole depth of " + ctx.d(f));
+  const auto z_levels = depth_levels(ctx, o, finish);
+  if (!z_levels || !check_edge(ctx, *tool, *z_levels)) return false;
+
+  // Counted before anything is built: a hostile stepover must not allocate its way out.
+  if (room / step > static_cast<double>(ctx.opt.max_moves)) return ctx.limit_reached();
+  Rings rings;
+  std::vector<std::pair<Vec3, Vec3>> lines;
+  if (pattern == Pattern::Rings) {
+    rings = contour_rings(shape, inset, step);
+    if (region.walls_only && !region.centre_only) {
+      // The wall ring alone, entered from the centre across the pocket the bottom operation
+      // cleared (or, if it did not, by a cut no deeper than the level).
+      rings.line_length = 0;
+      if (rings.loops.size() > 1) rings.loops.erase(rings.loops.begin(), rings.loops.end() - 1);
+    }
+  } else {
+    if (region.walls_only)
+      return ctx.not_implemented(ctx.d(*o.strategy) + " for " + ctx.d(ctx.op()) + " on " +
+                                 ctx.d(f));
+    if (2 * shape.inradius() / step > static_cast<double>(ctx.opt.max_moves))
+      return ctx.limit_reached();
+    lines = raster(shape, inset, step, along_x);
+    if (!lines_up) std::reverse(lines.begin(), lines.end());
+    // The entry is at the centre; the ring of the combined strategies is the outermost one.
+    rings.start = {0, 0, 0};
+    // One-way lines have no move along the wall between their ends, which leaves a cusp there:
+    // the wall ring clears it, as in the combined strategy.
+    if (pattern == Pattern::Lines && !zigzag) pattern = Pattern::LinesThenRing;
+    if (pattern != Pattern::Lines) {
+      const Rings outer = contour_rings(shape, inset, step);
+      if (!outer.loops.empty()) rings.loops.push_back(outer.loops.back());
+    }
+  }
+  if ((rings.loops.size() + lines.size()) * z_levels->size() > ctx.opt.max_moves)
+    return ctx.limit_reached();
+
+  // Entry: the operation's approach, else a helix as NIST's ex1E.
+  Entry entry;
+  entry.radius = ctx.opt.default_helix_radius * tool->radius;
+  entry.angle = radians(ctx.opt.default_helix_angle);
+  bool explicit_entry = false;
+  if (o.approach != nullptr) {
+    explicit_entry = true;
+    if (ctx.is(o.approach, "plunge_toolaxis")) {
+      entry.kind = Entry::Kind::Plunge;
+    } else if (ctx.is(o.approach, "plunge_helix")) {
+      entry.radius = ctx.number(*o.approach, "radius").value_or(entry.radius);
+      entry.angle = radians(ctx.number(*o.approach, "angle").value_or(ctx.opt.default_helix_angle));
+    } else if (ctx.is(o.approach, "plunge_ramp") || ctx.is(o.approach, "plunge_zigzag")) {
+      entry.kind = Entry::Kind::Ramp;
+      entry.angle = radians(ctx.number(*o.approach, "angle").value_or(0));
+      entry.width = ctx.number(*o.approach, "width").value_or(0);
+    } else {
+      return ctx.not_implemented(ctx.d(*o.approach) + " as the approach into " + ctx.d(f));
+    }
+    if ((entry.kind != Entry::Kind::Plunge) && !(entry.angle > 0 && entry.angle < radians(90)))
+      return ctx.bad(*o.approach, ctx.d(*o.approach) + " angle must be between 0 and 90 degrees");
+  }
+  if (o.retract != nullptr && !ctx.is(o.retract, "plunge_toolaxis"))
+    ctx.note(*o.retract, ctx.d(*o.retract) + ": the tool leaves " + ctx.d(f) +
+                             " along its axis, from inside the machined pocket");
+  const Vec3 p0 = rings.start;
+  Vec3 ramp_dir = rings.axis;
+  double ramp_length = std::max(rings.line_length, room);
+  if (entry.kind == Entry::Kind::Helix) {
+    if (entry.radius > room + kEps) {
+      if (explicit_entry)
+        return ctx.unfit(*o.approach, ctx.d(*o.approach) + " radius " + fmt(entry.radius) +
+                                          " leaves no room for " + ctx.d(*tool->instance) + " in " +
+                                          ctx.d(f) + " (at most " + fmt(room) + ")");
+      entry.radius = room;
+    }
+    if (entry.radius < 1e-3) {
+      if (explicit_entry)
+        return ctx.unfit(*o.approach, ctx.d(*o.approach) + ": " + ctx.d(*tool->instance) +
+                                          " fills " + ctx.d(f) + ", no room for a helix");
+      entry.kind = Entry::Kind::Plunge;
+      ctx.note(f, ctx.d(*tool->instance) + " fills " + ctx.d(f) +
+                      " across; it enters along its axis, as there is no room for a helix");
+    }
+  } else if (entry.kind == Entry::Kind::Ramp) {
+    if (entry.width > 0) ramp_length = std::min(ramp_length, entry.width);
+    if (ramp_length < 1e-3)
+      return ctx.unfit(*o.approach, ctx.d(*o.approach) + ": no room for a ramp of " +
+                                        ctx.d(*tool->instance) + " in " + ctx.d(f));
+  }
+
+  const double clear = ctx.opt.clearance;
+  const double retract = o.retract_plane.value_or(clear);
+  if (entry.kind == Entry::Kind::Helix &&
+      (clear + finish) / (2 * std::numbers::pi * entry.radius * std::tan(entry.angle)) >
+          static_cast<double>(ctx.opt.max_moves))
+    return ctx.limit_reached();
+  if (entry.kind == Entry::Kind::Ramp && (clear + finish) / (ramp_length * std::tan(entry.angle)) >
+                                             static_cast<double>(ctx.opt.max_moves))
+    return ctx.limit_reached();
+  const Vec3 p0f = shape.frame.point(p0);
+  const Vec3 x_axis = shape.frame.x;
+  const Vec3 entry_start = entry.kind == Entry::Kind::Helix ? p0f + x_axis * entry.radius : p0f;
+  ctx.rapid({entry_start.x, entry_start.y, std::max(retract, clear)});
+  if (retract > clear) ctx.rapid({entry_start.x, entry_start.y, clear});
+  double from_z = clear;
+  for (const double zz : *z_levels) {
+    if (from_z < clear) ctx.feed({entry_start.x, entry_start.y, from_z});
+    enter(ctx, entry, p0f, x_axis, shape.frame.direction(ramp_dir), ramp_length, ccw, from_z, zz);
+    if (pattern == Pattern::Rings || pattern == Pattern::RingThenLines)
+      play_rings(ctx, rings, shape.frame, ccw, zz);
+    if (pattern != Pattern::Rings) {
+      const auto at = [&](Vec3 p) { return shape.frame.point({p.x, p.y, zz}); };
+      // Back above the feature's top: between two lines the material near the wall is not yet
+      // cut at every height, so a rapid lower down could run into it.
+      const double lift = clear;
+      for (std::size_t k = 0; k < lines.size(); ++k) {
+        const bool reverse = zigzag && k % 2 == 1;
+        const Vec3 a = at(reverse ? lines[k].second : lines[k].first);
+        const Vec3 b = at(reverse ? lines[k].first : lines[k].second);
+        if (!zigzag && k > 0) {
+          // One way only: up, back at rapid, down at feed.
+          const Vec3 here = ctx.path.moves.back().to;
+          ctx.rapid({here.x, here.y, lift});
+          ctx.rapid({a.x, a.y, lift});
+        }
+        ctx.feed(a);
+        ctx.feed(b);
+      }
+      if (pattern == Pattern::LinesThenRing) {
+        Rings ring = rings;
+        ring.line_length = 0;
+        play_rings(ctx, ring, shape.frame, ccw, zz);
+      }
+    }
+    if (ctx.too_many()) return ctx.limit_reached();
+    from_z = zz;
+  }
+  const Vec3 end = ctx.path.moves.back().to;
+  ctx.rapid({end.x, end.y, std::max(retract, clear)});
+  return true;
+}
+
+}  // namespace
+
+// ---- GENERAL_OUTSIDE_PROFILE -------------------------------------------------------------------
+
+bool generate_outside_profile(Context& ctx) {
+  const Instance& f = ctx.feature();
+  if (!ctx.is(&ctx.op(), "side_milling"))
+    return ctx.not_implemented(ctx.d(ctx.op()) + " on " + ctx.d(f) +
+                               " (an outside profile takes side rough or finish milling)");
+  const Instance* boundary = ctx.ref(f, "feature_boundary", "profile");
+  if (boundary == nullptr) return ctx.bad(f, ctx.d(f) + " has no feature_boundary");
+  Shape shape;
+  if (ctx.is(boundary, "rectangular_closed_profile")) {
+    const auto w = ctx.toleranced(*boundary, "profile_width");
+    const auto l = ctx.toleranced(*boundary, "profile_length");
+    if (!w || !l || !(w->size > 0) || !(l->size > 0))
+      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive width and length");
+    shape = Shape::rectangle(l->size / 2, w->size / 2, 0);
+  } else if (ctx.is(boundary, "circular_closed_profile")) {
+    const auto dia = ctx.toleranced(*boundary, "diameter");
+    if (!dia || !(dia->size > 0))
+      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive diameter");
+    shape = Shape::circle(dia->size / 2);
+  } else {
+    return ctx.not_implemented(ctx.d(f) + " bounded by " + ctx.d(*boundary));
+  }
+  if (ctx.set(*boundary, "placement")) {
+    const auto frame = ctx.g.placement(ctx.g.get(*boundary, "placement"));
+    if (!frame) return false;
+    if (std::abs(frame->z.z - 1) > 1e-9 || std::abs(frame->origin.z) > kEps)
+      return ctx.not_implemented(ctx.d(*boundary) + " placed out of the profile's plane");
+    shape.frame = *frame;
+  }
+  const auto depth = ctx.depth();
+  const auto tool = ctx.tool();
+  if (!depth || !tool) return false;
+  const OperationData o = ctx.operation();
+  if (o.strategy != nullptr && !ctx.is(o.strategy, "contour_parallel"))
+    return ctx.not_implemented(ctx.d(*o.strategy) + " on " + ctx.d(f));
+  if (o.approach != nullptr && !ctx.is(o.approach, "plunge_strategy"))
+    return ctx.not_implemented(ctx.d(*o.approach) + " as the approach of " + ctx.d(ctx.op()));
+  // The part is inside the ring: going clockwise it is on the tool's right, which with a
+  // clockwise spindle is climb milling.
+  const bool spindle_cw = !ctx.req.spindle || *ctx.req.spindle <= 0;
+  const std::string_view cutmode =
+      o.strategy ? ctx.enumeration(*o.strategy, "cutmode") : std::string_view();
+  const std::string_view rotation =
+      o.strategy ? ctx.enumeration(*o.strategy, "rotation_direction") : std::string_view();
+  bool ccw = !rotation.empty() ? rotation == "CCW"
+                               : (cutmode == "CONVENTIONAL" ? spindle_cw : !spindle_cw);
+  const auto z_levels = depth_levels(ctx, o, *depth);
+  if (!z_levels || !check_edge(ctx, *tool, *z_levels)) return false;
+  const Loop ring = outside_ring(shape, tool->radius + o.allowance_side);
+  const double clear = ctx.opt.clearance;
+  const double retract = o.retract_plane.value_or(clear);
+  // Each level starts and ends at a lead-in point clear of the ring, outside the part.
+  const Vec3 lead_local = ring.start + Vec3{tool->radius + clear, 0, 0};
+  const auto at = [&](Vec3 p, double z) { return shape.frame.point({p.x, p.y, z}); };
+  ctx.rapid(at(lead_local, std::max(retract, clear)));
+  if (retract > clear) ctx.rapid(at(lead_local, clear));
+  for (const double zz : *z_levels) {
+    ctx.feed(at(lead_local, zz));
+    ctx.feed(at(ring.start, zz));
+    if (ccw) {
+      for (const Span& s : ring.spans) {
+        if (s.arc)
+          ctx.arc(at(s.to, zz), at(s.centre, zz), 1);
+        else
+          ctx.feed(at(s.to, zz));
+      }
+    } else {
+      for (std::size_t i = ring.spans.size(); i-- > 0;) {
+        const Vec3 to = i == 0 ? ring.start : ring.spans[i - 1].to;
+        if (ring.spans[i].arc)
+          ctx.arc(at(to, zz), at(ring.spans[i].centre, zz), -1);
+        else
+          ctx.feed(at(to, zz));
+      }
+    }
+    ctx.feed(at(lead_local, zz));
+    if (ctx.too_many()) return ctx.limit_reached();
+  }
+  ctx.rapid(at(lead_local, std::max(retract, clear)));
+  return true;
+}
+
+// ---- SLOT ---------------------------------------------------------------------------------------
+
+bool generate_slot(Context& ctx) {
+  const Instance& f = ctx.feature();
+  if (!ctx.is(&ctx.op(), "bottom_and_side_milling") && !ctx.is(&ctx.op(), "side_milling"))
+    return ctx.not_implemented(ctx.d(ctx.op()) + " on " + ctx.d(f) +
+                               " (slots take bottom-and-side or side milling)");
+  const Instance* travel = ctx.ref(f, "course_of_travel", "travel_path");
+  const Instance* swept = ctx.ref(f, "swept_shape", "open_profile");
+  if (travel == nullptr || swept == nullptr)
+    return ctx.bad(f, ctx.d(f) + " needs a course_of_travel and a swept_shape");
+  if (!ctx.is(travel, "linear_path"))
+    return ctx.not_implemented(ctx.d(f) + " along " + ctx.d(*travel) + " (straight slots are)");
+  if (ctx.set(*travel, "placement") || ctx.set(*swept, "placement"))
+    return ctx.not_implemented(ctx.d(f) + " with a placed course_of_travel or swept_shape");
+  const auto length = ctx.toleranced(*travel, "distance");
+  const auto along = ctx.direction(*travel, "its_direction");
+  if (!length || !along || !(length->size > 0) || std::abs(along->z) > kEps)
+    return ctx.bad(*travel, ctx.d(*travel) + " needs a positive distance in the slot's plane");
+  Region region;
+  double width = 0;
+  if (ctx.is(swept, "square_u_profile")) {
+    const auto w = ctx.toleranced(*swept, "width");
+    const auto r1 = ctx.toleranced(*swept, "first_radius");
+    const auto r2 = ctx.toleranced(*swept, "second_radius");
+    const auto a1 = ctx.number(*swept, "first_angle");
+    const auto a2 = ctx.number(*swept, "second_angle");
+    if (!w || !(w->size > 0)) return ctx.bad(*swept, ctx.d(*swept) + " needs a positive width");
+    if ((a1 && std::abs(*a1 - 90) > 1e-6) || (a2 && std::abs(*a2 - 90) > 1e-6))
+      return ctx.not_implemented(ctx.d(*swept) + " with walls that are not vertical");
+    if (r1 && r2 && std::abs(r1->size - r2->size) > kEps)
+      return ctx.not_implemented(ctx.d(*swept) + " with two different floor radii");
+    width = w->size;
+    if (r1 && r1->size > 0) region.fillet = r1;
+  } else if (ctx.is(swept, "rounded_u_profile")) {
+    // A full-round floor: only a ball end mill of the slot's width, along the centre line.
+    const auto w = ctx.toleranced(*swept, "width");
+    if (!w || !(w->size > 0)) return ctx.bad(*swept, ctx.d(*swept) + " needs a positive width");
+    width = w->size;
+    region.fillet = Toleranced{w->size / 2, w->upper / 2, w->lower / 2};
+    region.centre_only = true;
+  } else {
+    return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(*swept) +
+                               " (square-U and rounded-U slots are; others need a form tool)");
+  }
+  // End types: radiused (half circles about the ends of the course of travel), flat (the
+  // course of travel is the slot's length), open (the tool runs out past the end).
+  const auto ends = ctx.g.get(f, "end_conditions");
+  const Instance* end_type[2] = {nullptr, nullptr};
+  if (ends && ends->is_list()) {
+    const auto items = ctx.m.items(*ends);
+    for (std::size_t i = 0; i < items.size() && i < 2; ++i)
+      end_type[i] = ctx.g.instance(items[i], "slot_end_type", &f, "end_conditions");
+    if (items.size() == 1) end_type[1] = end_type[0];
+  }
+  const auto kind = [&](const Instance* e) {
+    if (e == nullptr || ctx.is(e, "radiused_slot_end_type")) return 'r';
+    if (ctx.is(e, "flat_slot_end_type")) return 'f';
+    if (ctx.is(e, "open_slot_end_type")) return 'o';
+    return '?';
+  };
+  const char k0 = kind(end_type[0]);
+  const char k1 = kind(end_type[1]);
+  if (k0 == '?' || k1 == '?' || k0 != k1)
+    return ctx.not_implemented(ctx.d(f) + " with end types " + ctx.d(end_type[0]) + " and " +
+                               ctx.d(end_type[1]) +
+                               " (two radiused, two flat or two open ends are)");
+  const auto tool = ctx.tool();
+  if (!tool) return false;
+  const double half = width / 2;
+  double half_length = length->size / 2;
+  double corner = half;
+  if (k0 == 'r') {
+    half_length += half;
+  } else if (k0 == 'f') {
+    const auto c1 = ctx.toleranced(*end_type[0], "corner_radius1");
+    const auto c2 = ctx.toleranced(*end_type[0], "corner_radius2");
+    corner = std::min(c1 ? c1->size : 0.0, c2 ? c2->size : 0.0);
+  } else {
+    half_length += tool->radius + ctx.opt.clearance;
+    corner = tool->radius + ctx.operation().allowance_side;
+    region.corners_in_material = false;
+  }
+  region.shape = Shape::rectangle(half_length, half, std::min(corner, half));
+  // The slot's frame: centred half way along the course of travel, x along it.
+  const Vec3 x = *along * (1.0 / along->length());
+  region.shape.frame.origin = x * (length->size / 2);
+  region.shape.frame.x = x;
+  region.shape.frame.y = Vec3{0, 0, 1}.cross(x);
+  if (ctx.is(ctx.operation().strategy, "center_milling")) region.centre_only = true;
+  region.walls_only = ctx.is(&ctx.op(), "side_milling");
+  return clear_region(ctx, region);
+}
+
+}  // namespace ncpost::stepnc::features

@@ -1,0 +1,137 @@
+#include "shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ncpost::stepnc::features {
+namespace {
+
+constexpr double kTiny = 1e-9;
+
+// A rounded rectangle centred at the origin, counter-clockwise from the middle of its +x side.
+Loop rounded_rectangle(double a, double b, double r) {
+  r = std::clamp(r, 0.0, std::min(a, b));
+  Loop loop;
+  loop.start = {a, 0, 0};
+  Vec3 at = loop.start;
+  const auto line = [&](Vec3 to) {
+    if ((to - at).length() > kTiny) loop.spans.push_back({to, false, {}, true});
+    at = to;
+  };
+  const auto corner = [&](Vec3 to, Vec3 centre) {
+    if (r > kTiny) loop.spans.push_back({to, true, centre, true});
+    at = to;
+  };
+  line({a, b - r, 0});
+  corner({a - r, b, 0}, {a - r, b - r, 0});
+  line({-a + r, b, 0});
+  corner({-a, b - r, 0}, {-a + r, b - r, 0});
+  line({-a, -b + r, 0});
+  corner({-a + r, -b, 0}, {-a + r, -b + r, 0});
+  line({a - r, -b, 0});
+  corner({a, -b + r, 0}, {a - r, -b + r, 0});
+  line(loop.start);
+  return loop;
+}
+
+Loop full_circle(double radius) {
+  Loop loop;
+  loop.start = {radius, 0, 0};
+  loop.spans.push_back({loop.start, true, {0, 0, 0}, true});
+  return loop;
+}
+
+}  // namespace
+
+Loop outside_ring(const Shape& shape, double offset) {
+  if (shape.kind == Shape::Kind::Circle) return full_circle(shape.a + offset);
+  return rounded_rectangle(shape.a + offset, shape.b + offset, shape.corner + offset);
+}
+
+Rings contour_rings(const Shape& shape, double inset, double step) {
+  Rings out;
+  const double a_out = shape.a - inset;
+  const double b_out = shape.b - inset;
+  const double room = std::max(0.0, std::min(a_out, b_out));
+  const std::size_t n = room <= kTiny ? 0 : static_cast<std::size_t>(std::ceil(room / step - 1e-9));
+  const double s = n == 0 ? 0 : room / static_cast<double>(n);
+  // Innermost: what is left of the region when it has been offset by `room`.
+  const double a_in = std::max(0.0, a_out - room);
+  const double b_in = std::max(0.0, b_out - room);
+  if (a_in >= b_in) {
+    out.start = {-a_in, 0, 0};
+    out.axis = {1, 0, 0};
+    out.line_length = 2 * a_in;
+  } else {
+    out.start = {0, -b_in, 0};
+    out.axis = {0, 1, 0};
+    out.line_length = 2 * b_in;
+  }
+  const double corner_out = shape.corner - inset;  // >= 0, checked by the caller
+  for (std::size_t k = 1; k <= n; ++k) {
+    // Each ring from the outermost inwards by whole steps: no drift, the last exactly at inset.
+    const double in = static_cast<double>(n - k) * s;
+    if (shape.kind == Shape::Kind::Circle)
+      out.loops.push_back(full_circle(a_out - in));
+    else
+      out.loops.push_back(
+          rounded_rectangle(a_out - in, b_out - in, std::max(0.0, corner_out - in)));
+  }
+  return out;
+}
+
+std::vector<std::pair<Vec3, Vec3>> raster(const Shape& shape, double inset, double step,
+                                          bool along_x) {
+  const double a_out = std::max(0.0, shape.a - inset);
+  const double b_out = std::max(0.0, shape.b - inset);
+  const double rho = std::clamp(shape.corner - inset, 0.0, std::min(a_out, b_out));
+  const double along = along_x ? a_out : b_out;  // half extent along the lines
+  const double across = along_x ? b_out : a_out;
+  const std::size_t n =
+      across <= kTiny ? 0 : static_cast<std::size_t>(std::ceil(2 * across / step - 1e-9));
+  std::vector<std::pair<Vec3, Vec3>> lines;
+  lines.reserve(n + 1);
+  for (std::size_t k = 0; k <= n; ++k) {
+    const double v =
+        n == 0 ? 0 : -across + 2 * across * static_cast<double>(k) / static_cast<double>(n);
+    // Inside the straight sides the line spans the full length; in a corner it ends on the arc.
+    const double into_corner = std::abs(v) - (across - rho);
+    const double half =
+        into_corner > 0
+            ? along - rho + std::sqrt(std::max(0.0, rho * rho - into_corner * into_corner))
+            : along;
+    if (along_x)
+      lines.push_back({{-half, v, 0}, {half, v, 0}});
+    else
+      lines.push_back({{v, -half, 0}, {v, half, 0}});
+  }
+  return lines;
+}
+
+void play_rings(Context& ctx, const Rings& rings, const detail::Frame& frame, bool ccw, double z) {
+  const auto at = [&](Vec3 p) { return frame.point({p.x, p.y, z}); };
+  if (rings.line_length > kTiny) ctx.feed(at(rings.start + rings.axis * rings.line_length));
+  for (const Loop& loop : rings.loops) {
+    ctx.feed(at(loop.start));
+    if (ccw) {
+      for (const Span& s : loop.spans) {
+        if (s.arc)
+          ctx.arc(at(s.to), at(s.centre), 1);
+        else
+          ctx.feed(at(s.to));
+      }
+    } else {
+      // Backwards: span i runs from the end of span i-1 (the start for the first) to its end.
+      for (std::size_t i = loop.spans.size(); i-- > 0;) {
+        const Vec3 to = i == 0 ? loop.start : loop.spans[i - 1].to;
+        const Span& s = loop.spans[i];
+        if (s.arc)
+          ctx.arc(at(to), at(s.centre), -1);
+        else
+          ctx.feed(at(to));
+      }
+    }
+  }
+}
+
+}  // namespace ncpost::stepnc::features

@@ -1,0 +1,159 @@
+#pragma once
+// What the verifier reads from the ISO 14649 model: frames, tools, operations and features. Its
+// own small readers (through the schema, by attribute name), independent of the interpreter's
+// and the generator's, so a misreading there is not repeated here.
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncpost/p21/model.hpp"
+#include "ncpost/p21/reader.hpp"
+#include "ncpost/stepnc/attributes.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
+#include "region.hpp"
+
+namespace ncpost::verify::detail {
+
+struct Vec3 {
+  double x = 0;
+  double y = 0;
+  double z = 0;
+  friend Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  friend Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  friend Vec3 operator*(Vec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+  [[nodiscard]] double dot(Vec3 b) const { return x * b.x + y * b.y + z * b.z; }
+  [[nodiscard]] Vec3 cross(Vec3 b) const {
+    return {y * b.z - z * b.y, z * b.x - x * b.z, x * b.y - y * b.x};
+  }
+  [[nodiscard]] double length() const { return std::sqrt(dot(*this)); }
+  [[nodiscard]] Vec2 xy() const { return {x, y}; }
+};
+
+// Origin and unit axes in the parent frame.
+struct Frame {
+  Vec3 origin{};
+  Vec3 x{1, 0, 0};
+  Vec3 y{0, 1, 0};
+  Vec3 z{0, 0, 1};
+  [[nodiscard]] Vec3 point(Vec3 l) const { return origin + x * l.x + y * l.y + z * l.z; }
+  [[nodiscard]] Vec3 direction(Vec3 l) const { return x * l.x + y * l.y + z * l.z; }
+  [[nodiscard]] Vec3 local(Vec3 p) const {
+    const Vec3 d = p - origin;
+    return {d.dot(x), d.dot(y), d.dot(z)};
+  }
+  [[nodiscard]] Frame then(const Frame& inner) const {
+    return {point(inner.origin), direction(inner.x), direction(inner.y), direction(inner.z)};
+  }
+};
+
+class Reader {
+ public:
+  Reader(const p21::Model& model, const stepnc::AttributeReader& attributes)
+      : m_(model), a_(attributes), lines_(model.text()) {}
+
+  [[nodiscard]] const p21::Model& model() const { return m_; }
+  [[nodiscard]] std::optional<p21::Value> get(const p21::Instance& i, std::string_view name) const {
+    return a_.get(i, name);
+  }
+  // The referenced instance, or null when the attribute is unset or not a reference.
+  [[nodiscard]] const p21::Instance* ref(const p21::Instance& i, std::string_view name) const;
+  [[nodiscard]] bool is_a(const p21::Instance& i, std::string_view entity) const {
+    return a_.is_a(i, entity);
+  }
+  [[nodiscard]] std::optional<double> number(const p21::Instance& i, std::string_view name) const;
+  // A length given as a number, a TOLERANCED_LENGTH_MEASURE (its theoretical size) or a
+  // NUMERIC_PARAMETER (its value).
+  [[nodiscard]] std::optional<double> length(const p21::Instance& i, std::string_view name) const;
+  [[nodiscard]] std::optional<Vec3> point(const p21::Instance* p) const;
+  [[nodiscard]] std::optional<Vec3> direction(const p21::Instance* d) const;
+  // AXIS2_PLACEMENT_3D with ISO 10303-42's defaults (axis +Z, ref_direction +X projected).
+  [[nodiscard]] std::optional<Frame> placement(const p21::Instance* a) const;
+  [[nodiscard]] std::string name(const p21::Instance& i) const;
+  [[nodiscard]] std::string type(const p21::Instance& i) const {
+    return std::string(m_.type_name(i));
+  }
+  // "#18 CLOSED_POCKET 'POCKET1'"
+  [[nodiscard]] std::string describe(const p21::Instance& i) const;
+  [[nodiscard]] p21::LineIndex::Position where(const p21::Instance& i) const {
+    return lines_.at(i.offset);
+  }
+
+ private:
+  const p21::Model& m_;
+  const stepnc::AttributeReader& a_;
+  p21::LineIndex lines_;
+};
+
+struct Tool {
+  bool known = false;  // a diameter was found
+  double radius = 0;
+  bool ball = false;
+  bool hole_making = false;    // drill, reamer, tap, boring tool, ...: plunging is what it does
+  bool centre_cutting = true;  // false for face, side, T-slot, woodruff, dovetail, thread mills
+  std::string body;            // entity of the tool body, e.g. "TAPERED_ENDMILL"
+};
+Tool read_tool(const Reader& r, const p21::Instance* tool, const stepnc::InterpretOptions& options);
+
+struct Operation {
+  const p21::Instance* instance = nullptr;
+  bool hole_making = false;
+  // Centre drilling and countersinking stop short of the hole's depth by design.
+  bool spot = false;
+  double side_allowance = 0;
+  double bottom_allowance = 0;
+  bool has_bottom_allowance = false;
+  // The approach strategy, when it limits how steeply the tool may enter material.
+  enum class Approach { None, ToolAxis, Ramp, Helix, Zigzag } approach = Approach::None;
+  std::optional<double> approach_angle;  // degrees
+  const p21::Instance* approach_instance = nullptr;
+};
+Operation read_operation(const Reader& r, const p21::Instance* operation);
+
+// A feature in its own frame: z up along the feature axis, the top at z = 0, the floor at
+// `floor`; `region` its outline in the xy plane.
+struct Feature {
+  const p21::Instance* instance = nullptr;
+  std::string type;
+  bool checked = false;
+  std::string reason;  // why not, when not
+  enum class Kind { Face, Pocket, Hole, Slot } kind = Kind::Pocket;
+  Frame frame;    // machine ← feature
+  Region region;  // what the walls bound (an open slot end lies far beyond the slot)
+  // The floor, when it is not `region` (a slot with an open end: the floor stops at the end).
+  std::optional<Region> floor_region;
+  [[nodiscard]] const Region& floor_outline() const {
+    return floor_region ? *floor_region : region;
+  }
+  bool walls = true;  // a face has none: the tool may overhang its outline
+  double floor = 0;
+  bool through = false;
+  double hole_radius = 0;
+  // A CONICAL_HOLE_BOTTOM's point lies this far below the depth plane (R / tan(tip angle / 2)):
+  // the depth plane ends the cylinder, and a pointed tool may go into the cone.
+  double cone_depth = 0;
+  std::vector<std::string> notes;  // what of the shape is simplified (bottom radius, taper, ...)
+};
+// `workpiece_frame` is machine ← the feature's workpiece.
+Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame& workpiece_frame);
+
+// The footprint of a feature in machine coordinates (bounding box) and its top: used to build
+// the stock when the workpiece has no bounding geometry.
+struct Extent {
+  Vec2 min{1e300, 1e300};
+  Vec2 max{-1e300, -1e300};
+  double top = -1e300;
+  [[nodiscard]] bool valid() const { return min.x <= max.x && min.y <= max.y; }
+  void add(Vec3 p) {
+    min = {std::min(min.x, p.x), std::min(min.y, p.y)};
+    max = {std::max(max.x, p.x), std::max(max.y, p.y)};
+  }
+};
+Extent feature_extent(const Feature& f);
+// BLOCK bounding geometry of a workpiece, in machine coordinates; nullopt when it has none.
+std::optional<Extent> workpiece_block(const Reader& r, const p21::Instance& workpiece,
+                                      const Frame& workpiece_frame);
+
+}  // namespace ncpost::verify::detail

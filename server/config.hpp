@@ -1,0 +1,54 @@
+#pragma once
+// ncpostd's command line: every limit the server enforces is named here, with its default, so
+// that docs/server.md, `ncpostd --help` and the code agree.
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace ncpost::server {
+
+struct Config {
+  std::string host = "127.0.0.1";
+  std::uint16_t port = 8080;
+  std::optional<std::filesystem::path> profiles;  // none: the built-in profiles (read-only)
+  std::optional<std::filesystem::path> admin_token_file;
+  std::optional<std::filesystem::path> web_root;      // none: the source tree's web/
+  std::optional<std::filesystem::path> openapi_file;  // none: the source tree's openapi/
+  std::uint64_t max_body = std::uint64_t{256} << 20;
+  std::uint32_t max_header = 16 * 1024;
+  unsigned io_threads = 0;  // 0: from the core count
+  unsigned workers = 0;     // 0: from the core count
+  // Jobs that may wait for a worker; beyond workers + queue a job route answers 503 at once.
+  unsigned queue = 64;
+  std::chrono::milliseconds job_timeout{std::chrono::seconds(120)};
+  // From a request's first byte to its last: the slowloris defence (408).
+  std::chrono::milliseconds read_timeout{std::chrono::seconds(60)};
+  // A kept-alive connection with no new request for this long is closed.
+  std::chrono::milliseconds idle_timeout{std::chrono::seconds(30)};
+  // A response that the client does not read for this long is abandoned.
+  std::chrono::milliseconds write_timeout{std::chrono::seconds(60)};
+  // SIGTERM: in-flight requests get this long to finish before they are cut.
+  std::chrono::milliseconds shutdown_timeout{std::chrono::seconds(30)};
+  bool access_log = true;
+};
+
+struct ParsedArgs {
+  std::optional<Config> config;  // nullopt: `error` says why, or help was asked for
+  bool help = false;
+  std::string error;
+};
+
+// Parses `--name value` / `--name=value` options; durations take seconds (fractions allowed).
+[[nodiscard]] ParsedArgs parse_args(std::span<const std::string_view> args);
+[[nodiscard]] std::string_view usage() noexcept;
+
+// Resolves the 0 ("from the core count") thread settings.
+[[nodiscard]] Config resolve_threads(Config config);
+
+}  // namespace ncpost::server

@@ -1,0 +1,908 @@
+#include "handlers.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "auth.hpp"
+#include "multipart.hpp"
+#include "ncpost/canon/trace.hpp"
+#include "ncpost/canon/xml.hpp"
+#include "ncpost/express/express_x.hpp"
+#include "ncpost/express/parse.hpp"
+#include "ncpost/p21/writer.hpp"
+#include "ncpost/p28/p28.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/pipeline/post.hpp"
+#include "ncpost/render/render.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/stepnc/program_info.hpp"
+
+namespace ncpost::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using json = nlohmann::ordered_json;
+
+// ---- problem details -----------------------------------------------------------------------
+
+json diagnostic_json(const xslt::FileDiagnostic& d) {
+  json j;
+  j["file"] = d.file;
+  j["line"] = d.diagnostic.line;
+  j["column"] = d.diagnostic.column;
+  j["severity"] = std::string(diag::to_string(d.diagnostic.severity));
+  j["code"] = std::string(d.diagnostic.code_id());
+  j["message"] = d.diagnostic.message;
+  return j;
+}
+
+json diagnostics_json(const std::vector<xslt::FileDiagnostic>& diagnostics) {
+  json all = json::array();
+  for (const auto& d : diagnostics) all.push_back(diagnostic_json(d));
+  return all;
+}
+
+std::vector<xslt::FileDiagnostic> with_file(const std::vector<diag::Diagnostic>& diagnostics,
+                                            const std::string& file) {
+  std::vector<xslt::FileDiagnostic> out;
+  out.reserve(diagnostics.size());
+  for (const auto& d : diagnostics) out.push_back({file, d});
+  return out;
+}
+
+// A problem whose cause is the request itself, not its content: one diagnostic with the code.
+Response http_problem(unsigned status, diag::Code code, std::string_view title,
+                      std::string detail) {
+  const std::vector<xslt::FileDiagnostic> one = {{"request", diag::make(code, 0, 0, detail)}};
+  return problem(status, diag::info(code).id, title, detail, one);
+}
+
+Response json_response(unsigned status, const json& body) {
+  Response r{static_cast<http::status>(status), 11};
+  r.set(http::field::content_type, "application/json");
+  r.body() = body.dump(2);
+  r.body() += '\n';
+  return r;
+}
+
+Response text_response(std::string_view content_type, std::string body) {
+  Response r{http::status::ok, 11};
+  r.set(http::field::content_type, content_type);
+  r.body() = std::move(body);
+  return r;
+}
+
+std::optional<std::string> read_small_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return std::move(ss).str();
+}
+
+bool wants_json(const Request& request) {
+  const auto accept = request[http::field::accept];
+  return accept.find("application/json") != std::string_view::npos;
+}
+
+// Collects small pieces into chunks of about 64 KiB: one chunk per engine callback would cost a
+// lock and a syscall per P21 instance.
+class Coalescer {
+ public:
+  explicit Coalescer(Exchange& exchange) : exchange_(exchange) {}
+  void operator()(std::string_view piece) {
+    buffer_.append(piece);
+    if (buffer_.size() >= kChunk) flush();
+  }
+  void flush() {
+    if (!buffer_.empty() && alive_) alive_ = exchange_.write(buffer_);
+    buffer_.clear();
+  }
+  [[nodiscard]] bool alive() const { return alive_; }
+
+ private:
+  static constexpr std::size_t kChunk = 64 * 1024;
+  Exchange& exchange_;
+  std::string buffer_;
+  bool alive_ = true;
+};
+
+std::string hex64(std::uint64_t v) {
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
+  return buffer;
+}
+
+std::string file_stem(std::string_view name) {
+  const auto slash = name.find_last_of("/\\");
+  if (slash != std::string_view::npos) name.remove_prefix(slash + 1);
+  if (const auto dot = name.rfind('.'); dot != std::string_view::npos && dot > 0)
+    name = name.substr(0, dot);
+  std::string safe;
+  for (char c : name)
+    safe +=
+        (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c : '_';
+  return safe.empty() ? "program" : safe;
+}
+
+// A job whose time limit passed answers 504; the session has usually answered already, in
+// which case this response is dropped.
+bool stop_if_cancelled(Exchange& exchange) {
+  const auto* flag = exchange.cancel_flag();
+  if (flag == nullptr || !flag->load()) return false;
+  if (exchange.timed_out())
+    exchange.respond(http_problem(504, diag::Code::HttpJobTimeout, "Job time limit exceeded",
+                                  "the job ran longer than --job-timeout"));
+  else
+    exchange.respond(http_problem(499, diag::Code::HttpInternal, "Client closed request",
+                                  "the client went away"));
+  return true;
+}
+
+// The upload read and checked, or nullopt after answering.
+std::optional<pipeline::LoadedModel> load_upload(Request& request, Services& services,
+                                                 Exchange& exchange, Upload& upload,
+                                                 bool validate) {
+  const auto started = Clock::now();
+  pipeline::LoadedModel loaded =
+      pipeline::load(std::move(upload.bytes), *services.schemas, validate);
+  services.metrics->stage("read", Clock::now() - started);
+  (void)request;
+  if (stop_if_cancelled(exchange)) return std::nullopt;
+  if (!loaded.ok()) {
+    if (loaded.model.instances_of("PROJECT").empty() && validate)
+      loaded.diagnostics.push_back(stepnc::no_program_diagnostic(loaded.model));
+    exchange.respond(problem(422, "input-rejected", "The upload was rejected",
+                             "the input could not be read; see diagnostics",
+                             with_file(loaded.diagnostics, upload.name)));
+    return std::nullopt;
+  }
+  return loaded;
+}
+
+// ---- block → workingstep map ---------------------------------------------------------------
+
+// Passes calls to the renderer and notes, at each workingstep's Begin, how much program text
+// exists. The renderer emits a chunk's text when the chunker closes it, so with one transform
+// per chunk (RenderOptions::batch_bytes = 0) the text of workingstep k starts at the mark taken
+// right after its Begin was passed on. The renderer does not expose per-block origins, so this
+// is the boundary granularity: blocks between workingsteps belong to the one before.
+class WorkingstepTracker final : public canon::Sink {
+ public:
+  WorkingstepTracker(canon::Sink& next, const std::string& text,
+                     std::vector<WorkingstepMark>& marks, const std::atomic<bool>* cancel)
+      : next_(next), text_(text), marks_(marks), cancel_(cancel) {}
+  void call(const canon::Call& call) override {
+    if (cancelled()) return;
+    next_.call(call);
+    if (const auto* begin = std::get_if<canon::Begin>(&call);
+        begin != nullptr && begin->scope == canon::Scope::Workingstep)
+      marks_.push_back({text_.size(), begin->entity.id, begin->entity.name});
+    else if (const auto* end = std::get_if<canon::End>(&call);
+             end != nullptr && end->scope == canon::Scope::Workingstep)
+      marks_.push_back({text_.size(), 0, {}});
+  }
+  [[nodiscard]] bool cancelled() const { return cancel_ != nullptr && cancel_->load(); }
+
+ private:
+  canon::Sink& next_;
+  const std::string& text_;
+  std::vector<WorkingstepMark>& marks_;
+  const std::atomic<bool>* cancel_;
+};
+
+// ---- handlers ------------------------------------------------------------------------------
+
+void handle_healthz(Request&, Services&, Exchange& exchange) {
+  Response r = text_response("application/json", "{\"status\":\"ok\"}\n");
+  r.set(http::field::cache_control, "no-store");
+  exchange.respond(std::move(r));
+}
+
+void handle_readyz(Request&, Services& services, Exchange& exchange) {
+  std::vector<xslt::FileDiagnostic> diagnostics;
+  const auto profiles = services.profiles->list(diagnostics);
+  const bool saturated = services.saturated && services.saturated();
+  json body;
+  body["status"] = (!profiles.empty() && !saturated) ? "ready" : "not ready";
+  body["profiles"] = profiles.size();
+  body["queue_saturated"] = saturated;
+  Response r = json_response(!profiles.empty() && !saturated ? 200 : 503, body);
+  r.set(http::field::cache_control, "no-store");
+  if (saturated) r.set(http::field::retry_after, "1");
+  exchange.respond(std::move(r));
+}
+
+void handle_metrics(Request&, Services& services, Exchange& exchange) {
+  const auto stats = services.profiles->cache_stats();
+  Response r = text_response("text/plain; version=0.0.4; charset=utf-8",
+                             services.metrics->render({stats.hits, stats.misses}));
+  r.set(http::field::cache_control, "no-store");
+  exchange.respond(std::move(r));
+}
+
+void handle_openapi(Request&, Services& services, Exchange& exchange) {
+  auto text = read_small_file(services.openapi_file);
+  if (!text) {
+    exchange.respond(http_problem(
+        404, diag::Code::HttpNotFound, "Not found",
+        "the OpenAPI description is not installed at " + services.openapi_file.string()));
+    return;
+  }
+  exchange.respond(text_response("application/yaml", std::move(*text)));
+}
+
+void handle_index(Request&, Services& services, Exchange& exchange) {
+  auto text = read_small_file(services.web_root / "index.html");
+  if (!text) {
+    exchange.respond(http_problem(404, diag::Code::HttpNotFound, "Not found",
+                                  "the web front end is not installed"));
+    return;
+  }
+  Response r = text_response("text/html; charset=utf-8", std::move(*text));
+  r.set("Content-Security-Policy",
+        "default-src 'self'; script-src 'unsafe-inline'; style-src 'unsafe-inline'");
+  exchange.respond(std::move(r));
+}
+
+void handle_not_implemented(Request& request, Services&, Exchange& exchange) {
+  const std::string what = std::string(request.target().substr(0, request.target().find('?')));
+  const std::vector<xslt::FileDiagnostic> one = {
+      {"request", diag::make(diag::Code::NotImplemented, 0, 0,
+                             "'" + what + "' is not implemented yet (the G-code reader)")}};
+  exchange.respond(problem(501, "NCPOST-001", "Not implemented",
+                           what + " needs the G-code reader, which the engine does not have yet",
+                           one));
+}
+
+void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
+  std::vector<xslt::FileDiagnostic> diagnostics;
+  const auto list = services.profiles->list(diagnostics);
+  json body;
+  body["profiles"] = json::array();
+  for (const auto& p : list)
+    body["profiles"].push_back(
+        {{"id", p.id}, {"name", p.name}, {"controller", p.controller}, {"read_only", p.read_only}});
+  body["writable"] = services.profiles->writable();
+  body["diagnostics"] = diagnostics_json(diagnostics);
+  exchange.respond(json_response(200, body));
+}
+
+Response profile_load_problem(const std::vector<xslt::FileDiagnostic>& diagnostics,
+                              std::string_view id) {
+  const bool unknown = std::any_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
+    return d.diagnostic.code == diag::Code::ProfileUnknown ||
+           d.diagnostic.code == diag::Code::ProfileBadId;
+  });
+  if (unknown)
+    return problem(404, "PROFILE-003", "Unknown profile",
+                   "no profile '" + std::string(id) + "' (see GET /v1/profiles)", diagnostics);
+  return problem(500, "PROFILE-004", "Broken profile",
+                 "profile '" + std::string(id) + "' does not load", diagnostics);
+}
+
+void handle_profile_get(Request& request, Services& services, Exchange& exchange) {
+  exchange.profile = exchange.path_id;
+  std::vector<xslt::FileDiagnostic> diagnostics;
+  const auto loaded = services.profiles->load(exchange.path_id, diagnostics);
+  if (!loaded) {
+    exchange.respond(profile_load_problem(diagnostics, exchange.path_id));
+    return;
+  }
+  const std::string etag = "\"" + loaded->version + "\"";
+  if (request[http::field::if_none_match] == etag) {
+    Response r{http::status::not_modified, 11};
+    r.set(http::field::etag, etag);
+    exchange.respond(std::move(r));
+    return;
+  }
+  json body;
+  body["id"] = loaded->profile.id;
+  body["name"] = loaded->profile.name;
+  body["controller"] = loaded->profile.controller;
+  body["extension"] = loaded->profile.extension;
+  body["mime_type"] = loaded->profile.mime_type;
+  body["version"] = loaded->version;
+  body["read_only"] = loaded->read_only;
+  body["profile"] = json::parse(loaded->json, nullptr, false);
+  body["diagnostics"] = diagnostics_json(diagnostics);
+  Response r = json_response(200, body);
+  r.set(http::field::etag, etag);
+  exchange.respond(std::move(r));
+}
+
+// Null when allowed; otherwise the 401/403 to answer. The token itself is never logged.
+std::optional<Response> refuse_admin(const Request& request, const Services& services) {
+  const auto header = request[http::field::authorization];
+  if (header.empty()) {
+    Response r = http_problem(401, diag::Code::HttpUnauthorized, "Unauthorized",
+                              "changing profiles needs Authorization: Bearer <admin token>");
+    r.set(http::field::www_authenticate, "Bearer realm=\"ncpost\"");
+    return r;
+  }
+  const bool matches = services.admin_token && token_matches(*services.admin_token, header);
+  if (!matches)
+    return http_problem(403, diag::Code::HttpForbidden, "Forbidden",
+                        "the bearer token does not match the admin token");
+  return std::nullopt;
+}
+
+void handle_profile_put(Request& request, Services& services, Exchange& exchange) {
+  exchange.profile = exchange.path_id;
+  if (auto refused = refuse_admin(request, services)) {
+    exchange.respond(std::move(*refused));
+    return;
+  }
+  const auto boundary = multipart_boundary(request[http::field::content_type]);
+  if (!boundary) {
+    exchange.respond(
+        http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                     "PUT /v1/profiles/{id} takes multipart/form-data with the parts 'profile' and "
+                     "'stylesheet'"));
+    return;
+  }
+  const MultipartResult parts = parse_multipart(request.body(), *boundary);
+  if (!parts.ok()) {
+    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request", parts.error));
+    return;
+  }
+  const auto* profile_part = parts.find("profile");
+  const auto* stylesheet_part = parts.find("stylesheet");
+  if (profile_part == nullptr || stylesheet_part == nullptr) {
+    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                                  "the parts 'profile' and 'stylesheet' are both required"));
+    return;
+  }
+  if (!services.profiles->writable()) {
+    const std::vector<xslt::FileDiagnostic> one = {
+        {"request", diag::make(diag::Code::ProfileReadOnly, 0, 0,
+                               "the built-in profiles are read-only; start ncpostd with "
+                               "--profiles DIR")}};
+    exchange.respond(problem(409, "PROFILE-006", "Read-only profile store",
+                             "this server has no writable profile directory", one));
+    return;
+  }
+  profile::PutResult result =
+      services.profiles->put(exchange.path_id, profile_part->body, stylesheet_part->body);
+  if (!result.profile) {
+    const bool bad_id =
+        std::any_of(result.diagnostics.begin(), result.diagnostics.end(),
+                    [](const auto& d) { return d.diagnostic.code == diag::Code::ProfileBadId; });
+    const bool write_failed =
+        std::any_of(result.diagnostics.begin(), result.diagnostics.end(),
+                    [](const auto& d) { return d.diagnostic.code == diag::Code::ProfileWrite; });
+    exchange.respond(
+        problem(write_failed ? 500 : (bad_id ? 400 : 422),
+                write_failed ? "PROFILE-007" : "profile-rejected", "The profile was rejected",
+                "the previous version (if any) stays active; see diagnostics", result.diagnostics));
+    return;
+  }
+  json body;
+  body["id"] = result.profile->profile.id;
+  body["version"] = result.profile->version;
+  body["created"] = result.created;
+  body["diagnostics"] = diagnostics_json(result.diagnostics);
+  Response r = json_response(result.created ? 201 : 200, body);
+  r.set(http::field::etag, "\"" + result.profile->version + "\"");
+  if (result.created) r.set(http::field::location, "/v1/profiles/" + exchange.path_id);
+  exchange.respond(std::move(r));
+}
+
+void handle_profile_delete(Request& request, Services& services, Exchange& exchange) {
+  exchange.profile = exchange.path_id;
+  if (auto refused = refuse_admin(request, services)) {
+    exchange.respond(std::move(*refused));
+    return;
+  }
+  switch (services.profiles->remove(exchange.path_id)) {
+    case profile::RemoveOutcome::Removed: {
+      Response r{http::status::no_content, 11};
+      exchange.respond(std::move(r));
+      return;
+    }
+    case profile::RemoveOutcome::NotFound:
+      exchange.respond(http_problem(404, diag::Code::HttpNotFound, "Unknown profile",
+                                    "no profile '" + exchange.path_id + "' to delete"));
+      return;
+    case profile::RemoveOutcome::ReadOnly: {
+      const std::vector<xslt::FileDiagnostic> one = {
+          {"request", diag::make(diag::Code::ProfileReadOnly, 0, 0,
+                                 "'" + exchange.path_id + "' is a built-in profile")}};
+      exchange.respond(problem(409, "PROFILE-006", "Read-only profile",
+                               "built-in profiles cannot be deleted", one));
+      return;
+    }
+  }
+}
+
+void post_json(Services& services, Exchange& exchange, const pipeline::LoadedModel& loaded,
+               const profile::LoadedProfile& profile, const std::string& name,
+               const std::string& filename) {
+  std::string text;
+  std::vector<WorkingstepMark> marks;
+  render::RenderOptions render_options;
+  render_options.batch_bytes = 0;  // one transform per chunk: see WorkingstepTracker
+  const auto started = Clock::now();
+  render::Renderer renderer(
+      profile, [&text](std::string_view piece) { text.append(piece); }, render_options, name);
+  WorkingstepTracker tracker(renderer, text, marks, exchange.cancel_flag());
+  stepnc::InterpretOptions interpret_options;
+  interpret_options.stop_at_first_error = true;
+  interpret_options.cancel = exchange.cancel_flag();
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  const stepnc::InterpretResult interpreted =
+      stepnc::interpret(loaded.model, attributes, tracker, interpret_options);
+  if (!tracker.cancelled()) renderer.finish();
+  services.metrics->stage("interpret_render", Clock::now() - started);
+  if (stop_if_cancelled(exchange)) return;
+
+  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded.diagnostics, name);
+  for (const auto& d : interpreted.diagnostics) diagnostics.push_back({name, d});
+  diagnostics.insert(diagnostics.end(), renderer.diagnostics().begin(),
+                     renderer.diagnostics().end());
+  const bool ok = interpreted.ok() && !renderer.failed();
+  if (!ok) {
+    exchange.respond(problem(422, "post-failed", "The program could not be posted",
+                             "the post stopped at the first error; see diagnostics", diagnostics));
+    return;
+  }
+  json body;
+  body["profile"] = profile.profile.id;
+  body["profile_version"] = profile.version;
+  body["filename"] = filename;
+  body["program"] = text;
+  body["diagnostics"] = diagnostics_json(diagnostics);
+  json blocks = block_map(text, marks);
+  body["blocks"] = std::move(blocks["blocks"]);
+  body["workingsteps"] = std::move(blocks["workingsteps"]);
+  exchange.respond(json_response(200, body));
+}
+
+void handle_post(Request& request, Services& services, Exchange& exchange) {
+  const auto id = query_param(request.target(), "profile");
+  if (!id || id->empty()) {
+    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                                  "the query parameter 'profile' is required "
+                                  "(POST /v1/posts?profile=ID; see GET /v1/profiles)"));
+    return;
+  }
+  exchange.profile = *id;
+  std::vector<xslt::FileDiagnostic> profile_diagnostics;
+  // The job keeps this version even if the profile is replaced while it runs.
+  const auto loaded_profile = services.profiles->load(*id, profile_diagnostics);
+  if (!loaded_profile) {
+    exchange.respond(profile_load_problem(profile_diagnostics, *id));
+    return;
+  }
+  std::optional<Response> error;
+  auto upload = take_upload(request, error);
+  if (!upload) {
+    exchange.respond(std::move(*error));
+    return;
+  }
+  // The same input, profile version and engine give the same program.
+  const std::uint64_t input_hash = std::hash<std::string_view>{}(upload->bytes);
+  const std::uint64_t context_hash =
+      std::hash<std::string>{}(loaded_profile->version + "/" + services.engine_version);
+  const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
+  const bool as_json = wants_json(request);
+  if (request[http::field::if_none_match] == etag && !as_json) {
+    Response r{http::status::not_modified, 11};
+    r.set(http::field::etag, etag);
+    exchange.respond(std::move(r));
+    return;
+  }
+  const std::string name = upload->name;
+  const std::string filename = file_stem(name) + loaded_profile->profile.extension;
+  auto loaded = load_upload(request, services, exchange, *upload, true);
+  if (!loaded) return;
+  if (as_json) {
+    post_json(services, exchange, *loaded, *loaded_profile, name, filename);
+    return;
+  }
+
+  StreamHead head{http::status::ok, 11};
+  head.set(http::field::content_type, loaded_profile->profile.mime_type);
+  head.set(http::field::content_disposition, "attachment; filename=\"" + filename + "\"");
+  head.set(http::field::etag, etag);
+  head.set("X-Content-Type-Options", "nosniff");
+  head.set("X-Ncpost-Profile-Version", loaded_profile->version);
+  // The head goes out with the first piece of text, so that an error found before any output
+  // is still an ordinary problem+json response.
+  bool begun = false;
+  bool alive = true;
+  pipeline::PostOptions options;
+  options.input_name = name;
+  options.cancel = exchange.cancel_flag();
+  const pipeline::PostResult result = pipeline::post(
+      *loaded, *loaded_profile,
+      [&](std::string_view piece) {
+        if (!alive) return;
+        if (!begun) {
+          begun = true;
+          alive = exchange.begin_stream(head);
+          if (!alive) return;
+        }
+        alive = exchange.write(piece);
+      },
+      options);
+  services.metrics->stage("interpret_render", result.interpret_and_render);
+  if (begun) {
+    exchange.end_stream(result.ok);
+    return;
+  }
+  if (stop_if_cancelled(exchange)) return;
+  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded->diagnostics, name);
+  diagnostics.insert(diagnostics.end(), result.diagnostics.begin(), result.diagnostics.end());
+  if (!result.ok) {
+    exchange.respond(problem(422, "post-failed", "The program could not be posted",
+                             "the post stopped before any output; see diagnostics", diagnostics));
+    return;
+  }
+  // A program that renders to nothing is still a (complete, empty) program.
+  if (exchange.begin_stream(head)) exchange.end_stream(true);
+}
+
+void handle_conversion(Request& request, Services& services, Exchange& exchange) {
+  const auto to = query_param(request.target(), "to");
+  if (!to || (*to != "p21" && *to != "p28")) {
+    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                                  "the query parameter 'to' must be p21 or p28"));
+    return;
+  }
+  const auto binding = query_param(request.target(), "binding");
+  if (binding && ((*binding != "late" && *binding != "early") || *to != "p28")) {
+    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                                  "'binding' is late or early, and only with to=p28"));
+    return;
+  }
+  std::optional<Response> error;
+  auto upload = take_upload(request, error);
+  if (!upload) {
+    exchange.respond(std::move(*error));
+    return;
+  }
+  // Conversion is lossless whatever the schema says of the data: not validated (as the CLI).
+  auto loaded = load_upload(request, services, exchange, *upload, false);
+  if (!loaded) return;
+  StreamHead head{http::status::ok, 11};
+  head.set(http::field::content_type, *to == "p21" ? "application/p21" : "application/xml");
+  head.set(http::field::content_disposition, "attachment; filename=\"" + file_stem(upload->name) +
+                                                 (*to == "p21" ? ".stp\"" : ".stpx\""));
+  if (!exchange.begin_stream(head)) return;
+  Coalescer out(exchange);
+  const auto started = Clock::now();
+  const auto sink = [&out](std::string_view piece) { out(piece); };
+  if (*to == "p21") {
+    p21::write(loaded->model, sink);
+  } else {
+    (void)p28::write(loaded->model, loaded->schema,
+                     binding.value_or("late") == "early" ? p28::Binding::Early : p28::Binding::Late,
+                     sink);
+  }
+  out.flush();
+  services.metrics->stage("convert", Clock::now() - started);
+  exchange.end_stream(out.alive());
+}
+
+void handle_inspection(Request& request, Services& services, Exchange& exchange) {
+  std::optional<Response> error;
+  auto upload = take_upload(request, error);
+  if (!upload) {
+    exchange.respond(std::move(*error));
+    return;
+  }
+  const std::string name = upload->name;
+  const auto started = Clock::now();
+  pipeline::LoadedModel loaded = pipeline::load(std::move(upload->bytes), *services.schemas);
+  services.metrics->stage("read", Clock::now() - started);
+  if (stop_if_cancelled(exchange)) return;
+  // The same assembly as `ncpost inspect`: reading, schema choice and check, then the
+  // program-structure diagnostics of stepnc::inspect.
+  std::vector<diag::Diagnostic> diagnostics = std::move(loaded.diagnostics);
+  stepnc::ProgramInfo info = stepnc::inspect(loaded.model, *loaded.schema);
+  diagnostics.insert(diagnostics.end(), info.diagnostics.begin(), info.diagnostics.end());
+  json all = json::array();
+  if (loaded.schema == &services.schemas->builtin().set())
+    for (auto& d : stepnc::diagnostics_json(services.schemas->builtin_diagnostics(),
+                                            services.schemas->builtin().origin))
+      all.push_back(std::move(d));
+  for (auto& d : stepnc::diagnostics_json(diagnostics, name)) all.push_back(std::move(d));
+  info.json["diagnostics"] = std::move(all);
+  const bool errors = std::any_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
+    return d.severity == diag::Severity::Error;
+  });
+  if (errors) {
+    Response r = problem(422, "input-rejected", "The upload has errors",
+                         "see diagnostics; the inspection member holds what could be read",
+                         with_file(diagnostics, name));
+    auto body = json::parse(r.body());
+    body["inspection"] = std::move(info.json);
+    r.body() = body.dump(2) + "\n";
+    exchange.respond(std::move(r));
+    return;
+  }
+  exchange.respond(json_response(200, info.json));
+}
+
+void handle_trace(Request& request, Services& services, Exchange& exchange) {
+  const std::string format = query_param(request.target(), "format").value_or("text");
+  if (format != "text" && format != "xml") {
+    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                                  "the query parameter 'format' must be text or xml"));
+    return;
+  }
+  std::optional<Response> error;
+  auto upload = take_upload(request, error);
+  if (!upload) {
+    exchange.respond(std::move(*error));
+    return;
+  }
+  const std::string name = upload->name;
+  auto loaded = load_upload(request, services, exchange, *upload, true);
+  if (!loaded) return;
+  std::string text;
+  const auto out = [&text](std::string_view piece) { text.append(piece); };
+  stepnc::InterpretOptions options;
+  options.cancel = exchange.cancel_flag();
+  const stepnc::AttributeReader attributes(loaded->model, *loaded->schema);
+  stepnc::InterpretResult result;
+  const auto started = Clock::now();
+  if (format == "text") {
+    canon::TraceWriter trace(out);
+    result = stepnc::interpret(loaded->model, attributes, trace, options);
+  } else {
+    canon::XmlDocumentWriter xml(out);
+    canon::Chunker chunker(xml);
+    result = stepnc::interpret(loaded->model, attributes, chunker, options);
+    chunker.finish();
+    xml.finish();
+  }
+  services.metrics->stage("interpret", Clock::now() - started);
+  if (stop_if_cancelled(exchange)) return;
+  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded->diagnostics, name);
+  for (const auto& d : result.diagnostics) diagnostics.push_back({name, d});
+  if (!result.ok()) {
+    exchange.respond(problem(422, "input-rejected", "The program could not be interpreted",
+                             "see diagnostics", diagnostics));
+    return;
+  }
+  exchange.respond(
+      text_response(format == "text" ? "text/plain; charset=utf-8" : "application/xml", text));
+}
+
+void handle_schema(Request& request, Services& services, Exchange& exchange) {
+  std::optional<Response> error;
+  auto upload = take_upload(request, error);
+  if (!upload) {
+    exchange.respond(std::move(*error));
+    return;
+  }
+  const auto started = Clock::now();
+  const express::ParseResult result = express::parse_express(upload->bytes);
+  if (!result.ok()) {
+    exchange.respond(problem(422, "input-rejected", "The schema has errors", "see diagnostics",
+                             with_file(result.diagnostics, upload->name)));
+    return;
+  }
+  std::string xml = express::to_express_x(result.schemas);
+  services.metrics->stage("schema", Clock::now() - started);
+  exchange.respond(text_response("application/xml", std::move(xml)));
+}
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+std::string percent_decode(std::string_view s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '+') {
+      out += ' ';
+    } else if (s[i] == '%' && i + 2 < s.size() && hex_value(s[i + 1]) >= 0 &&
+               hex_value(s[i + 2]) >= 0) {
+      out += static_cast<char>(hex_value(s[i + 1]) * 16 + hex_value(s[i + 2]));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string problem_body(unsigned status, std::string_view type, std::string_view title,
+                         std::string_view detail,
+                         const std::vector<xslt::FileDiagnostic>& diagnostics) {
+  json body;
+  body["type"] = "urn:ncpost:problem:" + std::string(type);
+  body["title"] = title;
+  body["status"] = status;
+  body["detail"] = detail;
+  body["diagnostics"] = diagnostics_json(diagnostics);
+  return body.dump(2) + "\n";
+}
+
+Response problem(unsigned status, std::string_view type, std::string_view title,
+                 std::string_view detail, const std::vector<xslt::FileDiagnostic>& diagnostics) {
+  Response r{static_cast<http::status>(status), 11};
+  r.set(http::field::content_type, "application/problem+json");
+  r.body() = problem_body(status, type, title, detail, diagnostics);
+  return r;
+}
+
+std::optional<std::string> query_param(std::string_view target, std::string_view name) {
+  const auto q = target.find('?');
+  if (q == std::string_view::npos) return std::nullopt;
+  std::string_view query = target.substr(q + 1);
+  while (!query.empty()) {
+    const auto amp = query.find('&');
+    const std::string_view pair = query.substr(0, amp);
+    query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
+    const auto eq = pair.find('=');
+    if (percent_decode(pair.substr(0, eq)) == name)
+      return eq == std::string_view::npos ? std::string{} : percent_decode(pair.substr(eq + 1));
+  }
+  return std::nullopt;
+}
+
+std::optional<Upload> take_upload(Request& request, std::optional<Response>& error) {
+  Upload upload;
+  const auto content_type = request[http::field::content_type];
+  if (auto name = query_param(request.target(), "name"); name && !name->empty())
+    upload.name = *name;
+  if (is_multipart(content_type)) {
+    const auto boundary = multipart_boundary(content_type);
+    if (!boundary) {
+      error = http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                           "multipart/form-data without a valid boundary parameter");
+      return std::nullopt;
+    }
+    const MultipartResult parts = parse_multipart(request.body(), *boundary);
+    if (!parts.ok()) {
+      error = http_problem(400, diag::Code::HttpBadRequest, "Bad request", parts.error);
+      return std::nullopt;
+    }
+    const MultipartPart* part = parts.find("file");
+    if (part == nullptr && parts.parts.size() == 1) part = &parts.parts.front();
+    if (part == nullptr) {
+      error = http_problem(400, diag::Code::HttpBadRequest, "Bad request",
+                           "multipart/form-data upload needs a part named 'file'");
+      return std::nullopt;
+    }
+    upload.bytes = std::string(part->body);
+    if (!part->filename.empty()) upload.name = part->filename;
+    upload.content_type = part->content_type;
+    request.body().clear();
+    request.body().shrink_to_fit();
+  } else {
+    upload.bytes = std::move(request.body());
+    upload.content_type = std::string(content_type);
+  }
+  if (upload.bytes.empty()) {
+    error = http_problem(400, diag::Code::HttpBadRequest, "Bad request", "the upload is empty");
+    return std::nullopt;
+  }
+  return upload;
+}
+
+nlohmann::ordered_json block_map(std::string_view text, const std::vector<WorkingstepMark>& marks) {
+  json blocks = json::object();
+  json workingsteps = json::array();
+  std::size_t line_start = 0;
+  std::size_t line_number = 0;
+  std::size_t mark = 0;
+  const WorkingstepMark* current = nullptr;
+  json* current_ws = nullptr;
+  while (line_start < text.size()) {
+    ++line_number;
+    // The marks at or before this line's start decide whose line it is.
+    while (mark < marks.size() && marks[mark].offset <= line_start) {
+      current = marks[mark].id != 0 ? &marks[mark] : nullptr;
+      if (current != nullptr) {
+        workingsteps.push_back({{"id", current->id},
+                                {"name", current->name},
+                                {"first_line", nullptr},
+                                {"last_line", nullptr}});
+        current_ws = &workingsteps.back();
+      } else {
+        current_ws = nullptr;
+      }
+      ++mark;
+    }
+    auto eol = text.find('\n', line_start);
+    if (eol == std::string_view::npos) eol = text.size();
+    std::string_view line = text.substr(line_start, eol - line_start);
+    if (current != nullptr) {
+      std::size_t i = 0;
+      while (i < line.size() && (line[i] == ' ' || line[i] == '/')) ++i;
+      std::string key;
+      if (i < line.size() && (line[i] == 'N' || line[i] == 'n')) {
+        std::size_t j = i + 1;
+        while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
+        if (j > i + 1) key = std::string(line.substr(i + 1, j - i - 1));
+      }
+      if (key.empty()) key = "L" + std::to_string(line_number);
+      blocks[key] = current->id;
+      if ((*current_ws)["first_line"].is_null()) (*current_ws)["first_line"] = line_number;
+      (*current_ws)["last_line"] = line_number;
+    }
+    line_start = eol + 1;
+  }
+  json out;
+  out["blocks"] = std::move(blocks);
+  out["workingsteps"] = std::move(workingsteps);
+  return out;
+}
+
+const std::vector<Route>& routes() {
+  static const std::vector<Route> table = {
+      {http::verb::post, "/v1/posts", "POST /v1/posts", Where::Worker, handle_post},
+      {http::verb::post, "/v1/conversions", "POST /v1/conversions", Where::Worker,
+       handle_conversion},
+      {http::verb::post, "/v1/inspections", "POST /v1/inspections", Where::Worker,
+       handle_inspection},
+      {http::verb::post, "/v1/traces", "POST /v1/traces", Where::Worker, handle_trace},
+      {http::verb::post, "/v1/schemas", "POST /v1/schemas", Where::Worker, handle_schema},
+      {http::verb::post, "/v1/nc/parse", "POST /v1/nc/parse", Where::Inline,
+       handle_not_implemented},
+      {http::verb::post, "/v1/nc/translate", "POST /v1/nc/translate", Where::Inline,
+       handle_not_implemented},
+      {http::verb::get, "/v1/profiles", "GET /v1/profiles", Where::Inline, handle_profiles_list},
+      // Loading may compile a stylesheet, and PUT always does: worker work.
+      {http::verb::get, "/v1/profiles/{id}", "GET /v1/profiles/{id}", Where::Worker,
+       handle_profile_get},
+      {http::verb::put, "/v1/profiles/{id}", "PUT /v1/profiles/{id}", Where::Worker,
+       handle_profile_put},
+      {http::verb::delete_, "/v1/profiles/{id}", "DELETE /v1/profiles/{id}", Where::Inline,
+       handle_profile_delete},
+      {http::verb::get, "/healthz", "GET /healthz", Where::Inline, handle_healthz},
+      {http::verb::get, "/readyz", "GET /readyz", Where::Inline, handle_readyz},
+      {http::verb::get, "/metrics", "GET /metrics", Where::Inline, handle_metrics},
+      {http::verb::get, "/openapi.yaml", "GET /openapi.yaml", Where::Inline, handle_openapi},
+      {http::verb::get, "/", "GET /", Where::Inline, handle_index},
+  };
+  return table;
+}
+
+RouteMatch match_route(http::verb method, std::string_view target) {
+  RouteMatch result;
+  const std::string_view path = target.substr(0, target.find('?'));
+  std::string allow;
+  for (const Route& route : routes()) {
+    std::string id;
+    const std::string_view pattern = route.pattern;
+    bool matches = false;
+    if (const auto brace = pattern.find("{id}"); brace != std::string_view::npos) {
+      const std::string_view prefix = pattern.substr(0, brace);
+      if (path.size() > prefix.size() && path.substr(0, prefix.size()) == prefix &&
+          path.find('/', prefix.size()) == std::string_view::npos) {
+        id = percent_decode(path.substr(prefix.size()));
+        matches = true;
+      }
+    } else {
+      matches = path == pattern;
+    }
+    if (!matches) continue;
+    // HEAD is answered as GET by the session.
+    if (route.method == method || (method == http::verb::head && route.method == http::verb::get)) {
+      result.route = &route;
+      result.id = std::move(id);
+      return result;
+    }
+    if (!allow.empty()) allow += ", ";
+    allow += std::string(http::to_string(route.method));
+  }
+  result.status = allow.empty() ? 404 : 405;
+  result.allow = std::move(allow);
+  return result;
+}
+
+}  // namespace ncpost::server

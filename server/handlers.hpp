@@ -1,0 +1,126 @@
+#pragma once
+// The request handlers: each is a function of the request that produces its response through
+// an Exchange, with no I/O of its own. The session (session.cpp) decides where a handler runs
+// (on the IO thread for cheap routes, on the worker pool for pipeline work) and carries what it
+// produces to the socket. Unit tests call handlers with a recording Exchange.
+
+#include <atomic>
+#include <boost/beast/http.hpp>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "config.hpp"
+#include "metrics.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/profile/profile.hpp"
+#include "ncpost/xslt/xslt.hpp"
+
+namespace ncpost::server {
+
+namespace http = boost::beast::http;
+using Request = http::request<http::string_body>;
+using Response = http::response<http::string_body>;
+using StreamHead = http::response<http::empty_body>;
+
+// What every handler may use. Shared by all threads; everything in it is thread-safe.
+struct Services {
+  Config config;
+  profile::ProfileStore* profiles = nullptr;
+  const express::SchemaRegistry* schemas = nullptr;
+  Metrics* metrics = nullptr;
+  std::optional<std::string> admin_token;  // none: PUT/DELETE answer 401 to everyone
+  std::filesystem::path web_root;
+  std::filesystem::path openapi_file;
+  std::function<bool()> saturated;  // the job queue is full (readyz)
+  std::string engine_version;
+};
+
+// The handler's side of one request. A handler either calls respond() once, or
+// begin_stream() once, write() any number of times and end_stream() once.
+class Exchange {
+ public:
+  Exchange() = default;
+  Exchange(const Exchange&) = delete;
+  Exchange& operator=(const Exchange&) = delete;
+  virtual ~Exchange() = default;
+
+  virtual void respond(Response response) = 0;
+  // Sends the head with chunked transfer encoding. False when the client is gone or the job
+  // was already answered (time limit): the handler should stop.
+  virtual bool begin_stream(StreamHead head) = 0;
+  // One chunk. May block while the client is behind (bounded buffering). False: client gone.
+  virtual bool write(std::string_view piece) = 0;
+  // complete=false cuts the stream without its last chunk, so that the client sees an
+  // incomplete transfer, never a complete-looking program.
+  virtual void end_stream(bool complete) = 0;
+  // Set when the client went away or the job's time limit passed; the engine polls it.
+  [[nodiscard]] virtual const std::atomic<bool>* cancel_flag() const noexcept = 0;
+  [[nodiscard]] virtual bool timed_out() const noexcept = 0;
+
+  // Filled by the router / handler for the access log.
+  std::string path_id;  // the {id} of /v1/profiles/{id}
+  std::string profile;  // the profile a post used
+};
+
+using Handler = void (*)(Request& request, Services& services, Exchange& exchange);
+
+enum class Where : std::uint8_t { Inline, Worker };
+
+struct Route {
+  http::verb method;
+  std::string_view pattern;  // "/v1/profiles/{id}": one trailing segment parameter
+  std::string_view name;     // for metrics and logs: the pattern, with the method
+  Where where;
+  Handler handler;
+};
+
+struct RouteMatch {
+  const Route* route = nullptr;  // null: no route (status says 404 or 405)
+  std::string id;
+  unsigned status = 0;
+  std::string allow;  // for 405
+};
+
+[[nodiscard]] const std::vector<Route>& routes();
+[[nodiscard]] RouteMatch match_route(http::verb method, std::string_view target);
+
+// RFC 9457 problem details, with diagnostics {file, line, column, severity, code, message}.
+[[nodiscard]] Response problem(unsigned status, std::string_view type, std::string_view title,
+                               std::string_view detail,
+                               const std::vector<xslt::FileDiagnostic>& diagnostics = {});
+[[nodiscard]] std::string problem_body(unsigned status, std::string_view type,
+                                       std::string_view title, std::string_view detail,
+                                       const std::vector<xslt::FileDiagnostic>& diagnostics = {});
+
+// The decoded value of a query parameter of `target`, nullopt when absent.
+[[nodiscard]] std::optional<std::string> query_param(std::string_view target,
+                                                     std::string_view name);
+
+// The upload of a job route: the raw body, or the `file` part (else the only part) of a
+// multipart/form-data body.
+struct Upload {
+  std::string bytes;
+  std::string name = "upload";  // names the input in diagnostics
+  std::string content_type;
+};
+// nullopt: a 400 problem is in `error`.
+[[nodiscard]] std::optional<Upload> take_upload(Request& request, std::optional<Response>& error);
+
+// From the lines of a posted program and the offsets at which each workingstep's text begins:
+// {block number (or "L" + line) → workingstep id}. Exposed for unit tests.
+struct WorkingstepMark {
+  std::size_t offset = 0;  // in the program text
+  std::uint64_t id = 0;
+  std::string name;
+};
+[[nodiscard]] nlohmann::ordered_json block_map(std::string_view text,
+                                               const std::vector<WorkingstepMark>& marks);
+
+}  // namespace ncpost::server

@@ -1,0 +1,86 @@
+// ncpostd: the HTTP service. Parses the command line, sets up libxml2/libxslt on the main
+// thread (they must be initialised before any worker parses XML), opens the profile store and
+// runs the server until SIGTERM. docs/server.md describes the routes, limits and logs.
+
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <boost/system/system_error.hpp>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "auth.hpp"
+#include "config.hpp"
+#include "ncpost/p28/p28.hpp"
+#include "ncpost/xslt/xslt.hpp"
+#include "server.hpp"
+
+int main(int argc, char** argv) {
+  using namespace ncpost;
+  std::vector<std::string_view> args(argv + 1, argv + argc);
+  const server::ParsedArgs parsed = server::parse_args(args);
+  if (parsed.help) {
+    std::cout << server::usage();
+    return 0;
+  }
+  if (!parsed.config) {
+    std::cerr << "ncpostd: " << parsed.error << "\n" << server::usage();
+    return 2;
+  }
+  const server::Config config = server::resolve_threads(*parsed.config);
+
+  // One JSON object per line on stderr: the start-up line (with "listening"), access lines,
+  // signals. Machine-readable, so the port can be taken from it.
+  auto log = spdlog::stderr_logger_mt("ncpostd");
+  log->set_pattern("%v");
+  log->flush_on(spdlog::level::info);
+  const auto fail = [&](const std::string& message) {
+    nlohmann::json line;
+    line["event"] = "error";
+    line["message"] = message;
+    log->error(line.dump());
+    return 1;
+  };
+
+  p28::initialise_xml();
+  xslt::initialise();
+
+  std::vector<std::string> token_errors;
+  std::vector<std::string> token_warnings;
+  std::optional<std::string> token =
+      server::load_admin_token(config.admin_token_file, token_errors, token_warnings);
+  if (!token_errors.empty()) {
+    for (const auto& e : token_errors) fail(e);
+    return 2;
+  }
+  for (const auto& w : token_warnings) {
+    nlohmann::json line;
+    line["event"] = "warning";
+    line["message"] = w;
+    log->warn(line.dump());
+  }
+
+  std::unique_ptr<profile::ProfileStore> store;
+  try {
+    if (config.profiles) {
+      std::filesystem::create_directories(*config.profiles);
+      profile::StoreOptions options;
+      options.writable = true;
+      options.fallback = profile::builtin_directory();
+      store = std::make_unique<profile::ProfileStore>(*config.profiles, options);
+    } else {
+      store = std::make_unique<profile::ProfileStore>(profile::builtin_directory());
+    }
+  } catch (const std::exception& e) {
+    return fail(std::string("cannot open the profile directory: ") + e.what());
+  }
+
+  try {
+    server::Server server(config, *store, std::move(token), log);
+    return server.run();
+  } catch (const boost::system::system_error& e) {
+    return fail("cannot listen on " + config.host + ":" + std::to_string(config.port) + ": " +
+                e.what());
+  }
+}

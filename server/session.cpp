@@ -1,0 +1,668 @@
+#include "session.hpp"
+
+#include <array>
+#include <boost/asio/bind_executor.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/write.hpp>
+#include <cctype>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "server.hpp"
+
+namespace ncpost::server {
+namespace {
+
+namespace net = boost::asio;
+namespace beast = boost::beast;
+using Clock = std::chrono::steady_clock;
+
+// A worker blocks in write() once this much is waiting for the socket: memory per stream stays
+// bounded while a slow client reads.
+constexpr std::size_t kMaxPending = 1 << 20;
+// How long a connection that is closed after an error keeps reading (and discarding) what the
+// client still sends, so that the client sees the response instead of a reset.
+constexpr auto kLingerTime = std::chrono::seconds(2);
+constexpr std::size_t kLingerBytes = std::size_t{8} << 20;
+
+Response error_response(unsigned status, diag::Code code, std::string_view title,
+                        std::string detail) {
+  const std::vector<xslt::FileDiagnostic> one = {{"request", diag::make(code, 0, 0, detail)}};
+  return problem(status, diag::info(code).id, title, detail, one);
+}
+
+bool valid_request_id(std::string_view id) {
+  if (id.empty() || id.size() > 64) return false;
+  for (char c : id)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.')
+      return false;
+  return true;
+}
+
+// The handler's view of its request, from a worker thread (or inline on the strand).
+class SessionExchange final : public Exchange {
+ public:
+  SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<RequestState> state)
+      : session_(std::move(session)), state_(std::move(state)) {}
+
+  void respond(Response response) override {
+    {
+      std::lock_guard lock(state_->mutex);
+      if (state_->answered) return;
+      state_->answered = true;
+      state_->profile = profile;
+    }
+    session_->post_response(state_, std::move(response));
+  }
+
+  bool begin_stream(StreamHead head) override {
+    {
+      std::lock_guard lock(state_->mutex);
+      if (state_->answered || state_->gone) return false;
+      state_->answered = true;
+      state_->head = std::move(head);
+      state_->profile = profile;
+    }
+    session_->post_stream_begin(state_);
+    return true;
+  }
+
+  bool write(std::string_view piece) override {
+    bool post = false;
+    {
+      std::unique_lock lock(state_->mutex);
+      state_->drained.wait(lock, [&] {
+        return state_->pending.size() < kMaxPending || state_->gone || state_->abandoned;
+      });
+      if (state_->gone || state_->abandoned) return false;
+      state_->pending.append(piece);
+      post = !std::exchange(state_->pump_posted, true);
+    }
+    if (post) session_->post_pump(state_);
+    return true;
+  }
+
+  void end_stream(bool complete) override {
+    bool post = false;
+    {
+      std::lock_guard lock(state_->mutex);
+      state_->ended = true;
+      state_->complete = complete;
+      post = !std::exchange(state_->pump_posted, true);
+    }
+    if (post) session_->post_pump(state_);
+  }
+
+  [[nodiscard]] const std::atomic<bool>* cancel_flag() const noexcept override {
+    return &state_->cancel;
+  }
+  [[nodiscard]] bool timed_out() const noexcept override { return state_->timed_out.load(); }
+
+ private:
+  std::shared_ptr<Session> session_;
+  std::shared_ptr<RequestState> state_;
+};
+
+}  // namespace
+
+Session::Session(net::ip::tcp::socket socket, Server& server)
+    : server_(server),
+      strand_(socket.get_executor()),
+      socket_(std::move(socket)),
+      timer_(strand_),
+      job_timer_(strand_),
+      id_(server.next_session_id()) {
+  beast::error_code ec;
+  const auto endpoint = socket_.remote_endpoint(ec);
+  if (!ec) remote_ = endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
+  socket_.set_option(net::ip::tcp::no_delay(true), ec);
+  server_.services().metrics->connections++;
+}
+
+Session::~Session() {
+  server_.remove_session(id_);
+}
+
+void Session::start() {
+  server_.add_session(id_, shared_from_this());
+  net::post(strand_, [self = shared_from_this()] { self->wait_request(); });
+}
+
+void Session::drain() {
+  net::post(strand_, [self = shared_from_this()] {
+    if (self->phase_ == Phase::Idle) self->close();
+    // Otherwise keep_alive is false for the response in progress (server draining).
+  });
+}
+
+void Session::force_close() {
+  net::post(strand_, [self = shared_from_this()] {
+    if (self->state_) {
+      self->state_->cancel = true;
+      std::lock_guard lock(self->state_->mutex);
+      self->state_->gone = true;
+      self->state_->drained.notify_all();
+    }
+    self->close();
+  });
+}
+
+// ---- reading --------------------------------------------------------------------------------
+
+void Session::wait_request() {
+  if (server_.draining()) return close();
+  phase_ = Phase::Idle;
+  state_.reset();
+  // A fresh connection was opened to send a request: it gets the read limit. A kept-alive one
+  // may sit idle for the idle limit.
+  arm_timer(first_request_ ? server_.config().read_timeout : server_.config().idle_timeout);
+  if (buffer_.size() > 0) return read_header();
+  socket_.async_wait(net::ip::tcp::socket::wait_read,
+                     net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec) {
+                       if (self->phase_ != Phase::Idle) return;
+                       if (ec) return self->close();
+                       self->read_header();
+                     }));
+}
+
+void Session::read_header() {
+  phase_ = Phase::Reading;
+  first_request_ = false;
+  read_timed_out_ = false;
+  started_ = Clock::now();
+  bytes_in_ = 0;
+  bytes_out_ = 0;
+  status_ = 0;
+  route_name_ = "unmatched";
+  method_.clear();
+  path_.clear();
+  profile_.clear();
+  request_id_ = server_.next_request_id();
+  logged_ = false;
+  arm_timer(server_.config().read_timeout);
+  parser_.emplace();
+  parser_->header_limit(server_.config().max_header);
+  parser_->body_limit(server_.config().max_body);
+  http::async_read_header(
+      socket_, buffer_, *parser_,
+      net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+        self->on_header(ec, n);
+      }));
+}
+
+void Session::on_header(beast::error_code ec, std::size_t bytes) {
+  bytes_in_ += bytes;
+  if (ec) return read_failed(ec);
+  const auto& header = parser_->get();
+  method_ = std::string(header.method_string());
+  path_ = std::string(header.target().substr(0, header.target().find('?')));
+  if (const auto id = header["X-Request-Id"]; valid_request_id(id)) request_id_ = std::string(id);
+  // curl and browsers wait for 100 Continue before a large body; answer it only once the
+  // header passed its checks, so a too-large upload is refused before it is sent.
+  if (beast::iequals(header[http::field::expect], "100-continue")) {
+    static constexpr std::string_view kContinue = "HTTP/1.1 100 Continue\r\n\r\n";
+    net::async_write(socket_, net::buffer(kContinue.data(), kContinue.size()),
+                     net::bind_executor(
+                         strand_, [self = shared_from_this()](beast::error_code e, std::size_t n) {
+                           self->bytes_out_ += n;
+                           if (e) return self->close();
+                           self->read_body();
+                         }));
+    return;
+  }
+  read_body();
+}
+
+void Session::read_body() {
+  http::async_read(
+      socket_, buffer_, *parser_,
+      net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+        self->on_body(ec, n);
+      }));
+}
+
+void Session::on_body(beast::error_code ec, std::size_t bytes) {
+  bytes_in_ += bytes;
+  if (ec) return read_failed(ec);
+  timer_.cancel();
+  handle_request();
+}
+
+void Session::read_failed(beast::error_code ec) {
+  if (phase_ == Phase::Closed) return;
+  keep_alive_ = false;
+  if (read_timed_out_) {
+    status_ = 408;
+    return send(error_response(408, diag::Code::HttpReadTimeout, "Request timeout",
+                               "the request did not arrive within --read-timeout"),
+                true);
+  }
+  if (ec == http::error::body_limit) {
+    return send(error_response(413, diag::Code::HttpBodyTooLarge, "Content too large",
+                               "the body exceeds --max-body (" +
+                                   std::to_string(server_.config().max_body) + " bytes)"),
+                true);
+  }
+  if (ec == http::error::header_limit) {
+    return send(
+        error_response(431, diag::Code::HttpHeaderTooLarge, "Request header fields too large",
+                       "the request header exceeds --max-header (" +
+                           std::to_string(server_.config().max_header) + " bytes)"),
+        true);
+  }
+  if (ec == http::error::end_of_stream || ec == net::error::eof ||
+      ec == net::error::connection_reset || ec == net::error::operation_aborted ||
+      ec == http::error::partial_message) {
+    if (bytes_in_ > 0) finish_request(false);
+    return close();
+  }
+  send(error_response(400, diag::Code::HttpBadRequest, "Bad request",
+                      "malformed HTTP request: " + ec.message()),
+       true);
+}
+
+// ---- dispatch -------------------------------------------------------------------------------
+
+void Session::handle_request() {
+  request_ = parser_->release();
+  parser_.reset();
+  keep_alive_ = request_.keep_alive();
+  is_head_ = request_.method() == http::verb::head;
+  state_ = std::make_shared<RequestState>();
+  RouteMatch match = match_route(request_.method(), request_.target());
+  if (match.route == nullptr) {
+    Response r =
+        match.status == 405
+            ? error_response(405, diag::Code::HttpNotFound, "Method not allowed",
+                             "allowed here: " + match.allow)
+            : error_response(404, diag::Code::HttpNotFound, "Not found", "no route for " + path_);
+    if (match.status == 405) r.set(http::field::allow, match.allow);
+    state_->answered = true;
+    return send(std::move(r));
+  }
+  route_name_ = std::string(match.route->name);
+  if (match.route->where == Where::Inline) {
+    phase_ = Phase::Handling;
+    SessionExchange exchange(shared_from_this(), state_);
+    exchange.path_id = std::move(match.id);
+    try {
+      match.route->handler(request_, server_.services(), exchange);
+    } catch (const std::exception& e) {
+      exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
+    }
+    return;  // the response was posted to this strand
+  }
+  if (!server_.try_admit()) {
+    server_.services().metrics->rejected_full++;
+    Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
+                                "all workers are busy and the job queue is full; retry later");
+    r.set(http::field::retry_after, "1");
+    state_->answered = true;
+    return send(std::move(r));
+  }
+  dispatch_job(*match.route, std::move(match.id));
+}
+
+void Session::dispatch_job(const Route& route, std::string id) {
+  phase_ = Phase::Handling;
+  job_running_ = true;
+  writing_ = false;
+  head_written_ = false;
+  auto state = state_;
+  auto& metrics = *server_.services().metrics;
+  metrics.queued++;
+  job_timer_.expires_after(server_.config().job_timeout);
+  job_timer_.async_wait(
+      net::bind_executor(strand_, [self = shared_from_this(), state](beast::error_code ec) {
+        if (!ec) self->on_job_timeout(state);
+      }));
+  watch_client();
+  auto request = std::make_shared<Request>(std::move(request_));
+  net::post(server_.pool(), [self = shared_from_this(), state, request, handler = route.handler,
+                             id = std::move(id), &metrics]() mutable {
+    metrics.queued--;
+    metrics.active++;
+    {
+      SessionExchange exchange(self, state);
+      exchange.path_id = std::move(id);
+      // A job whose client left (or whose time ran out) while it queued is not started.
+      if (!state->cancel.load()) {
+        try {
+          handler(*request, self->server_.services(), exchange);
+        } catch (const std::exception& e) {
+          exchange.respond(
+              error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
+        }
+      }
+      exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error",
+                                      "the handler gave no response"));  // dropped if answered
+    }
+    request.reset();  // free the upload on the worker, not on the IO thread
+    metrics.active--;
+    self->server_.release();
+    self->post_job_finished(state);
+  });
+}
+
+// While a job runs the connection is otherwise silent; a readable socket then means the client
+// hung up (EOF or reset), which cancels the job, or sent its next request early (pipelining).
+void Session::watch_client() {
+  if (watch_pending_ || phase_ == Phase::Closed) return;
+  watch_pending_ = true;
+  socket_.async_wait(net::ip::tcp::socket::wait_read,
+                     net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec) {
+                       self->watch_pending_ = false;
+                       if (!self->job_running_ || self->phase_ == Phase::Closed) return;
+                       beast::error_code e;
+                       const std::size_t available = self->socket_.available(e);
+                       if (ec || e || available == 0) return self->client_gone(self->state_);
+                       // Pipelined bytes: keep them for the next request, bounded by the header
+                       // limit.
+                       if (self->buffer_.size() + available > self->server_.config().max_header)
+                         return;  // stop watching; the next read enforces the limits
+                       auto buffers = self->buffer_.prepare(available);
+                       const std::size_t n = self->socket_.read_some(buffers, e);
+                       self->buffer_.commit(n);
+                       if (e) return self->client_gone(self->state_);
+                       self->watch_client();
+                     }));
+}
+
+void Session::on_job_timeout(const std::shared_ptr<RequestState>& state) {
+  if (!current(state) || !job_running_) return;
+  state->timed_out = true;
+  state->cancel = true;
+  bool answer_now = false;
+  {
+    std::lock_guard lock(state->mutex);
+    if (!state->answered) {
+      state->answered = true;
+      state->abandoned = true;
+      answer_now = true;
+    }
+    state->drained.notify_all();
+  }
+  // A stream already under way is ended by the worker with the profile's error marker.
+  if (answer_now)
+    send(error_response(504, diag::Code::HttpJobTimeout, "Job time limit exceeded",
+                        "the job ran longer than --job-timeout (" +
+                            std::to_string(server_.config().job_timeout.count()) + " ms)"));
+}
+
+void Session::post_job_finished(std::shared_ptr<RequestState> state) {
+  net::post(strand_, [self = shared_from_this(), state = std::move(state)] {
+    {
+      std::lock_guard lock(state->mutex);
+      state->finished = true;
+    }
+    if (state != self->state_) return;
+    self->job_running_ = false;
+    self->job_timer_.cancel();
+    if (std::exchange(self->awaiting_job_, false) && self->phase_ != Phase::Closed)
+      self->wait_request();
+  });
+}
+
+// ---- buffered responses ---------------------------------------------------------------------
+
+void Session::post_response(std::shared_ptr<RequestState> state, Response response) {
+  net::post(strand_, [self = shared_from_this(), state = std::move(state),
+                      response = std::move(response)]() mutable {
+    self->deliver(state, std::move(response));
+  });
+}
+
+void Session::deliver(const std::shared_ptr<RequestState>& state, Response response) {
+  if (!current(state) || state->abandoned) return;
+  {
+    std::lock_guard lock(state->mutex);
+    profile_ = state->profile;
+  }
+  send(std::move(response));
+}
+
+void Session::send(Response response, bool then_linger) {
+  phase_ = Phase::Writing;
+  if (server_.draining()) keep_alive_ = false;
+  status_ = response.result_int();
+  response.set(http::field::server, "ncpostd");
+  response.set("X-Request-Id", request_id_);
+  response.keep_alive(keep_alive_);
+  response.prepare_payload();
+  if (is_head_) {
+    const auto length = response.body().size();
+    response.body().clear();
+    response.content_length(length);
+  }
+  response_ = std::make_shared<Response>(std::move(response));
+  arm_timer(server_.config().write_timeout);
+  http::async_write(socket_, *response_,
+                    net::bind_executor(strand_, [self = shared_from_this(), then_linger](
+                                                    beast::error_code ec, std::size_t n) {
+                      self->on_write(ec, n, then_linger);
+                    }));
+}
+
+void Session::on_write(beast::error_code ec, std::size_t bytes, bool then_linger) {
+  bytes_out_ += bytes;
+  response_.reset();
+  finish_request(!ec);
+  if (ec) return close();
+  if (then_linger) return linger_close();
+  after_response();
+}
+
+void Session::after_response() {
+  if (!keep_alive_) return close();
+  if (job_running_) {
+    // A job that outlived its answer (504) may run on for long: no new request on this
+    // connection meanwhile.
+    if (state_ && state_->abandoned) return linger_close();
+    // The handler answered and is returning; the next read starts when it has.
+    awaiting_job_ = true;
+    phase_ = Phase::Handling;
+    return;
+  }
+  wait_request();
+}
+
+// ---- streamed responses ---------------------------------------------------------------------
+
+void Session::post_stream_begin(std::shared_ptr<RequestState> state) {
+  net::post(strand_,
+            [self = shared_from_this(), state = std::move(state)] { self->stream_begin(state); });
+}
+
+void Session::post_pump(std::shared_ptr<RequestState> state) {
+  net::post(strand_, [self = shared_from_this(), state = std::move(state)] { self->pump(state); });
+}
+
+void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
+  if (!current(state) || state->abandoned) return;
+  {
+    std::lock_guard lock(state->mutex);
+    stream_head_ = std::make_unique<StreamHead>(std::move(*state->head));
+    profile_ = state->profile;
+  }
+  phase_ = Phase::Writing;
+  if (server_.draining()) keep_alive_ = false;
+  status_ = stream_head_->result_int();
+  stream_head_->set(http::field::server, "ncpostd");
+  stream_head_->set("X-Request-Id", request_id_);
+  stream_head_->keep_alive(keep_alive_);
+  stream_head_->chunked(true);
+  stream_serializer_ = std::make_unique<http::response_serializer<http::empty_body>>(*stream_head_);
+  writing_ = true;
+  arm_timer(server_.config().write_timeout);
+  http::async_write_header(socket_, *stream_serializer_,
+                           net::bind_executor(strand_, [self = shared_from_this(), state](
+                                                           beast::error_code ec, std::size_t n) {
+                             self->on_stream_written(state, ec, n, false);
+                           }));
+}
+
+void Session::pump(const std::shared_ptr<RequestState>& state) {
+  if (!current(state) || writing_ || !head_written_) {
+    // Not yet (the head is still being written) or no longer; the head's completion pumps.
+    if (state && !current(state)) {
+      std::lock_guard lock(state->mutex);
+      state->pump_posted = false;
+    }
+    return;
+  }
+  bool ended = false;
+  bool complete = false;
+  {
+    std::lock_guard lock(state->mutex);
+    state->pump_posted = false;
+    out_chunk_.clear();
+    out_chunk_.swap(state->pending);
+    ended = state->ended;
+    complete = state->complete;
+    state->drained.notify_all();
+  }
+  auto done = [self = shared_from_this(), state](bool last) {
+    return net::bind_executor(self->strand_,
+                              [self, state, last](beast::error_code ec, std::size_t n) {
+                                self->on_stream_written(state, ec, n, last);
+                              });
+  };
+  if (!out_chunk_.empty()) {
+    writing_ = true;
+    arm_timer(server_.config().write_timeout);
+    net::async_write(socket_, http::make_chunk(net::buffer(out_chunk_)), done(false));
+    return;
+  }
+  if (!ended) return;
+  if (complete) {
+    writing_ = true;
+    arm_timer(server_.config().write_timeout);
+    net::async_write(socket_, http::make_chunk_last(), done(true));
+    return;
+  }
+  // A failed or cancelled post: the text ends with the error marker and the transfer is cut
+  // without its last chunk, so no client can take it for a whole program.
+  finish_request(false);
+  close();
+}
+
+void Session::on_stream_written(const std::shared_ptr<RequestState>& state, beast::error_code ec,
+                                std::size_t bytes, bool last) {
+  writing_ = false;
+  bytes_out_ += bytes;
+  if (!current(state)) return;
+  if (ec) return client_gone(state);
+  if (!head_written_) head_written_ = true;
+  if (last) {
+    stream_serializer_.reset();
+    stream_head_.reset();
+    finish_request(true);
+    return after_response();
+  }
+  pump(state);
+}
+
+void Session::client_gone(const std::shared_ptr<RequestState>& state) {
+  if (state) {
+    state->cancel = true;
+    std::lock_guard lock(state->mutex);
+    state->gone = true;
+    state->drained.notify_all();
+  }
+  if (status_ == 0) status_ = 499;  // nginx's "client closed request", for the log only
+  finish_request(false);
+  close();
+}
+
+// ---- ending ---------------------------------------------------------------------------------
+
+void Session::finish_request(bool complete) {
+  if (logged_) return;
+  logged_ = true;
+  const auto duration = Clock::now() - started_;
+  server_.services().metrics->request(route_name_, status_, duration, bytes_in_, bytes_out_);
+  if (!server_.config().access_log) return;
+  // Never the body, the query string or the Authorization header.
+  nlohmann::json line;
+  line["event"] = "access";
+  line["request_id"] = request_id_;
+  line["remote"] = remote_;
+  line["method"] = method_;
+  line["path"] = path_;
+  line["route"] = route_name_;
+  line["status"] = status_;
+  line["bytes_in"] = bytes_in_;
+  line["bytes_out"] = bytes_out_;
+  line["duration_ms"] = std::chrono::duration<double, std::milli>(duration).count();
+  if (!profile_.empty()) line["profile"] = profile_;
+  line["complete"] = complete;
+  server_.log().info(line.dump());
+}
+
+void Session::linger_close() {
+  phase_ = Phase::Lingering;
+  beast::error_code ec;
+  socket_.shutdown(net::ip::tcp::socket::shutdown_send, ec);
+  arm_timer(std::chrono::duration_cast<std::chrono::milliseconds>(kLingerTime));
+  auto drain = std::make_shared<std::function<void(std::size_t)>>();
+  auto buffer = std::make_shared<std::array<char, 16384>>();
+  *drain = [self = shared_from_this(), drain, buffer](std::size_t total) {
+    self->socket_.async_read_some(
+        net::buffer(*buffer),
+        net::bind_executor(self->strand_, [self, drain, total](beast::error_code e, std::size_t n) {
+          if (e || total + n > kLingerBytes || self->phase_ != Phase::Lingering) {
+            self->close();
+            *drain = nullptr;  // break the cycle
+            return;
+          }
+          (*drain)(total + n);
+        }));
+  };
+  (*drain)(0);
+}
+
+void Session::close() {
+  if (phase_ == Phase::Closed) return;
+  if (!logged_ && bytes_in_ > 0) finish_request(false);
+  phase_ = Phase::Closed;
+  beast::error_code ec;
+  socket_.shutdown(net::ip::tcp::socket::shutdown_both, ec);
+  socket_.close(ec);
+  timer_.cancel();
+  job_timer_.cancel();
+  if (state_) {
+    state_->cancel = true;
+    std::lock_guard lock(state_->mutex);
+    if (!state_->finished) state_->gone = true;
+    state_->drained.notify_all();
+  }
+}
+
+void Session::arm_timer(std::chrono::milliseconds duration) {
+  timer_.expires_after(duration);
+  timer_.async_wait(net::bind_executor(
+      strand_, [self = shared_from_this()](beast::error_code ec) { self->on_timer(ec); }));
+}
+
+void Session::on_timer(beast::error_code ec) {
+  if (ec || phase_ == Phase::Closed) return;
+  if (timer_.expiry() > Clock::now()) return;  // re-armed meanwhile
+  switch (phase_) {
+    case Phase::Reading:
+      // The read's completion answers 408.
+      read_timed_out_ = true;
+      socket_.cancel(ec);
+      return;
+    case Phase::Writing:  // a client that does not read
+      if (state_) return client_gone(state_);
+      return close();
+    case Phase::Handling:
+      return;  // the job timer rules
+    case Phase::Idle:
+    case Phase::Lingering:
+    case Phase::Closed:
+      return close();
+  }
+}
+
+}  // namespace ncpost::server

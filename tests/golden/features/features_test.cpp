@@ -1,0 +1,354 @@
+// Toolpaths generated from features (docs/features.md): golden traces of the project's own
+// feature programs (cases/, written by make_cases.py), NIST's ex1 compared with the explicit
+// toolpaths NIST wrote for the same part (ex1E), and the wrong-tool diagnostics.
+// NCPOST_UPDATE_GOLDEN=1 rewrites the golden files; review the diff.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "corpus.hpp"
+#include "ncpost/canon/trace.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
+
+namespace ncpost::stepnc {
+namespace {
+
+namespace fs = std::filesystem;
+
+const express::SchemaRegistry& registry() {
+  static const express::SchemaRegistry r;
+  return r;
+}
+
+struct Generated {
+  std::vector<canon::Call> calls;
+  std::vector<diag::Diagnostic> diagnostics;
+  std::string text(const std::string& name) const {
+    std::string out = canon::trace(calls);
+    for (const auto& d : diagnostics) out += diag::format(d, name) + "\n";
+    return out;
+  }
+  std::size_t count(std::string_view code) const {
+    return static_cast<std::size_t>(
+        std::count_if(diagnostics.begin(), diagnostics.end(),
+                      [&](const auto& d) { return d.code_id() == code; }));
+  }
+};
+
+Generated run(const fs::path& file) {
+  pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry());
+  EXPECT_TRUE(loaded.ok()) << file;
+  Generated out;
+  out.diagnostics = loaded.diagnostics;
+  const AttributeReader attributes(loaded.model, *loaded.schema);
+  canon::ProgramBuffer buffer;
+  auto result = interpret(loaded.model, attributes, buffer, {});
+  out.calls = std::move(buffer).take();
+  out.diagnostics.insert(out.diagnostics.end(), result.diagnostics.begin(),
+                         result.diagnostics.end());
+  return out;
+}
+
+fs::path cases() {
+  return test::source_dir() / "tests/golden/features/cases";
+}
+
+// What a workingstep did, measured from its canonical calls: cutting moves (feeds and arcs)
+// only, so the approach and retract rapids do not count.
+struct Summary {
+  std::string name;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300, z0 = 1e300, z1 = -1e300;
+  std::set<double> levels;  // z of horizontal cutting moves, rounded to 1 µm
+  std::vector<double> xs;   // x of cutting moves parallel to y (face passes)
+  std::size_t cycles = 0;
+  std::size_t cuts = 0;
+  void add(double x, double y, double z) {
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    z0 = std::min(z0, z), z1 = std::max(z1, z);
+  }
+};
+
+// Workingsteps grouped by a name prefix: ex1E splits one ex1 workingstep into several
+// ("WS ROUGH POCKET1 A", "... B", ...) with rapid movements in between.
+std::map<std::string, Summary> summarise(const std::vector<canon::Call>& calls) {
+  std::map<std::string, Summary> out;
+  Summary* current = nullptr;
+  canon::Point at{};
+  const auto round = [](double v) { return std::round(v * 1000) / 1000; };
+  for (const canon::Call& c : calls) {
+    if (const auto* b = std::get_if<canon::Begin>(&c); b && b->scope == canon::Scope::Workingstep) {
+      std::string key = b->entity.name;
+      if (key.size() > 2 && key[key.size() - 2] == ' ' && std::isupper(key.back()))
+        key.resize(key.size() - 2);
+      current = b->entity.type == "MACHINING_WORKINGSTEP" && key.rfind("WS ", 0) == 0 ? &out[key]
+                                                                                      : nullptr;
+    } else if (const auto* t = std::get_if<canon::StraightTraverse>(&c)) {
+      at = {t->to.x, t->to.y, t->to.z};
+    } else if (const auto* f = std::get_if<canon::StraightFeed>(&c)) {
+      if (current) {
+        current->add(f->to.x, f->to.y, f->to.z);
+        ++current->cuts;
+        if (std::abs(f->to.z - at.z) < 1e-9 &&
+            (std::abs(f->to.x - at.x) > 1e-9 || std::abs(f->to.y - at.y) > 1e-9))
+          current->levels.insert(round(f->to.z));
+        if (std::abs(f->to.x - at.x) < 1e-9 && std::abs(f->to.y - at.y) > 50)
+          current->xs.push_back(round(f->to.x));
+      }
+      at = {f->to.x, f->to.y, f->to.z};
+    } else if (const auto* a = std::get_if<canon::ArcFeed>(&c)) {
+      if (current) {
+        current->add(a->end.x, a->end.y, a->end.z);
+        ++current->cuts;
+      }
+      at = {a->end.x, a->end.y, a->end.z};
+    } else if (const auto* cy = std::get_if<canon::Cycle>(&c)) {
+      if (current) {
+        ++current->cycles;
+        current->add(cy->x, cy->y, cy->bottom_z);
+      }
+    }
+  }
+  return out;
+}
+
+// ---- NIST ex1: machined, and compared with NIST's own explicit paths (ex1E) ----
+
+TEST(FeaturesCorpus, NistExample1IsMachined) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const Generated r = run(corpus / "p21/nist_toolkit_ex1.stp");
+  for (const auto& d : r.diagnostics)
+    EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, "ex1");
+  const std::string trace = canon::trace(r.calls);
+  // Drill #20: strategy #46 reduces feed to 0.5 × 1800 and speed to 0.75 × 960 rpm for the first
+  // 2 mm, then 0.75 × 1800 and 0.5 × 960 for the last 8; the through hole (30 deep, #64) is left
+  // by the 6.0086 point (10 × tan 31°) and the 1 mm through clearance: -37.0086.
+  EXPECT_NE(trace.find(" SET_FEED_RATE(900.0000)\n"), std::string::npos);
+  EXPECT_NE(trace.find(" STRAIGHT_FEED(20.0000, 60.0000, -2.0000)\n"), std::string::npos);
+  EXPECT_NE(trace.find(" STRAIGHT_FEED(20.0000, 60.0000, -29.0086)\n"), std::string::npos);
+  EXPECT_NE(trace.find(" STRAIGHT_FEED(20.0000, 60.0000, -37.0086)\n"), std::string::npos);
+  // Reaming #21 stops the spindle at the bottom (spindle_stop_at_bottom .T.): a G86-like bore
+  // from the retract plane 10 above the hole to 30 + 1 below it, feed 0.03 m/s.
+  EXPECT_NE(trace.find(" BORE_CYCLE(20.0000, 60.0000, 30.0000, 10.0000, -31.0000, 1800.0000, "
+                       "0.0000, SPINDLE_STOP)\n"),
+            std::string::npos);
+  const fs::path golden = test::source_dir() / "tests/golden/features/nist_toolkit_ex1.trace";
+  const std::string text = r.text("nist_toolkit_ex1.stp");
+  if (const char* u = std::getenv("NCPOST_UPDATE_GOLDEN"); u && std::string(u) == "1")
+    std::ofstream(golden, std::ios::binary) << text;
+  else
+    EXPECT_EQ(text, test::read_file(golden));
+}
+
+TEST(FeaturesCorpus, NistExample1AgreesWithEx1E) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const auto ours = summarise(run(corpus / "p21/nist_toolkit_ex1.stp").calls);
+  const auto nist = summarise(run(corpus / "p21/nist_toolkit_ex1E.stp").calls);
+  // Planar face: the same six passes 17.1 apart (overlap 0.05 of 18 mm), the same two levels
+  // (axial depth 2.5 of a 5 mm face), the same overtravel.
+  for (const char* ws : {"WS FINISH PLANAR FACE1", "WS ROUGH POCKET1", "WS FINISH POCKET1"}) {
+    ASSERT_TRUE(ours.count(ws)) << ws;
+    ASSERT_TRUE(nist.count(ws)) << ws;
+    const Summary& a = ours.at(ws);
+    const Summary& b = nist.at(ws);
+    EXPECT_EQ(a.levels, b.levels) << ws;
+    EXPECT_NEAR(a.x0, b.x0, 1e-6) << ws;
+    EXPECT_NEAR(a.x1, b.x1, 1e-6) << ws;
+    EXPECT_NEAR(a.y0, b.y0, 1e-6) << ws;
+    EXPECT_NEAR(a.y1, b.y1, 1e-6) << ws;
+  }
+  std::vector<double> xs = ours.at("WS FINISH PLANAR FACE1").xs;
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  ASSERT_EQ(xs.size(), 12u);  // two levels of six passes
+  xs.resize(6);
+  EXPECT_EQ(xs, (std::vector<double>{91.9, 74.8, 57.7, 40.6, 23.5, 6.4}));
+  // Rough pocket: levels 5.9 apart down to 30 - 0.5 (allowance_bottom), rings 5 apart.
+  EXPECT_EQ(ours.at("WS ROUGH POCKET1").levels,
+            (std::set<double>{-5.9, -11.8, -17.7, -23.6, -29.5}));
+  EXPECT_EQ(ours.at("WS FINISH POCKET1").levels.size(), 15u);
+  // Holes: one drilled path (explicit: the strategy changes feed and speed), one cycle.
+  EXPECT_EQ(ours.at("WS REAM HOLE1").cycles, 1u);
+  EXPECT_NEAR(ours.at("WS DRILL HOLE1").z0, -37.0086, 1e-4);
+  EXPECT_NEAR(nist.at("WS DRILL HOLE1").z0, -37.1378, 1e-4);
+}
+
+// ---- The project's own feature programs ----
+
+class FeatureGolden : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(FeatureGolden, MatchesItsTraceFile) {
+  const Generated r = run(cases() / (GetParam() + ".stp"));
+  const std::string text = r.text(GetParam() + ".stp");
+  const fs::path golden = cases() / (GetParam() + ".trace");
+  if (const char* u = std::getenv("NCPOST_UPDATE_GOLDEN"); u && std::string(u) == "1") {
+    std::ofstream(golden, std::ios::binary) << text;
+    return;
+  }
+  ASSERT_TRUE(fs::exists(golden)) << golden;
+  EXPECT_EQ(text, test::read_file(golden)) << "differs from " << golden;
+  // These are wrong on purpose; the others must interpret without an error.
+  if (GetParam() != "wrong-tools" && GetParam() != "unsupported" && GetParam() != "hostile") {
+    for (const auto& d : r.diagnostics)
+      EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, GetParam());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, FeatureGolden,
+                         ::testing::Values("face-unidirectional", "face-bidirectional-right",
+                                           "pocket-rect-helix", "pocket-circle-ramp",
+                                           "pocket-rect-zigzag", "pocket-toolaxis-fillet",
+                                           "pocket-raster", "pocket-side-finish", "outside-profile",
+                                           "holes-cycles", "holes-pointed-bottoms",
+                                           "holes-strategy", "slots", "wrong-tools", "unsupported",
+                                           "hostile"),
+                         [](const auto& param_info) {
+                           std::string n = param_info.param;
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
+
+// ---- Numbers checked by hand from the cases' own data ----
+
+TEST(FeaturesOwn, RectanglePocketRingsAndHelix) {
+  // Pocket 60 × 40 at (50, 40), corner 6, tool 10, allowance 0.5: the outer ring is 10.5 - 5.5
+  // = 24.5 × 14.5 half sizes around (50, 40) → x 25.5..74.5, y 25.5..54.5, corners 6 - 5.5 =
+  // 0.5. Depth 12 - 0.3 in levels of at most 5: three of 3.9. Helix radius 3 at 5°: 2π·3·tan 5°
+  // = 1.649 per turn, so 5.9 (from 2 above the top) takes four turns.
+  const Generated r = run(cases() / "pocket-rect-helix.stp");
+  const auto s = summarise(r.calls);
+  ASSERT_TRUE(r.count("STEPNC-101") == 0 && r.count("STEPNC-102") == 0);
+  const std::string trace = canon::trace(r.calls);
+  EXPECT_NE(trace.find("STRAIGHT_FEED(74.5000, 40.0000, -3.9000)"), std::string::npos);
+  EXPECT_NE(trace.find("STRAIGHT_FEED(26.0000, 54.5000, -3.9000)"), std::string::npos);
+  EXPECT_NE(trace.find("-11.7000)"), std::string::npos);
+  EXPECT_NE(trace.find("ARC_FEED(43.0000, 40.0000, 40.0000, 40.0000, 4, -3.9000)"),
+            std::string::npos);
+  // Climb with a clockwise spindle in a pocket: counter-clockwise rings (positive turns).
+  EXPECT_NE(trace.find("ARC_FEED(74.0000, 54.5000, 74.0000, 54.0000, 1, -3.9000)"),
+            std::string::npos)
+      << trace;
+}
+
+TEST(FeaturesOwn, CircularPocketRings) {
+  // Ø50, tool Ø12, radial step ≤ 5: room 25 - 6 = 19 → four rings 4.75 apart, full circles.
+  const Generated r = run(cases() / "pocket-circle-ramp.stp");
+  const std::string trace = canon::trace(r.calls);
+  for (const char* ring : {"ARC_FEED(4.7500, 0.0000, 0.0000, 0.0000, -1, -4.0000)",
+                           "ARC_FEED(19.0000, 0.0000, 0.0000, 0.0000, -1, -8.0000)"})
+    EXPECT_NE(trace.find(ring), std::string::npos) << ring << "\n" << trace;
+}
+
+TEST(FeaturesOwn, HoleCycles) {
+  const Generated r = run(cases() / "holes-cycles.stp");
+  const std::string trace = canon::trace(r.calls);
+  // Center drill to cutting_depth 3, retract plane 3 above the hole.
+  EXPECT_NE(trace.find("DRILL_CYCLE(10.0000, 10.0000, 50.0000, 3.0000, -3.0000, 300.0000, 0.0000)"),
+            std::string::npos)
+      << trace;
+  // Through drill Ø8: 15 + 4·tan 31° (2.4034) + 1; dwell 0.5.
+  EXPECT_NE(
+      trace.find("DRILL_CYCLE(10.0000, 10.0000, 50.0000, 3.0000, -18.4034, 600.0000, 0.5000)"),
+      std::string::npos);
+  // Equal pecks of 4 with 1 back-off (G73), flat bottom 20 deep: the point stops at the plane.
+  EXPECT_NE(trace.find("PECK_DRILL_CYCLE(30.0000, 10.0000, 50.0000, 3.0000, -20.0000, 600.0000, "
+                       "0.0000, 4.0000, 1.0000"),
+            std::string::npos);
+  // M10 × 1.5 at 500 rpm: feed 750.
+  EXPECT_NE(trace.find("TAP_CYCLE(30.0000, 10.0000, 50.0000, 3.0000, -20.0000, 750.0000, 0.0000, "
+                       "1.5000, 500.0000, RIGHT_HAND)"),
+            std::string::npos);
+  EXPECT_NE(trace.find("LEFT_HAND)"), std::string::npos);
+  EXPECT_NE(trace.find("REAM_CYCLE(30.0000, 10.0000"), std::string::npos);
+  EXPECT_NE(trace.find("BORE_CYCLE(30.0000, 10.0000, 50.0000, 3.0000, -20.0000, 300.0000, 0.0000, "
+                       "SPINDLE_STOP)"),
+            std::string::npos);
+  EXPECT_EQ(r.count("STEPNC-016"), 1u);  // pointed drill in the flat bottom (reamed after)
+  EXPECT_EQ(run(cases() / "holes-pointed-bottoms.stp").count("STEPNC-016"), 2u);
+}
+
+TEST(FeaturesOwn, UnsupportedIsNamedNotGuessed) {
+  const Generated r = run(cases() / "unsupported.stp");
+  EXPECT_EQ(r.count("STEPNC-101"), 6u) << r.text("unsupported");
+  for (const auto& d : r.diagnostics) {
+    if (d.code_id() == "STEPNC-101") {
+      EXPECT_NE(d.message.find("MACHINING_WORKINGSTEP)"), std::string::npos);
+    }
+  }
+  for (const auto& c : r.calls)
+    EXPECT_FALSE(std::holds_alternative<canon::StraightFeed>(c) ||
+                 std::holds_alternative<canon::ArcFeed>(c));
+}
+
+TEST(FeaturesOwn, HostileNumbersAreRefusedNotAllocated) {
+  const auto start = std::chrono::steady_clock::now();
+  const Generated r = run(cases() / "hostile.stp");
+  EXPECT_EQ(r.count("STEPNC-103"), 3u) << r.text("hostile");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
+TEST(FeaturesOwn, OutsideProfileRing) {
+  // Box 60 × 40 at the origin, Ø12 tool, allowance 0.5: the ring is 6.5 outside, x ±36.5, y
+  // ±26.5, corners rounded by 6.5 about the box's corners; climb with a clockwise spindle goes
+  // clockwise round the part; lead-in 6 + 2 beyond the ring, at x 44.5.
+  const Generated r = run(cases() / "outside-profile.stp");
+  const std::string trace = canon::trace(r.calls);
+  EXPECT_NE(trace.find("STRAIGHT_FEED(44.5000, 0.0000, -4.0000)"), std::string::npos) << trace;
+  EXPECT_NE(trace.find("ARC_FEED(30.0000, -26.5000, 30.0000, -20.0000, -1, -4.0000)"),
+            std::string::npos);
+  // Finish: no allowance, ring 6 outside: the arc ends at (30, -26).
+  EXPECT_NE(trace.find("ARC_FEED(30.0000, -26.0000, 30.0000, -20.0000, -1, -8.0000)"),
+            std::string::npos);
+}
+
+TEST(FeaturesOwn, Slots) {
+  // Radiused slot 40 long, 16 wide, 6 deep in levels of 3, tool Ø10: a stadium 56 × 16 about
+  // (20, 0). At inset 5 the room is 3, one step: the centre line x 0..40, then one ring of half
+  // sizes 23 × 3 with end radius 3 (x -3..43), counter-clockwise.
+  const Generated r = run(cases() / "slots.stp");
+  const std::string trace = canon::trace(r.calls);
+  EXPECT_NE(trace.find("STRAIGHT_FEED(40.0000, 0.0000, -3.0000)"), std::string::npos) << trace;
+  EXPECT_NE(trace.find("ARC_FEED(40.0000, 3.0000, 40.0000, 0.0000, 1, -3.0000)"),
+            std::string::npos);
+  // Ball Ø8 in the rounded-U slot of width 8 along (0.6, 0.8): one centre line per level,
+  // from (0, 150) to (18, 174).
+  EXPECT_NE(trace.find("STRAIGHT_FEED(18.0000, 174.0000, -4.0000)"), std::string::npos);
+  for (const auto& d : r.diagnostics) EXPECT_NE(d.severity, diag::Severity::Error) << d.message;
+}
+
+TEST(FeaturesOwn, WrongToolsNameBothInstances) {
+  const Generated r = run(cases() / "wrong-tools.stp");
+  std::vector<std::string> unfit;
+  for (const auto& d : r.diagnostics)
+    if (d.code_id() == "STEPNC-102") unfit.push_back(d.message);
+  ASSERT_EQ(unfit.size(), 11u) << r.text("wrong-tools");
+  EXPECT_EQ(r.count("STEPNC-103"), 0u);
+  // Every message names a tool (or strategy/approach) and the feature.
+  for (const auto& m : unfit) {
+    EXPECT_NE(m.find("#"), std::string::npos);
+    EXPECT_NE(m.find("_POCKET)"), m.find("ROUND_HOLE)")) << m;
+  }
+  EXPECT_NE(unfit[0].find("radius 10 + allowance 0.5 of"), std::string::npos) << unfit[0];
+  EXPECT_NE(unfit[0].find("> corner radius 8 of"), std::string::npos) << unfit[0];
+  // Nothing is generated for the refused workingsteps: no motion between their markers.
+  bool inside = false;
+  std::size_t motions = 0;
+  for (const auto& c : r.calls) {
+    if (const auto* b = std::get_if<canon::Begin>(&c))
+      inside = b->scope == canon::Scope::Workingstep;
+    if (std::holds_alternative<canon::End>(c)) inside = false;
+    if (inside && canon::is_motion(c) && !std::holds_alternative<canon::StraightTraverse>(c))
+      ++motions;
+  }
+  EXPECT_EQ(motions, 0u);
+}
+
+}  // namespace
+}  // namespace ncpost::stepnc

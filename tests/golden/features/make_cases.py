@@ -1,0 +1,384 @@
+#!/usr/bin/env python3
+"""Writes the feature programs in cases/: small ISO 14649-10/-11 files in the style of NIST's
+nist_toolkit_ex1.stp, one per feature kind, operation, strategy and approach the generator
+handles (and the wrong-tool cases). Run it after changing a case here; then regenerate the
+golden traces with NCPOST_UPDATE_GOLDEN=1 and review the diff."""
+
+import os
+
+HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "cases")
+
+
+class P21:
+    def __init__(self, name, description):
+        self.name, self.description = name, description
+        self.lines, self.next = [], 100
+        self.cache = {}
+
+    def add(self, text):
+        i = self.next
+        self.next += 1
+        self.lines.append(f"#{i}={text};")
+        return f"#{i}"
+
+    def once(self, key, text):
+        if key not in self.cache:
+            self.cache[key] = self.add(text)
+        return self.cache[key]
+
+    # ---- geometry ----
+    def point(self, x, y, z):
+        return self.add(f"CARTESIAN_POINT('',({x:.3f},{y:.3f},{z:.3f}))")
+
+    def direction(self, x, y, z):
+        return self.once(("d", x, y, z), f"DIRECTION('',({x:.3f},{y:.3f},{z:.3f}))")
+
+    def placement(self, x=0, y=0, z=0, axis=(0, 0, 1), ref=(1, 0, 0)):
+        return self.add(f"AXIS2_PLACEMENT_3D('',{self.point(x, y, z)},"
+                        f"{self.direction(*axis)},{self.direction(*ref)})")
+
+    def length(self, value, tol=0.1):
+        t = self.once(("tol", tol), f"PLUS_MINUS_VALUE({tol},{tol},3)")
+        return self.add(f"TOLERANCED_LENGTH_MEASURE({value:.3f},{t})")
+
+    def plane(self, name, z):
+        return self.add(f"PLANE('{name}',{self.placement(0, 0, z)})")
+
+    # ---- resources ----
+    def tool(self, name, body, diameter, edge_length="$", tip="$", edge_radius="$",
+             hand=".RIGHT.", assembly=80.0):
+        def v(x):
+            return x if isinstance(x, str) else f"{x:.3f}"
+        dim = self.add(f"MILLING_TOOL_DIMENSION({diameter:.3f},{v(tip)},$,{v(edge_length)},"
+                       f"{v(edge_radius)},$,$)")
+        extra = ",.F." if body == "BORING_TOOL" else ""  # retract_movement_forbidden
+        b = self.add(f"{body}({dim},2,{hand},.F.,${extra})")
+        comp = self.add(f"CUTTING_COMPONENT({assembly:.3f},$,$,$,$)")
+        return self.add(f"MILLING_CUTTING_TOOL('{name}',{b},({comp}),{assembly:.3f},$,$)")
+
+    def tech(self, feed, spindle):
+        return self.add(f"MILLING_TECHNOLOGY({feed},.TCP.,$,{spindle},$,.F.,.F.,.F.,$)")
+
+    def functions(self):
+        return self.once("mf", "MILLING_MACHINE_FUNCTIONS(.T.,$,$,.F.,$,(),.T.,$,$,())")
+
+    def write(self, steps):
+        """steps: list of (workingstep name, feature, operation)."""
+        self.secplane = getattr(self, "secplane", None)
+        out = ["ISO-10303-21;", "HEADER;",
+               f"FILE_DESCRIPTION(('ncpost feature case: {self.description}'),'2;1');",
+               f"FILE_NAME('{self.name}.stp','2026-11-22T00:00:00',('ncpost'),('ncpost project'),"
+               "'','hand written','');",
+               "FILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'));", "ENDSEC;", "DATA;"]
+        ws_ids = [f"#{10 + k}" for k in range(len(steps))]
+        out.append(f"#1=PROJECT('{self.name.upper()}',#2,(#4),$,$,$);")
+        out.append(f"#2=WORKPLAN('MAIN',({','.join(ws_ids)}),$,#8,$);")
+        out.append("#4=WORKPIECE('BLOCK',$,0.01,$,$,$,());")
+        out.append(f"#8=SETUP('SETUP',{self.setup_origin},{self.secplane},(#9));")
+        out.append(f"#9=WORKPIECE_SETUP(#4,{self.workpiece_origin},$,$,());")
+        for wid, (name, feature, operation) in zip(ws_ids, steps):
+            out.append(f"{wid}=MACHINING_WORKINGSTEP('{name}',{self.secplane},{feature},"
+                       f"{operation},$);")
+        out += self.lines
+        out += ["ENDSEC;", "END-ISO-10303-21;", ""]
+        with open(os.path.join(HERE, self.name + ".stp"), "w") as f:
+            f.write("\n".join(out))
+
+
+def program(name, description):
+    p = P21(name, description)
+    p.secplane = p.plane("SECURITY PLANE", 50)
+    p.setup_origin = p.placement()
+    p.workpiece_origin = p.placement()
+    return p
+
+
+def mill(p, d=10.0, edge=30.0, radius="$"):
+    return p.tool(f"ENDMILL {d:g}", "ENDMILL", d, edge_length=edge, edge_radius=radius)
+
+
+def face(p, x, y, z, travel, width, depth, direction=(0, 1, 0), ops="()"):
+    path = p.add(f"LINEAR_PATH($,{p.length(travel)},{p.direction(*direction)})")
+    param = p.add(f"NUMERIC_PARAMETER('WIDTH',{width:.3f},'MM')")
+    prof = p.add(f"LINEAR_PROFILE($,{param})")
+    return p.add(f"PLANAR_FACE('FACE',#4,{ops},{p.placement(x, y, z)},"
+                 f"{p.plane('FACE DEPTH', -depth)},{path},{prof},$,())")
+
+
+def rect_pocket(p, x, y, length, width, depth, corner, ref=(1, 0, 0), floor="$",
+                bottom="PLANAR_POCKET_BOTTOM_CONDITION()"):
+    prof = p.add(f"RECTANGULAR_CLOSED_PROFILE($,{p.length(width)},{p.length(length)})")
+    b = p.add(bottom)
+    c = p.length(corner) if corner is not None else "$"
+    return p.add(f"CLOSED_POCKET('POCKET',#4,(),{p.placement(x, y, 0, ref=ref)},"
+                 f"{p.plane('POCKET DEPTH', -depth)},(),$,{b},{floor},{c},{prof})")
+
+
+def circ_pocket(p, x, y, diameter, depth):
+    prof = p.add(f"CIRCULAR_CLOSED_PROFILE($,{p.length(diameter)})")
+    b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
+    return p.add(f"CLOSED_POCKET('ROUND POCKET',#4,(),{p.placement(x, y, 0)},"
+                 f"{p.plane('POCKET DEPTH', -depth)},(),$,{b},$,$,{prof})")
+
+
+def hole(p, x, y, diameter, depth, bottom="THROUGH_BOTTOM_CONDITION()"):
+    b = p.add(bottom)
+    return p.add(f"ROUND_HOLE('HOLE D{diameter:g}',#4,(),{p.placement(x, y, 0)},"
+                 f"{p.plane('HOLE DEPTH', -depth)},{p.length(diameter, 0.02)},$,{b})")
+
+
+def bs(p, kind, name, tool, tech, strategy, axial, radial, side, bottom, approach="$",
+       retract_plane=5.0):
+    def v(x):
+        return "$" if x is None else f"{x:.3f}" if x >= 0.001 else f"{x:.3E}"
+    return p.add(f"BOTTOM_AND_SIDE_{kind}_MILLING($,$,'{name}',{retract_plane:.3f},$,{tool},{tech},"
+                 f"{p.functions()},$,{approach},$,{strategy},{v(axial)},{v(radial)},{v(side)},"
+                 f"{v(bottom)})")
+
+
+def plane_op(p, kind, name, tool, tech, strategy, axial, bottom=None, approach="$"):
+    v = "$" if bottom is None else f"{bottom:.3f}"
+    return p.add(f"PLANE_{kind}_MILLING($,$,'{name}',5.000,$,{tool},{tech},{p.functions()},$,"
+                 f"{approach},$,{strategy},{axial:.3f},{v})")
+
+
+def drill_op(p, entity, name, tool, tech, extra="", cutting_depth="$", dwell="$", strategy="$",
+             retract_ratio="$"):
+    return p.add(f"{entity}($,$,'{name}',3.000,$,{tool},{tech},{p.functions()},$,{cutting_depth},"
+                 f"$,{dwell},{retract_ratio},{strategy}{extra})")
+
+
+def main():
+    os.makedirs(HERE, exist_ok=True)
+
+    # ---- planar faces ----
+    p = program("face-unidirectional", "planar face, plane rough milling, unidirectional, two levels")
+    t, tech = mill(p, 20, 25), p.tech(0.05, -20.0)
+    f = face(p, 0, 0, 3, 80, 50, 3)
+    s = p.add(f"UNIDIRECTIONAL_MILLING(0.2,.T.,{p.direction(1, 0, 0)},.CLIMB.)")
+    p.write([("FACE UNIDIRECTIONAL", f, plane_op(p, "ROUGH", "FACE ROUGH", t, tech, s, 2.0, 0.5))])
+
+    p = program("face-bidirectional-right", "planar face, plane finish milling, bidirectional to the right across the travel, ramp named")
+    t, tech = mill(p, 16, 25), p.tech(0.04, -25.0)
+    f = face(p, 10, 20, 0, 60, 40, 1)
+    s = p.add(f"BIDIRECTIONAL_MILLING(0.1,.T.,{p.direction(1, 0, 0)},.RIGHT.,.STRAIGHTLINE.)")
+    ramp = p.add("PLUNGE_RAMP($,5.0)")
+    p.write([("FACE BIDIRECTIONAL", f, plane_op(p, "FINISH", "FACE FINISH", t, tech, s, 1.0, None, ramp))])
+
+    # ---- closed pockets ----
+    p = program("pocket-rect-helix", "rectangular pocket, rough + finish, contour parallel climb, helix")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    f = rect_pocket(p, 50, 40, 60, 40, 12, 6)
+    s1 = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    s2 = p.add("CONTOUR_PARALLEL(0.4,.T.,.CCW.,$)")
+    hx = p.add("PLUNGE_HELIX($,3.0,5.0)")
+    p.write([("POCKET ROUGH", f, bs(p, "ROUGH", "ROUGH", t, tech, s1, 5.0, None, 0.5, 0.3, hx)),
+             ("POCKET FINISH", f, bs(p, "FINISH", "FINISH", t, tech, s2, 12.0, None, None, None))])
+
+    p = program("pocket-circle-ramp", "circular pocket, ramp entry, conventional")
+    t, tech = mill(p, 12, 20), p.tech(0.03, -35.0)
+    f = circ_pocket(p, 0, 0, 50, 8)
+    s = p.add("CONTOUR_PARALLEL($,.T.,$,.CONVENTIONAL.)")
+    ramp = p.add("PLUNGE_RAMP($,3.0)")
+    p.write([("ROUND POCKET", f, bs(p, "ROUGH", "ROUGH", t, tech, s, 4.0, 5.0, 0.0, 0.0, ramp))])
+
+    p = program("pocket-rect-zigzag", "rotated rectangular pocket, zigzag entry, rotation cw")
+    t, tech = mill(p, 8, 20), p.tech(0.03, -40.0)
+    f = rect_pocket(p, 30, 30, 40, 24, 6, 5, ref=(0.0, 1.0, 0.0))
+    s = p.add("CONTOUR_PARALLEL(0.3,.T.,.CW.,$)")
+    zz = p.add("PLUNGE_ZIGZAG($,4.0,10.0)")
+    p.write([("POCKET ZIGZAG", f, bs(p, "ROUGH", "ROUGH", t, tech, s, 3.0, None, 0.2, 0.2, zz))])
+
+    p = program("pocket-toolaxis-fillet", "pocket with a floor radius, bull nose tool, axial plunge, single pass")
+    t = p.tool("BULLNOSE 10 R1", "BULLNOSE_ENDMILL", 10, edge_length=20.0, edge_radius=1.0)
+    tech = p.tech(0.02, -40.0)
+    f = rect_pocket(p, 0, 0, 30, 30, 4, 5, floor=p.length(1.0, 0.05))
+    s = p.add("CONTOUR_PARALLEL(0.5,.F.,.CCW.,$)")
+    ax = p.add("PLUNGE_TOOLAXIS($)")
+    p.write([("POCKET PLUNGE", f, bs(p, "FINISH", "FINISH", t, tech, s, None, None, None, None, ax))])
+
+    p = program("pocket-side-finish", "circular and rectangular pockets roughed with a side allowance, then side finish milling of the walls")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    rect = rect_pocket(p, 0, 0, 40, 30, 6, 6)
+    circle = circ_pocket(p, 60, 0, 30, 6)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,$,.CLIMB.)")
+
+    def side(name, strategy, axial, allowance):
+        return p.add(f"SIDE_FINISH_MILLING($,$,'{name}',5.000,$,{t},{tech},{p.functions()},$,$,$,"
+                     f"{strategy},{axial:.3f},$,{allowance:.3f})")
+    p.write([("RECT ROUGH", rect, bs(p, "ROUGH", "ROUGH 1", t, tech, cp, 3.0, None, 1.0, 0.0)),
+             ("RECT WALLS", rect, side("SIDE 1", cp, 6.0, 0.0)),
+             ("CIRCLE ROUGH", circle, bs(p, "ROUGH", "ROUGH 2", t, tech, cp, 3.0, None, 1.0, 0.0)),
+             ("CIRCLE WALLS", circle, side("SIDE 2", "$", 3.0, 0.0))])
+
+    p = program("outside-profile", "general outside profiles (rectangle, circle): side rough then finish, climb and conventional")
+    t, tech = mill(p, 12, 25), p.tech(0.03, -40.0)
+
+    def gop(name, x, y, boundary, depth):
+        path = p.add(f"LINEAR_PATH($,{p.length(depth)},{p.direction(0, 0, -1)})")
+        return p.add(f"GENERAL_OUTSIDE_PROFILE('{name}',#4,(),{p.placement(x, y, 0)},"
+                     f"{p.plane('PROFILE DEPTH', -depth)},{path},{boundary})")
+    box = gop("BOX", 0, 0, p.add(f"RECTANGULAR_CLOSED_PROFILE($,{p.length(40)},{p.length(60)})"), 8)
+    boss = gop("ROUND", 100, 0, p.add(f"CIRCULAR_CLOSED_PROFILE($,{p.length(30)})"), 5)
+    climb = p.add("CONTOUR_PARALLEL($,.T.,$,.CLIMB.)")
+    conv = p.add("CONTOUR_PARALLEL($,.T.,$,.CONVENTIONAL.)")
+
+    def side(kind, name, strategy, axial, allowance):
+        return p.add(f"SIDE_{kind}_MILLING($,$,'{name}',5.000,$,{t},{tech},{p.functions()},$,$,$,"
+                     f"{strategy},{axial:.3f},$,{allowance:.3f})")
+    p.write([("BOX ROUGH", box, side("ROUGH", "BOX R", climb, 4.0, 0.5)),
+             ("BOX FINISH", box, side("FINISH", "BOX F", climb, 8.0, 0.0)),
+             ("ROUND FINISH", boss, side("FINISH", "ROUND F", conv, 2.5, 0.0))])
+
+    p = program("pocket-raster", "pockets with bidirectional, unidirectional, bidirectional-contour and contour-bidirectional")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    rect = rect_pocket(p, 0, 0, 50, 30, 4, 8)
+    circle = circ_pocket(p, 80, 0, 40, 3)
+    bi = p.add(f"BIDIRECTIONAL_MILLING(0.2,.T.,{p.direction(1, 0, 0)},.LEFT.,$)")
+    uni = p.add(f"UNIDIRECTIONAL_MILLING(0.2,.T.,{p.direction(0, 1, 0)},.CLIMB.)")
+    bc = p.add(f"BIDIRECTIONAL_CONTOUR(0.2,.T.,{p.direction(1, 0, 0)},.RIGHT.,.CCW.,$)")
+    cb = p.add(f"CONTOUR_BIDIRECTIONAL(0.2,.T.,{p.direction(0, 1, 0)},$,.CW.,$)")
+    p.write([("RECT BIDIRECTIONAL", rect, bs(p, "ROUGH", "BI", t, tech, bi, 4.0, None, 0.5, 0.2)),
+             ("RECT UNIDIRECTIONAL", rect, bs(p, "FINISH", "UNI", t, tech, uni, 4.0, None, None, None)),
+             ("CIRCLE BIDIRECTIONAL CONTOUR", circle, bs(p, "ROUGH", "BC", t, tech, bc, 3.0, None, 0.3, 0.0)),
+             ("CIRCLE CONTOUR BIDIRECTIONAL", circle, bs(p, "FINISH", "CB", t, tech, cb, 3.0, None, None, None))])
+
+    # ---- slots ----
+    p = program("slots", "straight slots: radiused, flat and open ends, square-U and rounded-U, center milling")
+    mill10, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    ball8 = p.tool("BALL 8", "BALL_ENDMILL", 8, edge_length=16.0, edge_radius=4.0)
+
+    def slot(name, x, y, length, direction, profile, ends, depth):
+        path = p.add(f"LINEAR_PATH($,{p.length(length)},{p.direction(*direction)})")
+        return p.add(f"SLOT('{name}',#4,(),{p.placement(x, y, 0)},{p.plane('SLOT DEPTH', -depth)},"
+                     f"{path},{profile},({','.join(ends)}))")
+    square = p.add(f"SQUARE_U_PROFILE($,{p.length(16)},{p.length(0)},90.0,{p.length(0)},90.0)")
+    rounded = p.add(f"ROUNDED_U_PROFILE($,{p.length(8)})")
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    flat = p.add(f"FLAT_SLOT_END_TYPE({p.length(6)},{p.length(6)})")
+    opened = p.add("OPEN_SLOT_END_TYPE()")
+    s1 = slot("SLOT RADIUSED", 0, 0, 40, (1, 0, 0), square, [radiused, radiused], 6)
+    s2 = slot("SLOT FLAT", 0, 40, 30, (0, 1, 0), square, [flat, flat], 5)
+    s3 = slot("SLOT OPEN", -20, 100, 50, (1, 0, 0), square, [opened, opened], 4)
+    s4 = slot("SLOT ROUND", 0, 150, 30, (0.6, 0.8, 0), rounded, [radiused], 4)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    centre = p.add("CENTER_MILLING($,.T.)")
+    ramp = p.add("PLUNGE_RAMP($,10.0)")
+    p.write([("SLOT RADIUSED ENDS", s1, bs(p, "ROUGH", "SLOT 1", mill10, tech, cp, 3.0, None, 0.0, 0.0, ramp)),
+             ("SLOT FLAT ENDS", s2, bs(p, "ROUGH", "SLOT 2", mill10, tech, cp, 5.0, None, 0.0, 0.0)),
+             ("SLOT OPEN ENDS", s3, bs(p, "FINISH", "SLOT 3", mill10, tech, cp, 2.0, None, None, None)),
+             ("SLOT CENTRE", s4, bs(p, "FINISH", "SLOT 4", ball8, tech, centre, 2.0, None, None, None, ramp))])
+
+    # ---- hostile numbers: refused by the motion limit before anything is built ----
+    p = program("hostile", "stepover, axial depth and helix angle that would need billions of motions")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    pocket = rect_pocket(p, 0, 0, 60, 40, 10, 8)
+    cp = p.add("CONTOUR_PARALLEL($,.T.,.CCW.,$)")
+    flat = p.add("PLUNGE_HELIX($,3.0,0.0000000001)")
+    p.write([("TINY STEPOVER", pocket, bs(p, "ROUGH", "R1", t, tech, cp, 5.0, 1e-9, 0.0, 0.0)),
+             ("TINY AXIAL", pocket, bs(p, "ROUGH", "R2", t, tech, cp, 1e-9, None, 0.0, 0.0)),
+             ("FLAT HELIX", pocket, bs(p, "ROUGH", "R3", t, tech, cp, 5.0, None, 0.0, 0.0, flat))])
+
+    # ---- what is not generated: each a STEPNC-101 naming the instances ----
+    p = program("unsupported", "features and strategies the generator does not implement")
+    mill10, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    vee = p.add(f"VEE_PROFILE($,{p.length(2)},60.0,0.0)")
+    path = p.add(f"LINEAR_PATH($,{p.length(30)},{p.direction(1, 0, 0)})")
+    vslot = p.add(f"SLOT('VEE SLOT',#4,(),{p.placement()},{p.plane('D', -3)},{path},{vee},())")
+    poly = p.add(f"POLYLINE('',({p.point(0, 0, 0)},{p.point(30, 0, 0)},{p.point(0, 20, 0)},{p.point(0, 0, 0)}))")
+    gcp = p.add(f"GENERAL_CLOSED_PROFILE($,{poly})")
+    b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
+    tri = p.add(f"CLOSED_POCKET('TRIANGLE',#4,(),{p.placement(50, 0, 0)},{p.plane('D', -3)},(),$,{b},$,$,{gcp})")
+    step_path = p.add(f"LINEAR_PATH($,{p.length(40)},{p.direction(0, 1, 0)})")
+    step = p.add(f"STEP('STEP',#4,(),{p.placement(100, 0, 0)},{p.plane('D', -5)},{step_path},$,())")
+    rect = rect_pocket(p, 0, 60, 40, 30, 5, 6)
+    spiral = p.add("CONTOUR_SPIRAL($,.T.,.CW.,$)")
+    air = p.add("AP_RETRACT_ANGLE($,45.0,5.0)")
+    cp = p.add("CONTOUR_PARALLEL($,.T.,.CW.,$)")
+    bi = p.add(f"BIDIRECTIONAL_MILLING($,.T.,{p.direction(1, 0, 0)},$,$)")
+    side = p.add(f"SIDE_ROUGH_MILLING($,$,'SIDE',5.000,$,{mill10},{tech},{p.functions()},$,$,$,{bi},5.0,2.0,0.5)")
+    p.write([("VEE SLOT", vslot, bs(p, "ROUGH", "VEE", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("GENERAL PROFILE POCKET", tri, bs(p, "ROUGH", "TRI", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("STEP", step, bs(p, "ROUGH", "STEP", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("SPIRAL", rect, bs(p, "ROUGH", "SPIRAL", mill10, tech, spiral, 1.0, None, 0.0, 0.0)),
+             ("AIR APPROACH", rect, bs(p, "ROUGH", "AIR", mill10, tech, cp, 1.0, None, 0.0, 0.0, air)),
+             ("SIDE MILLING BIDIRECTIONAL", rect, side)])
+
+    # ---- round holes ----
+    p = program("holes-cycles", "round holes: drilling, center drilling, peck, reaming, boring, tapping")
+    drill = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
+    centre = p.tool("CENTER DRILL 4", "CENTER_DRILL", 4, edge_length=6.0, tip=45.0)
+    reamer = p.tool("REAMER 10", "REAMER", 10, edge_length=30.0)
+    bore = p.tool("BORING BAR 9.5", "BORING_TOOL", 9.5, edge_length=30.0)
+    tap = p.tool("TAP M10", "TAP", 10, edge_length=25.0)
+    lefttap = p.tool("TAP M10 LH", "TAP", 10, edge_length=25.0, hand=".LEFT.")
+    h1 = hole(p, 10, 10, 8, 15)
+    h2 = hole(p, 30, 10, 10, 20, "FLAT_HOLE_BOTTOM()")
+    h3 = hole(p, 50, 10, 10, 12, "CONICAL_HOLE_BOTTOM(118.0,$)")
+    slow = p.tech(0.005, -15.0)
+    tap_tech = p.tech(0.0125, -8.333333333333334)  # 750 mm/min at 500 rpm: M10 × 1.5
+    steps = [
+        ("CENTER DRILL", h1, drill_op(p, "CENTER_DRILLING", "CENTER", centre, slow, cutting_depth="3.000")),
+        ("DRILL THROUGH", h1, drill_op(p, "DRILLING", "DRILL", drill, p.tech(0.01, -20.0), dwell="0.5")),
+        ("PECK EVEN", h2, drill_op(p, "MULTISTEP_DRILLING", "PECK", drill, p.tech(0.01, -20.0),
+                                   extra=",1.000,4.000,4.000,$")),
+        ("PECK FIRST DEEPER", h3, drill_op(p, "MULTISTEP_DRILLING", "PECK 2", drill, p.tech(0.01, -20.0),
+                                           extra=",0.000,6.000,3.000,0.2")),
+        ("REAM", h2, drill_op(p, "REAMING", "REAM", reamer, slow, extra=",.F.,$,$")),
+        ("BORE", h2, drill_op(p, "BORING", "BORE", bore, slow, extra=",.T.,$,$")),
+        ("TAP", h2, drill_op(p, "TAPPING", "TAP", tap, tap_tech, extra=",.F.")),
+        ("TAP LEFT", h3, drill_op(p, "TAPPING", "TAP LH", lefttap, p.tech(0.0125, 8.333333333333334),
+                                  dwell="0.3", extra=",.T.")),
+    ]
+    p.write(steps)
+
+    p = program("holes-pointed-bottoms", "a pointed drill in bottoms it cannot finish: notes, and ncpost verify reports the floor it leaves")
+    drill = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
+    h4 = hole(p, 70, 10, 10, 12, "SPHERICAL_HOLE_BOTTOM(" + p.length(5.0) + ")")
+    h5 = hole(p, 90, 10, 10, 12, "FLAT_WITH_RADIUS_HOLE_BOTTOM(" + p.length(1.0) + ")")
+    p.write([("DRILL SPHERICAL", h4, drill_op(p, "DRILLING", "DRILL 2", drill, p.tech(0.01, -20.0))),
+             ("DRILL FLAT RADIUS", h5, drill_op(p, "DRILLING", "DRILL 3", drill, p.tech(0.01, -20.0)))])
+
+    p = program("holes-strategy", "drilling with reduced feed and speed at start and end, dwell, feed on retract")
+    drill = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=50.0, tip=31.0)
+    h = hole(p, 0, 0, 10, 30)
+    st = p.add("DRILLING_TYPE_STRATEGY(0.8,0.5,3.000,0.6,0.4,5.000)")
+    p.write([("DRILL STRATEGY", h, drill_op(p, "DRILLING", "DRILL", drill, p.tech(0.02, -15.0),
+                                            dwell="1.0", strategy=st, retract_ratio="2.0"))])
+
+    # ---- wrong tools and data (each a documented diagnostic) ----
+    p = program("wrong-tools", "tools that cannot make their features")
+    big = mill(p, 20, 30)
+    short = mill(p, 10, 3)
+    tech = p.tech(0.03, -30.0)
+    pocket = rect_pocket(p, 0, 0, 60, 40, 10, 8)
+    s = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    once = p.add("CONTOUR_PARALLEL(0.5,.F.,.CCW.,$)")
+    wide = p.add("PLUNGE_HELIX($,30.0,5.0)")
+    drill = p.tool("DRILL 12", "TWIST_DRILL", 12, edge_length=40.0, tip=31.0)
+    shortdrill = p.tool("STUB DRILL 6", "TWIST_DRILL", 6, edge_length=10.0, tip=31.0)
+    reamer = p.tool("REAMER 9", "REAMER", 9, edge_length=30.0)
+    pointy = p.tool("DRILL 8 140DEG", "TWIST_DRILL", 8, edge_length=40.0, tip=20.0)
+    h = hole(p, 50, 0, 10, 20)
+    cone = hole(p, 70, 0, 8, 10, "CONICAL_HOLE_BOTTOM(118.0,$)")
+    sharp = rect_pocket(p, 100, 0, 30, 30, 5, None)
+    fill = rect_pocket(p, 140, 0, 30, 30, 4, 5, floor=p.length(3.0, 0.05))
+    bull = p.tool("BULLNOSE 10 R1", "BULLNOSE_ENDMILL", 10, edge_length=20.0, edge_radius=1.0)
+    p.write([
+        ("CORNER TOO SMALL", pocket, bs(p, "ROUGH", "ROUGH BIG", big, tech, s, 5.0, None, 0.5, 0.5)),
+        ("EDGE TOO SHORT", pocket, bs(p, "ROUGH", "ROUGH SHORT", short, tech, s, 5.0, None, 0.5, 0.5)),
+        ("ONE PASS FORBIDS STEPS", pocket, bs(p, "ROUGH", "ROUGH ONCE", short, tech, once, 2.0, None, 0.5, 0.5)),
+        ("HELIX TOO WIDE", pocket, bs(p, "ROUGH", "ROUGH HELIX", mill(p, 10, 30), tech, s, 5.0, None, 0.5, 0.5, wide)),
+        ("SHARP CORNERS", sharp, bs(p, "FINISH", "FINISH SHARP", mill(p, 6, 30), tech, s, 5.0, None, None, None)),
+        ("FILLET TOO LARGE", fill, bs(p, "FINISH", "FINISH FILLET", bull, tech, s, None, None, None, None)),
+        ("DRILL TOO BIG", h, drill_op(p, "DRILLING", "DRILL BIG", drill, tech)),
+        ("DRILL TOO SHORT", h, drill_op(p, "DRILLING", "DRILL SHORT", shortdrill, tech)),
+        ("REAMER WRONG SIZE", h, drill_op(p, "REAMING", "REAM", reamer, tech, extra=",.F.,$,$")),
+        ("POINT ANGLE", cone, drill_op(p, "DRILLING", "DRILL POINT", pointy, tech)),
+        ("TAP TURNS BACKWARDS", h, drill_op(p, "TAPPING", "TAP", p.tool("TAP M10", "TAP", 10, edge_length=25.0),
+                                            p.tech(0.0125, 8.333333333333334), extra=",.F.")),
+    ])
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,247 @@
+#!/usr/bin/env python3
+"""Writes the verifier's golden programs (cases/*.stp): one good part, and variants that each
+break one rule by a known amount at a known place. Run it after changing a case; the .stp files
+are committed, so the tests do not need Python.
+
+The part (workpiece coordinates = machine coordinates; setup and workpiece set-up at the origin):
+  stock BLOCK x 0..100, y 0..80, z -30..2; security plane z 20
+  FACE1    PLANAR_FACE at z 2, depth 2 (floor z 0), 100 (x) by 80 (y); face mill D50
+  POCKET1  CLOSED_POCKET at (50, 40, 0), 40 (x) by 30 (y), corner radius 6, floor z -10;
+           end mill D10, BOTTOM_AND_SIDE_FINISH_MILLING, approach PLUNGE_RAMP 15 deg
+  HOLE1    ROUND_HOLE at (20, 20, 0), diameter 10, flat bottom at z -15; twist drill D10
+"""
+
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+class P21:
+    def __init__(self):
+        self.lines = []
+        self.next = 1000
+
+    def add(self, text, ident=None):
+        if ident is None:
+            ident = self.next
+            self.next += 1
+        self.lines.append(f"#{ident}={text};")
+        return f"#{ident}"
+
+    def point(self, p):
+        return self.add("CARTESIAN_POINT('',(%s))" % ",".join(f"{c:.4f}" for c in p))
+
+    def polyline(self, name, points, kind=".TRAJECTORY_PATH."):
+        pts = ",".join(self.point(p) for p in points)
+        curve = self.add(f"POLYLINE('{name}',({pts}))")
+        return self.add(f"CUTTER_LOCATION_TRAJECTORY(.T.,{kind},$,$,$,$,{curve},$,$)")
+
+    def toolpaths(self, paths):
+        return self.add("TOOLPATH_LIST((%s))" % ",".join(paths))
+
+
+def arc_points(cx, cy, r, a0, a1, n, z):
+    return [(cx + r * math.cos(math.radians(a0 + (a1 - a0) * k / n)),
+             cy + r * math.sin(math.radians(a0 + (a1 - a0) * k / n)), z) for k in range(n + 1)]
+
+
+def pocket_rings(z, rings=(2, 1, 0), wall_shift=0.0):
+    """The pocket's finishing level in its own frame: rectangular rings from the inside out, the
+    outermost with 1 mm corner arcs so that the tool (r 5) just touches the 6 mm corners."""
+    pts = [(-12.0, 0.0, z)]
+    half = {2: (7.0, 2.0), 1: (11.0, 6.0)}
+    for ring in rings:
+        if ring in half:
+            hx, hy = half[ring]
+            pts += [(-hx, 0, z), (-hx, -hy, z), (hx, -hy, z), (hx, hy, z), (-hx, hy, z),
+                    (-hx, 0, z)]
+        else:
+            # Outer ring: centre path |x| <= 15, |y| <= 10, corners arcs of radius 1 about
+            # (+-14, +-9); `wall_shift` pushes the +x side into the wall.
+            e = 15.0 + wall_shift
+            pts += [(-15, 0, z), (-15, -9, z)]
+            pts += arc_points(-14, -9, 1, 180, 270, 8, z)[1:]
+            pts += [(14, -10, z)]
+            pts += [(p[0] + (wall_shift if p[0] > 14 else 0), p[1], z)
+                    for p in arc_points(14, -9, 1, 270, 360, 8, z)[1:]]
+            pts += [(e, -9, z), (e, 9, z)]
+            pts += [(p[0] + (wall_shift if p[0] > 14 else 0), p[1], z)
+                    for p in arc_points(14, 9, 1, 0, 90, 8, z)[1:]]
+            pts += [(-14, 10, z)]
+            pts += arc_points(-14, 9, 1, 90, 180, 8, z)[1:]
+            pts += [(-15, 0, z)]
+    return pts
+
+
+def program(name, description, pocket_path=None, pocket_approach="ramp", floor_z=-10.0,
+            extra_rapid=None, hole_depth=-15.0, step=False, slot=False):
+    f = P21()
+    # ---- structure ----
+    elements = ["#10", "#11", "#12"]
+    if extra_rapid:
+        elements.append("#13")
+    f.add("PROJECT('%s',#2,(#900),$,$,$)" % name.upper(), 1)
+    f.add("WORKPLAN('MAIN',(%s),$,#8,$)" % ",".join(elements), 2)
+    f.add("SETUP('SETUP1',#923,#910,(#9))", 8)
+    f.add("WORKPIECE_SETUP(#900,#923,$,$,())", 9)
+    f.add("MACHINING_WORKINGSTEP('WS FACE',#910,#20,#30,$)", 10)
+    f.add("MACHINING_WORKINGSTEP('WS POCKET',#910,#21,#31,$)", 11)
+    f.add("MACHINING_WORKINGSTEP('WS DRILL',#910,#22,#32,$)", 12)
+    # ---- features ----
+    f.add("PLANAR_FACE('FACE1',#900,(#30),#940,#941,#942,#944,$,())", 20)
+    if slot:
+        # POCKET1's outline as a straight SLOT: from (30, 40) 40 along x, square-U 30 wide,
+        # flat ends with 6 mm corners. Its frame starts 20 mm before the pocket's centre.
+        f.add("SLOT('SLOT1',#900,(#31),#970,#951,#967,#968,(#969))", 21)
+        f.add("LINEAR_PATH($,#959,#922)", 967)
+        f.add("SQUARE_U_PROFILE($,#958,#971,90.,#971,90.)", 968)
+        f.add("FLAT_SLOT_END_TYPE(#953,#953)", 969)
+        f.add("AXIS2_PLACEMENT_3D('SLOT1',#972,#921,#922)", 970)
+        f.add("TOLERANCED_LENGTH_MEASURE(0.,#925)", 971)
+        f.add("CARTESIAN_POINT('',(30.,40.,0.))", 972)
+    elif step:
+        # POCKET1 declared as a STEP: a kind the verifier does not check, which it must say.
+        f.add("STEP('STEP1',#900,(#31),#950,#951,#967,$,())", 21)
+        f.add("LINEAR_PATH($,#959,#922)", 967)
+    else:
+        f.add("CLOSED_POCKET('POCKET1',#900,(#31),#950,#951,(),$,#952,$,#953,#954)", 21)
+    f.add("ROUND_HOLE('HOLE1',#900,(#32),#960,#961,#962,$,#963)", 22)
+    # ---- operations ----
+    f.add("PLANE_FINISH_MILLING(#300,$,'FACE OP',10.,$,#70,#80,#90,$,#60,$,#62,2.,0.)", 30)
+    approach = {"ramp": "#61", "helix": "#63", "none": "$"}[pocket_approach]
+    f.add("BOTTOM_AND_SIDE_FINISH_MILLING(#310,$,'POCKET OP',10.,$,#71,#81,#90,$,%s,$,#64,"
+          "10.,4.,0.,0.)" % approach, 31)
+    f.add("DRILLING(#320,$,'DRILL OP',10.,$,#72,#82,#90,$,$,$,$,$,$)", 32)
+    f.add("PLUNGE_TOOLAXIS($)", 60)
+    f.add("PLUNGE_RAMP($,15.)", 61)
+    f.add("BIDIRECTIONAL_MILLING($,.T.,#922,.LEFT.,$)", 62)
+    f.add("PLUNGE_HELIX($,3.,5.)", 63)
+    f.add("CONTOUR_PARALLEL($,.T.,.CCW.,.CLIMB.)", 64)
+    # ---- tools and technology ----
+    f.add("MILLING_CUTTING_TOOL('FACE MILL 50',#700,(#79),80.,$,$)", 70)
+    f.add("FACEMILL(#701,5,.RIGHT.,.F.,$)", 700)
+    f.add("MILLING_TOOL_DIMENSION(50.,$,$,10.,$,$,$)", 701)
+    f.add("MILLING_CUTTING_TOOL('END MILL 10',#710,(#79),70.,$,$)", 71)
+    f.add("ENDMILL(#711,3,.RIGHT.,.F.,$)", 710)
+    f.add("MILLING_TOOL_DIMENSION(10.,$,$,25.,0.,$,$)", 711)
+    f.add("MILLING_CUTTING_TOOL('DRILL 10',#720,(#79),90.,$,$)", 72)
+    f.add("TWIST_DRILL(#721,2,.RIGHT.,.F.,$)", 720)
+    f.add("MILLING_TOOL_DIMENSION(10.,59.,$,40.,$,$,$)", 721)
+    f.add("CUTTING_COMPONENT(70.,$,$,$,$)", 79)
+    f.add("MILLING_TECHNOLOGY(0.02,.TCP.,$,-20.,$,.F.,.F.,.F.,$)", 80)
+    f.add("MILLING_TECHNOLOGY(0.01,.TCP.,$,-50.,$,.F.,.F.,.F.,$)", 81)
+    f.add("MILLING_TECHNOLOGY(0.005,.TCP.,$,-30.,$,.F.,.F.,.F.,$)", 82)
+    f.add("MILLING_MACHINE_FUNCTIONS(.T.,$,$,.F.,$,(),.F.,$,$,())", 90)
+    # ---- workpiece, planes, placements ----
+    f.add("WORKPIECE('PART',$,$,$,$,#901,())", 900)
+    f.add("BLOCK('STOCK',#902,100.,80.,32.)", 901)
+    f.add("AXIS2_PLACEMENT_3D('STOCK CORNER',#903,#921,#922)", 902)
+    f.add("CARTESIAN_POINT('',(0.,0.,-30.))", 903)
+    f.add("PLANE('SECURITY PLANE',#911)", 910)
+    f.add("AXIS2_PLACEMENT_3D('SECURITY',#912,#921,#922)", 911)
+    f.add("CARTESIAN_POINT('',(0.,0.,20.))", 912)
+    f.add("CARTESIAN_POINT('ORIGIN',(0.,0.,0.))", 920)
+    f.add("DIRECTION('Z',(0.,0.,1.))", 921)
+    f.add("DIRECTION('X',(1.,0.,0.))", 922)
+    f.add("AXIS2_PLACEMENT_3D('IDENTITY',#920,#921,#922)", 923)
+    f.add("DIRECTION('Y',(0.,1.,0.))", 924)
+    f.add("PLUS_MINUS_VALUE(0.05,0.05,2)", 925)
+    # face: placed at z 2, depth plane 2 below, 80 along y by 100 along x
+    f.add("AXIS2_PLACEMENT_3D('FACE1',#945,#921,#922)", 940)
+    f.add("PLANE('FACE1 DEPTH',#946)", 941)
+    f.add("LINEAR_PATH($,#943,#924)", 942)
+    f.add("TOLERANCED_LENGTH_MEASURE(80.,#925)", 943)
+    f.add("LINEAR_PROFILE($,#947)", 944)
+    f.add("CARTESIAN_POINT('',(0.,0.,2.))", 945)
+    f.add("AXIS2_PLACEMENT_3D('FACE1 DEPTH',#948,#921,#922)", 946)
+    f.add("NUMERIC_PARAMETER('WIDTH',100.,'MM')", 947)
+    f.add("CARTESIAN_POINT('',(0.,0.,-2.))", 948)
+    # pocket
+    f.add("AXIS2_PLACEMENT_3D('POCKET1',#955,#921,#922)", 950)
+    f.add("PLANE('POCKET1 DEPTH',#956)", 951)
+    f.add("PLANAR_POCKET_BOTTOM_CONDITION()", 952)
+    f.add("TOLERANCED_LENGTH_MEASURE(6.,#925)", 953)
+    f.add("RECTANGULAR_CLOSED_PROFILE($,#958,#959)", 954)
+    f.add("CARTESIAN_POINT('',(50.,40.,0.))", 955)
+    f.add("AXIS2_PLACEMENT_3D('POCKET1 DEPTH',#957,#921,#922)", 956)
+    f.add("CARTESIAN_POINT('',(0.,0.,-10.))", 957)
+    f.add("TOLERANCED_LENGTH_MEASURE(30.,#925)", 958)
+    f.add("TOLERANCED_LENGTH_MEASURE(40.,#925)", 959)
+    # hole
+    f.add("AXIS2_PLACEMENT_3D('HOLE1',#964,#921,#922)", 960)
+    f.add("PLANE('HOLE1 DEPTH',#965)", 961)
+    f.add("TOLERANCED_LENGTH_MEASURE(10.,#925)", 962)
+    f.add("FLAT_HOLE_BOTTOM()", 963)
+    f.add("CARTESIAN_POINT('',(20.,20.,0.))", 964)
+    f.add("AXIS2_PLACEMENT_3D('HOLE1 DEPTH',#966,#921,#922)", 965)
+    f.add("CARTESIAN_POINT('',(0.,0.,-15.))", 966)
+    # ---- toolpaths (each in its feature's frame) ----
+    # Face: three passes along y at x 10, 50, 90 (stepover 40 < 50) at the face's depth (local
+    # z -2), entering and leaving outside the stock.
+    face = [(10, -30, 5), (10, -30, -2), (10, 110, -2), (50, 110, -2), (50, -30, -2),
+            (90, -30, -2), (90, 110, -2), (90, 110, 5)]
+    f.add("TOOLPATH_LIST((%s))" % f.polyline("FACE PASSES", face), 300)
+    # Pocket: ramp at 14 deg (< 15) to the floor, then the finishing rings.
+    if pocket_path is None:
+        ramp = [(-12.0, 0.0, 2.0), (12.0, 0.0, -4.0), (-12.0, 0.0, floor_z)]
+        pocket_path = ramp + pocket_rings(floor_z)[1:] + [(-15.0, 0.0, 2.0)]
+    if slot:
+        pocket_path = [(p[0] + 20.0, p[1], p[2]) for p in pocket_path]
+    f.add("TOOLPATH_LIST((%s))" % f.polyline("POCKET", pocket_path), 310)
+    hole = [(0, 0, 5), (0, 0, hole_depth), (0, 0, 5)]
+    f.add("TOOLPATH_LIST((%s))" % f.polyline("DRILL", hole), 320)
+    if extra_rapid:
+        f.add("RAPID_MOVEMENT('RAPID ACROSS',#910,#330,$)", 13)
+        f.add("TOOLPATH_LIST((%s))" % f.polyline("RAPID", extra_rapid, ".NON_CONTACT."), 330)
+
+    def key(line):
+        return int(line[1:line.index("=")])
+
+    text = ["ISO-10303-21;", "HEADER;",
+            "FILE_DESCRIPTION(('ncpost verify case: %s'),'2;1');" % description.replace("'", "''"),
+            "FILE_NAME('%s.stp','2026-11-22T00:00:00',('ncpost'),('ncpost project'),'',"
+            "'tests/golden/verify/make_cases.py','');" % name,
+            "FILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'));", "ENDSEC;", "DATA;"]
+    text += sorted(f.lines, key=key)
+    text += ["ENDSEC;", "END-ISO-10303-21;", ""]
+    with open(os.path.join(HERE, "cases", name + ".stp"), "w") as out:
+        out.write("\n".join(text))
+
+
+def main():
+    os.makedirs(os.path.join(HERE, "cases"), exist_ok=True)
+    program("good", "a face, a pocket and a hole, machined right")
+    # The outer ring's +x side 0.5 mm into the pocket wall (x 65.5 instead of 65 + 5 = 70).
+    program("gouge-wall", "the pocket's last ring gouges the +x wall by 0.5 mm",
+            pocket_path=[(-12.0, 0.0, 2.0), (12.0, 0.0, -4.0), (-12.0, 0.0, -10.0)] +
+            pocket_rings(-10.0, wall_shift=0.5)[1:] + [(-15.0, 0.0, 2.0)])
+    # Every level 2 mm short of the floor.
+    program("shallow", "the pocket stops 2 mm above its floor",
+            pocket_path=[(-12.0, 0.0, 2.0), (12.0, 0.0, -4.0), (-12.0, 0.0, -8.0)] +
+            pocket_rings(-8.0)[1:] + [(-15.0, 0.0, 2.0)])
+    # Only the outer ring at the floor: a strip along the pocket's middle is never swept.
+    program("uncovered-strip", "only the outer ring at the floor leaves a strip in the middle",
+            pocket_path=[(-12.0, 0.0, 2.0), (12.0, 0.0, -4.0), (-12.0, 0.0, -10.0)] +
+            pocket_rings(-10.0, rings=(0,))[1:] + [(-15.0, 0.0, 2.0)])
+    # After the drill, a rapid at z -5 from outside the stock into it.
+    program("rapid-into-part", "a rapid at z -5 into the part",
+            extra_rapid=[(130.0, 40.0, 20.0), (130.0, 40.0, -5.0), (80.0, 10.0, -5.0)])
+    # PLUNGE_HELIX required, but the tool goes straight down in the middle of the pocket.
+    program("plunge-helix", "a straight plunge where the strategy asks for a helix",
+            pocket_approach="helix",
+            pocket_path=[(0.0, 0.0, 2.0), (0.0, 0.0, -10.0)] + pocket_rings(-10.0)[1:] +
+            [(-15.0, 0.0, 2.0)])
+    # A drill 3 mm too deep in a blind hole.
+    program("hole-too-deep", "the drill goes 3 mm below the flat bottom of a blind hole",
+            hole_depth=-18.0)
+    # POCKET1's outline as a SLOT with flat ends: the same path passes.
+    program("slot-flat-ends", "the pocket's outline as a slot with flat ends", slot=True)
+    # POCKET1 declared as a STEP: not checked (a note), everything else still is.
+    program("step-not-checked", "a feature kind the verifier does not check", step=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,120 @@
+// Golden cases of the verifier: each cases/NAME.stp (written by make_cases.py) has
+// cases/NAME.expected, the text report followed by the diagnostics, and the failing cases must
+// fail with their own diagnostic at their own place, whatever the golden file says.
+// NCPOST_UPDATE_GOLDEN=1 rewrites the golden files; review the diff.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "corpus.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/verify/verify.hpp"
+
+namespace ncpost::verify {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path cases() {
+  return test::source_dir() / "tests/golden/verify/cases";
+}
+
+VerifyResult run(const fs::path& file, std::string& text) {
+  static const express::SchemaRegistry registry;
+  const pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry);
+  EXPECT_TRUE(loaded.ok()) << file;
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  VerifyResult r = verify(loaded.model, attributes);
+  const std::string name = file.filename().string();
+  text = format_text(r, name);
+  for (const auto& d : r.interpreter) text += diag::format(d, name) + "\n";
+  for (const auto& f : r.findings) text += diag::format(f.diagnostic, name) + "\n";
+  return r;
+}
+
+void expect_golden(const std::string& actual, const fs::path& golden) {
+  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN");
+      update && std::string(update) == "1") {
+    std::ofstream(golden, std::ios::binary) << actual;
+    return;
+  }
+  ASSERT_TRUE(fs::exists(golden)) << golden;
+  EXPECT_EQ(actual, test::read_file(golden)) << "differs from " << golden;
+}
+
+std::vector<const Finding*> errors(const VerifyResult& r) {
+  std::vector<const Finding*> out;
+  for (const auto& f : r.findings)
+    if (f.diagnostic.severity == diag::Severity::Error) out.push_back(&f);
+  return out;
+}
+
+struct Expected {
+  const char* name;
+  std::vector<diag::Code> codes;  // the errors, in order
+  std::optional<Position> at{};   // of the first, within 0.05 mm
+};
+
+// Test names and failure messages show the case, not the struct's bytes.
+void PrintTo(const Expected& e, std::ostream* os) {
+  *os << e.name;
+}
+
+class VerifyGolden : public testing::TestWithParam<Expected> {};
+
+TEST_P(VerifyGolden, Case) {
+  const Expected& e = GetParam();
+  std::string text;
+  const VerifyResult r = run(cases() / (std::string(e.name) + ".stp"), text);
+  expect_golden(text, cases() / (std::string(e.name) + ".expected"));
+  const auto found = errors(r);
+  std::vector<diag::Code> codes;
+  for (const Finding* f : found) codes.push_back(f->diagnostic.code);
+  EXPECT_EQ(codes, e.codes) << text;
+  EXPECT_EQ(r.ok(), e.codes.empty()) << text;
+  if (std::string(e.name) == "step-not-checked") {
+    ASSERT_EQ(r.features.size(), 3u);
+    EXPECT_FALSE(r.features[1].checked);
+    EXPECT_NE(text.find("note: VERIFY-010: #21 STEP 'STEP1': feature kind STEP is not checked"),
+              std::string::npos)
+        << text;
+  }
+  if (e.at && !found.empty()) {
+    ASSERT_TRUE(found.front()->position) << text;
+    EXPECT_NEAR(found.front()->position->x, e.at->x, 0.05) << text;
+    EXPECT_NEAR(found.front()->position->y, e.at->y, 0.05) << text;
+    EXPECT_NEAR(found.front()->position->z, e.at->z, 0.05) << text;
+  }
+}
+
+using diag::Code;
+INSTANTIATE_TEST_SUITE_P(
+    Cases, VerifyGolden,
+    testing::Values(
+        Expected{"good", {}},
+        // The outer ring's +x side at x 65.5: 0.5 mm into the wall at x 70 (r 5).
+        Expected{"gouge-wall", {Code::VerifyGouge}, Position{65.5, 31, -10}},
+        // Every level ends at z -8; the floor is at -10: depth, and then no floor swept.
+        Expected{"shallow", {Code::VerifyDepth, Code::VerifyCoverage}, Position{38, 40, -8}},
+        // Only the outer ring (5 mm from the walls) at the floor: the middle is never swept.
+        Expected{"uncovered-strip", {Code::VerifyCoverage}},
+        // RAPID ACROSS at z -5 from outside the block to (80, 10): 5 mm into the faced stock.
+        Expected{"rapid-into-part", {Code::VerifyRapid}},
+        // PLUNGE_HELIX asked for, straight down at the pocket's centre.
+        Expected{"plunge-helix", {Code::VerifyPlunge}, Position{50, 40, -10}},
+        // The drill 3 mm below the flat bottom at z -15.
+        Expected{"hole-too-deep", {Code::VerifyBelowFloor}, Position{20, 20, -18}},
+        // The pocket's outline and path as a SLOT with flat, 6 mm-cornered ends: passes.
+        Expected{"slot-flat-ends", {}},
+        // A STEP is not checked: a VERIFY-010 note, no error (the golden file holds the note).
+        Expected{"step-not-checked", {}}),
+    [](const testing::TestParamInfo<Expected>& param) {
+      std::string n = param.param.name;
+      std::replace(n.begin(), n.end(), '-', '_');
+      return n;
+    });
+
+}  // namespace
+}  // namespace ncpost::verify

@@ -1,0 +1,563 @@
+// ncpostd end to end: the real server on 127.0.0.1 (ephemeral port), driven by curl and raw
+// sockets. Every failure path is followed by a request that must still be served.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <future>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "corpus.hpp"
+#include "server_process.hpp"
+
+namespace ncpost::test {
+namespace {
+
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+std::filesystem::path src(std::string_view relative) {
+  return source_dir() / relative;
+}
+
+// Runs a command and returns its stdout (the CLI side of byte-identity checks).
+std::string run_stdout(const std::string& command, int* status = nullptr) {
+  FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r");
+  std::string out;
+  if (pipe == nullptr) return out;
+  char buffer[65536];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int s = ::pclose(pipe);
+  if (status != nullptr) *status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+  return out;
+}
+
+std::string ncpost(const std::string& args, int* status = nullptr) {
+  return run_stdout(ncpost_path().string() + " " + args, status);
+}
+
+ServerOptions with_args(std::vector<std::string> args) {
+  ServerOptions options;
+  options.args = std::move(args);
+  return options;
+}
+
+void expect_serving(const ServerProcess& server) {
+  const auto r = curl({server.url("/healthz")});
+  EXPECT_EQ(r.status, 200) << "the server stopped serving after a failure path\n" << server.log();
+}
+
+// A large program: NIST's ex1E replicated to `megabytes` (bench/make_large_stepnc), made once
+// per test run. Empty when the corpus or the generator is missing.
+std::filesystem::path large_program(int megabytes) {
+  static std::map<int, std::filesystem::path> made;
+  static TempDir dir;
+  if (auto it = made.find(megabytes); it != made.end()) return it->second;
+  const auto corpus = corpus_dir();
+  const auto generator = ncpostd_path().parent_path() / "make_large_stepnc";
+  if (!corpus || !std::filesystem::exists(generator)) return {};
+  const auto out = dir.path() / ("large-" + std::to_string(megabytes) + ".stp");
+  const std::string command = generator.string() + " " +
+                              (*corpus / "p21" / "nist_toolkit_ex1E.stp").string() + " " +
+                              std::to_string(megabytes) + " " + out.string() + " >/dev/null 2>&1";
+  if (std::system(command.c_str()) != 0) return {};
+  made[megabytes] = out;
+  return out;
+}
+
+#define REQUIRE_LARGE_PROGRAM(var, mb)                                                      \
+  const auto var = large_program(mb);                                                       \
+  if (var.empty()) {                                                                        \
+    if (corpus_required()) FAIL() << "the corpus or make_large_stepnc is missing";          \
+    GTEST_SKIP() << "needs the corpus (nist_toolkit_ex1E.stp) and bench/make_large_stepnc " \
+                    "(NCPOST_BUILD_BENCH=ON)";                                              \
+  }
+
+// What a raw client read of a chunked response: head, decoded body, whether the terminal chunk
+// came.
+struct RawResponse {
+  std::string head;
+  std::string body;
+  bool complete = false;
+  bool closed = false;
+};
+
+// Decodes as much of a chunked response as `raw` holds.
+RawResponse decode_chunked(const std::string& raw) {
+  RawResponse r;
+  const auto head_end = raw.find("\r\n\r\n");
+  if (head_end == std::string::npos) return r;
+  r.head = raw.substr(0, head_end);
+  std::size_t pos = head_end + 4;
+  for (;;) {
+    const auto eol = raw.find("\r\n", pos);
+    if (eol == std::string::npos) return r;
+    const std::size_t size = std::stoul(raw.substr(pos, eol - pos), nullptr, 16);
+    if (size == 0) {
+      r.complete = true;
+      return r;
+    }
+    if (raw.size() < eol + 2 + size + 2) {
+      r.body += raw.substr(eol + 2, raw.size() - eol - 2);  // partial chunk
+      return r;
+    }
+    r.body += raw.substr(eol + 2, size);
+    pos = eol + 2 + size + 2;
+  }
+}
+
+std::string post_head(std::string_view target, std::size_t length) {
+  return "POST " + std::string(target) +
+         " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: " + std::to_string(length) + "\r\n\r\n";
+}
+
+const std::string kCurves = "tests/golden/trace/cases/curves.stp";
+// The replicated ex1E keeps P21 ids as tool numbers; linuxcnc's tool range takes them (fanuc-0i
+// stops at T9999 with RENDER-001), so the whole program is posted.
+constexpr std::string_view kLargeTarget = "/v1/posts?profile=linuxcnc";
+
+// ---- every route ---------------------------------------------------------------------------
+
+TEST(ServerRoutes, HealthReadyMetrics) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  auto health = curl({server.url("/healthz")});
+  EXPECT_EQ(health.status, 200);
+  EXPECT_NE(health.body.find("\"ok\""), std::string::npos);
+  EXPECT_FALSE(health.header("X-Request-Id").empty());
+  auto ready = curl({server.url("/readyz")});
+  EXPECT_EQ(ready.status, 200) << ready.body;
+  auto metrics = curl({server.url("/metrics")});
+  EXPECT_EQ(metrics.status, 200);
+  EXPECT_NE(
+      metrics.body.find("ncpost_http_requests_total{route=\"GET /healthz\",status=\"200\"} 1"),
+      std::string::npos)
+      << metrics.body;
+  for (const char* name :
+       {"ncpost_http_request_duration_seconds_bucket", "ncpost_stylesheet_cache_hits_total",
+        "ncpost_jobs_queued", "ncpost_jobs_active", "ncpost_http_bytes_sent_total"})
+    EXPECT_NE(metrics.body.find(name), std::string::npos) << name;
+  // The access log: one JSON line per request, with the request id that went back.
+  EXPECT_NE(server.log().find("\"request_id\":\"" + health.header("X-Request-Id") + "\""),
+            std::string::npos)
+      << server.log();
+}
+
+TEST(ServerRoutes, FrontEndAndOpenApi) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  auto index = curl({server.url("/")});
+  EXPECT_EQ(index.status, 200);
+  EXPECT_NE(index.header("Content-Type").find("text/html"), std::string::npos);
+  EXPECT_NE(index.body.find("/v1/posts"), std::string::npos);
+  auto spec = curl({server.url("/openapi.yaml")});
+  if (std::filesystem::exists(src("openapi/openapi.yaml"))) {
+    EXPECT_EQ(spec.status, 200);
+    EXPECT_NE(spec.body.find("openapi:"), std::string::npos);
+  } else {
+    EXPECT_EQ(spec.status, 404);
+  }
+}
+
+TEST(ServerRoutes, UnknownRouteAndMethod) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  auto missing = curl({server.url("/v2/nothing")});
+  EXPECT_EQ(missing.status, 404);
+  EXPECT_EQ(missing.header("Content-Type"), "application/problem+json");
+  auto method = curl({"-X", "DELETE", server.url("/healthz")});
+  EXPECT_EQ(method.status, 405);
+  EXPECT_EQ(method.header("Allow"), "GET");
+  expect_serving(server);
+}
+
+TEST(ServerRoutes, Profiles) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  auto list = curl({server.url("/v1/profiles")});
+  EXPECT_EQ(list.status, 200);
+  EXPECT_NE(list.body.find("\"fanuc-0i\""), std::string::npos);
+  EXPECT_NE(list.body.find("\"linuxcnc\""), std::string::npos);
+  auto one = curl({server.url("/v1/profiles/fanuc-0i")});
+  EXPECT_EQ(one.status, 200) << one.body;
+  EXPECT_NE(one.body.find("\"version\""), std::string::npos);
+  EXPECT_FALSE(one.header("ETag").empty());
+  auto unknown = curl({server.url("/v1/profiles/no-such-machine")});
+  EXPECT_EQ(unknown.status, 404);
+  EXPECT_NE(unknown.body.find("PROFILE-003"), std::string::npos) << unknown.body;
+}
+
+TEST(ServerRoutes, NcRoutesAreNotImplemented) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  for (const char* path :
+       {"/v1/nc/parse?dialect=fanuc", "/v1/nc/translate?from=fanuc&to=linuxcnc"}) {
+    auto r = curl({"--data-binary", "G0 X0", server.url(path)});
+    EXPECT_EQ(r.status, 501) << path;
+    EXPECT_EQ(r.header("Content-Type"), "application/problem+json");
+    EXPECT_NE(r.body.find("NCPOST-001"), std::string::npos) << r.body;
+  }
+}
+
+// ---- posts ---------------------------------------------------------------------------------
+
+TEST(ServerPosts, StreamedPostIsByteIdenticalToTheCli) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto file = src(kCurves);
+  const std::string expected = ncpost("post --profile linuxcnc " + file.string());
+  ASSERT_FALSE(expected.empty());
+  auto raw = curl({"--data-binary", "@" + file.string(), server.url("/v1/posts?profile=linuxcnc")});
+  EXPECT_EQ(raw.status, 200) << raw.body;
+  EXPECT_EQ(raw.body, expected);
+  EXPECT_EQ(raw.header("Transfer-Encoding"), "chunked");
+  EXPECT_EQ(raw.header("Content-Type").substr(0, 10), "text/plain");
+  EXPECT_NE(raw.header("Content-Disposition").find("filename="), std::string::npos);
+  const std::string etag = raw.header("ETag");
+  ASSERT_FALSE(etag.empty());
+
+  // The same upload as multipart/form-data, with its file name.
+  auto multipart = curl({"-F", "file=@" + file.string(), server.url("/v1/posts?profile=linuxcnc")});
+  EXPECT_EQ(multipart.status, 200) << multipart.body;
+  EXPECT_EQ(multipart.body, expected);
+  EXPECT_NE(multipart.header("Content-Disposition").find("filename=\"curves.ngc\""),
+            std::string::npos)
+      << multipart.header("Content-Disposition");
+  EXPECT_EQ(multipart.header("ETag"), etag);
+
+  auto cached = curl({"--data-binary", "@" + file.string(), "-H", "If-None-Match: " + etag,
+                      server.url("/v1/posts?profile=linuxcnc")});
+  EXPECT_EQ(cached.status, 304);
+}
+
+TEST(ServerPosts, JsonPostMapsBlocksToWorkingsteps) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto file = src(kCurves);
+  const std::string expected = ncpost("post --profile fanuc-0i " + file.string());
+  auto r = curl({"--data-binary", "@" + file.string(), "-H", "Accept: application/json",
+                 server.url("/v1/posts?profile=fanuc-0i")});
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.header("Content-Type"), "application/json");
+  EXPECT_NE(r.body.find("\"program\""), std::string::npos);
+  EXPECT_NE(r.body.find("\"blocks\": {"), std::string::npos);
+  // Workingstep #10 of curves.stp owns some blocks.
+  EXPECT_TRUE(std::regex_search(r.body, std::regex("\"[0-9L]+\": 10[,\n]"))) << r.body;
+  EXPECT_NE(r.body.find("\"diagnostics\": []"), std::string::npos) << r.body;
+}
+
+TEST(ServerPosts, ErrorsBeforeOutputAreProblems) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto file = src(kCurves);
+  auto no_profile = curl({"--data-binary", "@" + file.string(), server.url("/v1/posts")});
+  EXPECT_EQ(no_profile.status, 400);
+  auto unknown = curl({"--data-binary", "@" + file.string(), server.url("/v1/posts?profile=nope")});
+  EXPECT_EQ(unknown.status, 404);
+  EXPECT_NE(unknown.body.find("PROFILE-003"), std::string::npos);
+  auto broken =
+      curl({"--data-binary", "@" + src("tests/golden/p21-malformed/unbalanced-open.stp").string(),
+            server.url("/v1/posts?profile=linuxcnc")});
+  EXPECT_EQ(broken.status, 422);
+  EXPECT_EQ(broken.header("Content-Type"), "application/problem+json");
+  EXPECT_TRUE(std::regex_search(broken.body, std::regex("\"line\": [1-9]"))) << broken.body;
+  EXPECT_NE(broken.body.find("\"code\": \"P21-023\""), std::string::npos) << broken.body;
+  auto empty = curl({"--data-binary", "", server.url("/v1/posts?profile=linuxcnc")});
+  EXPECT_EQ(empty.status, 400);
+  auto bad_multipart =
+      curl({"-H", "Content-Type: multipart/form-data; boundary=xyz", "--data-binary",
+            "--xyz\r\nno headers here", server.url("/v1/posts?profile=linuxcnc")});
+  EXPECT_EQ(bad_multipart.status, 400);
+  expect_serving(server);
+}
+
+TEST(ServerPosts, ErrorAfterOutputEndsWithTheMarkerAndIsCut) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  // The bracket is feature-based: the program start goes out, then STEPNC-010 stops the post.
+  const auto file = src("examples/bracket.stp");
+  auto r = curl({"--data-binary", "@" + file.string(), server.url("/v1/posts?profile=fanuc-0i")});
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.exit_code, 18) << "curl must see an incomplete transfer";
+  EXPECT_TRUE(std::regex_search(r.body, std::regex("\\(ERROR: [^\n]*incomplete\\)\n$"))) << r.body;
+  EXPECT_EQ(r.body, ncpost("post --profile fanuc-0i " + file.string()));
+  expect_serving(server);
+}
+
+TEST(ServerPosts, CorpusProgramIsByteIdentical) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto file = corpus / "p21" / "nist_toolkit_ex1E.stp";
+  for (const char* profile : {"fanuc-0i", "linuxcnc"}) {
+    const std::string expected =
+        ncpost(std::string("post --profile ") + profile + " " + file.string());
+    ASSERT_FALSE(expected.empty());
+    auto r = curl({"--data-binary", "@" + file.string(),
+                   server.url(std::string("/v1/posts?profile=") + profile)});
+    EXPECT_EQ(r.status, 200);
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_TRUE(r.body == expected)
+        << profile << ": " << r.body.size() << " vs " << expected.size() << " bytes";
+  }
+}
+
+// ---- the other job routes ------------------------------------------------------------------
+
+TEST(ServerJobs, InspectionConversionTraceSchema) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto bracket = src("examples/bracket.stp");
+  // Named like the CLI's input, the JSON is the CLI's, byte for byte.
+  auto inspect = curl({"--data-binary", "@" + bracket.string(),
+                       server.url("/v1/inspections?name=" + bracket.string())});
+  EXPECT_EQ(inspect.status, 200);
+  EXPECT_EQ(inspect.body, ncpost("inspect " + bracket.string()));
+
+  auto p21 = curl({"-F", "file=@" + bracket.string(), server.url("/v1/conversions?to=p21")});
+  EXPECT_EQ(p21.status, 200);
+  EXPECT_EQ(p21.body, ncpost("convert --to p21 " + bracket.string()));
+  auto p28 = curl({"--data-binary", "@" + bracket.string(),
+                   server.url("/v1/conversions?to=p28&binding=early")});
+  EXPECT_EQ(p28.status, 200);
+  EXPECT_EQ(p28.body, ncpost("convert --to p28 --binding early " + bracket.string()));
+  auto bad = curl({"--data-binary", "@" + bracket.string(), server.url("/v1/conversions?to=iges")});
+  EXPECT_EQ(bad.status, 400);
+
+  const auto curves = src(kCurves);
+  auto trace = curl({"--data-binary", "@" + curves.string(), server.url("/v1/traces")});
+  EXPECT_EQ(trace.status, 200);
+  EXPECT_EQ(trace.body, ncpost("trace " + curves.string()));
+  auto xml = curl({"--data-binary", "@" + curves.string(), server.url("/v1/traces?format=xml")});
+  EXPECT_EQ(xml.status, 200);
+  EXPECT_EQ(xml.body, ncpost("trace --format xml " + curves.string()));
+
+  const auto schema = src("schemas/iso14649.exp");
+  auto express_x = curl({"--data-binary", "@" + schema.string(), server.url("/v1/schemas")});
+  EXPECT_EQ(express_x.status, 200);
+  EXPECT_EQ(express_x.body, ncpost("schema --to xml " + schema.string()));
+  auto broken = curl({"--data-binary", "SCHEMA x; ENTITY", server.url("/v1/schemas")});
+  EXPECT_EQ(broken.status, 422);
+  EXPECT_NE(broken.body.find("\"code\": \"EXP-"), std::string::npos) << broken.body;
+}
+
+// ---- limits --------------------------------------------------------------------------------
+
+TEST(ServerLimits, BodyTooLargeIs413) {
+  ServerProcess server(with_args({"--max-body", "1000"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  auto r = curl({"--data-binary", std::string(5000, 'x'), server.url("/v1/inspections")});
+  EXPECT_EQ(r.status, 413);
+  EXPECT_NE(r.body.find("HTTP-001"), std::string::npos) << r.body;
+  expect_serving(server);
+}
+
+TEST(ServerLimits, HeaderTooLargeIs431) {
+  ServerProcess server(with_args({"--max-header", "2048"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  auto r = curl({"-H", "X-Padding: " + std::string(4000, 'p'), server.url("/healthz")});
+  EXPECT_EQ(r.status, 431);
+  expect_serving(server);
+}
+
+TEST(ServerLimits, SlowRequestIs408) {
+  ServerProcess server(with_args({"--read-timeout", "0.5"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  RawConnection slow(server.port());
+  ASSERT_TRUE(slow.connected());
+  ASSERT_TRUE(
+      slow.send("POST /v1/inspections HTTP/1.1\r\nHost: x\r\nContent-Length: 100\r\n\r\nab"));
+  const auto started = Clock::now();
+  const std::string answer = slow.receive_until("\r\n\r\n", 5s);
+  EXPECT_EQ(answer.substr(0, 12), "HTTP/1.1 408") << answer;
+  EXPECT_LT(Clock::now() - started, 3s);
+  expect_serving(server);
+}
+
+TEST(ServerLimits, IdleKeepAliveConnectionIsClosed) {
+  ServerProcess server(with_args({"--idle-timeout", "0.3"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  RawConnection c(server.port());
+  ASSERT_TRUE(c.send("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n"));
+  EXPECT_NE(c.receive_until("\"ok\"", 3s).find("200 OK"), std::string::npos);
+  (void)c.receive_until("never", 3s);
+  EXPECT_TRUE(c.closed());
+}
+
+TEST(ServerLimits, AdminRoutesNeedTheToken) {
+  TempDir profiles;
+  ServerOptions options = with_args({"--profiles", profiles.path().string()});
+  options.env = {{"NCPOST_ADMIN_TOKEN", "s3cret-token"}};
+  ServerProcess server(options);
+  ASSERT_TRUE(server.started()) << server.log();
+  auto none =
+      curl({"-X", "PUT", "-F", "profile=@" + src("stylesheets/linuxcnc/profile.json").string(),
+            "-F", "stylesheet=@" + src("stylesheets/linuxcnc/post.xsl").string(),
+            server.url("/v1/profiles/mine")});
+  EXPECT_EQ(none.status, 401);
+  EXPECT_FALSE(none.header("WWW-Authenticate").empty());
+  auto wrong = curl(
+      {"-X", "DELETE", "-H", "Authorization: Bearer wrong", server.url("/v1/profiles/linuxcnc")});
+  EXPECT_EQ(wrong.status, 403);
+  EXPECT_EQ(server.log().find("s3cret-token"), std::string::npos);
+  EXPECT_EQ(server.log().find("Bearer wrong"), std::string::npos);
+  expect_serving(server);
+}
+
+TEST(ServerLimits, FullQueueIs503AtOnce) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server(with_args({"--workers", "1", "--queue", "1"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string body = read_file(large);
+  // Two clients that post a large program and do not read: the first holds the worker (its
+  // stream blocks on the full socket), the second waits in the queue.
+  std::vector<std::unique_ptr<RawConnection>> holders;
+  for (int i = 0; i < 2; ++i) {
+    holders.push_back(std::make_unique<RawConnection>(server.port()));
+    ASSERT_TRUE(holders.back()->send(post_head(kLargeTarget, body.size()) + body));
+  }
+  // Give the server time to admit both.
+  const auto deadline = Clock::now() + 10s;
+  CurlResult r;
+  do {
+    std::this_thread::sleep_for(100ms);
+    r = curl(
+        {"--data-binary", "@" + src(kCurves).string(), server.url("/v1/posts?profile=linuxcnc")});
+  } while (r.status != 503 && Clock::now() < deadline);
+  EXPECT_EQ(r.status, 503);
+  EXPECT_EQ(r.header("Retry-After"), "1");
+  EXPECT_NE(r.body.find("HTTP-004"), std::string::npos);
+  auto ready = curl({server.url("/readyz")});
+  EXPECT_EQ(ready.status, 503);
+  holders.clear();  // the clients go away: their jobs are cancelled
+  const auto recovered = Clock::now() + 20s;
+  do {
+    std::this_thread::sleep_for(100ms);
+    r = curl(
+        {"--data-binary", "@" + src(kCurves).string(), server.url("/v1/posts?profile=linuxcnc")});
+  } while (r.status != 200 && Clock::now() < recovered);
+  EXPECT_EQ(r.status, 200) << server.log();
+}
+
+TEST(ServerLimits, JobTimeLimitIs504) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server(with_args({"--job-timeout", "0.05"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  auto r = curl({"--data-binary", "@" + large.string(), server.url(kLargeTarget)});
+  if (r.status == 504) {
+    EXPECT_EQ(r.header("Content-Type"), "application/problem+json");
+    EXPECT_NE(r.body.find("HTTP-005"), std::string::npos);
+  } else {
+    // The stream had started: it ends with the marker and is cut.
+    EXPECT_EQ(r.status, 200);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_TRUE(std::regex_search(r.body, std::regex("\\(ERROR: [^\n]*\\)\n$")));
+  }
+  expect_serving(server);
+}
+
+// ---- streaming, cancellation, shutdown -----------------------------------------------------
+
+TEST(ServerStreaming, FirstChunkArrivesBeforeTheProgramIsProcessed) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string body = read_file(large);
+  RawConnection c(server.port());
+  ASSERT_TRUE(c.send(post_head(kLargeTarget, body.size()) + body));
+  const auto sent = Clock::now();
+  std::string raw = c.receive_until("\r\n\r\n", 30s);
+  while (decode_chunked(raw).body.empty() && !c.closed()) raw += c.receive(30s);
+  const auto first = Clock::now();
+  RawResponse r = decode_chunked(raw);
+  ASSERT_FALSE(r.body.empty()) << raw.substr(0, 400);
+  EXPECT_FALSE(r.complete);
+  while (!r.complete && !c.closed()) {
+    raw += c.receive(30s, 1 << 20);
+    r = decode_chunked(raw);
+  }
+  const auto done = Clock::now();
+  EXPECT_TRUE(r.complete);
+  const auto to_first = std::chrono::duration<double>(first - sent).count();
+  const auto total = std::chrono::duration<double>(done - sent).count();
+  EXPECT_LT(to_first, total / 2) << "first byte after " << to_first << " s of " << total << " s";
+  RecordProperty("first_byte_s", std::to_string(to_first));
+  RecordProperty("total_s", std::to_string(total));
+}
+
+TEST(ServerStreaming, ClientDisconnectFreesTheWorker) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server(with_args({"--workers", "1", "--queue", "0"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string body = read_file(large);
+  {
+    RawConnection c(server.port());
+    ASSERT_TRUE(c.send(post_head(kLargeTarget, body.size()) + body));
+    ASSERT_FALSE(c.receive_until("\r\n\r\n", 30s).empty());
+    c.close(true);  // hang up mid-stream
+  }
+  // With one worker and no queue, the next post is served only once the first job let go.
+  const auto deadline = Clock::now() + 10s;
+  CurlResult r;
+  do {
+    r = curl(
+        {"--data-binary", "@" + src(kCurves).string(), server.url("/v1/posts?profile=linuxcnc")});
+    if (r.status == 200) break;
+    std::this_thread::sleep_for(50ms);
+  } while (Clock::now() < deadline);
+  EXPECT_EQ(r.status, 200) << server.log();
+  EXPECT_NE(server.log().find("\"complete\":false"), std::string::npos);
+}
+
+TEST(ServerStreaming, SigtermDuringAStreamDrainsAndExitsZero) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string body = read_file(large);
+  RawConnection c(server.port());
+  ASSERT_TRUE(c.send(post_head(kLargeTarget, body.size()) + body));
+  std::string raw = c.receive_until("\r\n\r\n", 30s);
+  ASSERT_FALSE(raw.empty());
+  server.signal(SIGTERM);
+  // New connections are refused once the listener is closed.
+  std::this_thread::sleep_for(200ms);
+  RawConnection late(server.port());
+  EXPECT_FALSE(late.connected() && late.send("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n") &&
+               !late.receive(1s).empty());
+  RawResponse r = decode_chunked(raw);
+  while (!r.complete && !c.closed()) {
+    raw += c.receive(30s, 1 << 20);
+    r = decode_chunked(raw);
+  }
+  // In flight: it completes, or it ends with the error marker and is cut.
+  if (!r.complete) {
+    EXPECT_TRUE(std::regex_search(r.body, std::regex("\\(ERROR: [^\n]*\\)\n$")));
+  }
+  const auto status = server.wait(40s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 0) << server.log();
+}
+
+TEST(ServerStreaming, SigtermWhenIdleExitsAtOnce) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  RawConnection idle(server.port());  // a kept-alive connection must not hold the drain
+  ASSERT_TRUE(idle.send("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n"));
+  (void)idle.receive_until("\"ok\"", 3s);
+  const auto started = Clock::now();
+  server.signal(SIGTERM);
+  const auto status = server.wait(10s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 0);
+  EXPECT_LT(Clock::now() - started, 3s);
+}
+
+}  // namespace
+}  // namespace ncpost::test

@@ -1,0 +1,109 @@
+#pragma once
+// The motion model shared by the interop tests: a posted program, read back by an interpreter
+// (rs274) or by a dialect checker, must give the same motions as our canonical program. A
+// motion is kept in rs274's terms (kind, numbers, feed in force) so that every reader produces
+// the same shape and one comparison serves them all.
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ncpost/canon/call.hpp"
+#include "ncpost/canon/sink.hpp"
+#include "ncpost/profile/profile.hpp"
+
+namespace ncpost::interop {
+
+// Largest difference allowed between a motion read back and ours (program units, mm/min).
+inline constexpr double kTolerance = 0.001;
+
+// One motion: "STRAIGHT_TRAVERSE" or "STRAIGHT_FEED" with x y z, or "ARC_FEED" with rs274's
+// first_end second_end first_axis second_axis rotation axis_end_point; and the feed rate in
+// force (not compared for traverses).
+struct Motion {
+  std::string kind;
+  std::vector<double> values;
+  double feed = 0;
+};
+
+[[nodiscard]] std::string describe(const Motion& m);
+
+// How to turn the canonical program into the motions a profile's output should contain.
+struct MotionOptions {
+  // Cut NURBS into straight feeds with this chord tolerance (the renderer's linearisation).
+  double chord_tolerance = 0.001;
+  // Map every point through the profile's set-up transform (program → machine axes), for
+  // dialects whose output is in machine axes.
+  const xslt::SetupTransform* setup = nullptr;
+  // > 0: arcs of more than one turn in the XY plane become equal pieces of at most this many
+  // degrees (controllers without a turn count on G2/G3).
+  double split_multi_turn_degrees = 0;
+  // > 0: a NURBS becomes one "NURBS_FEED" motion whose values are this many points of the
+  // curve (x y z each) at equal steps of the normalised parameter, for dialects that write
+  // the spline itself: the posted spline, read back, is sampled the same way, which is
+  // independent of how its knots are shifted or its weights scaled.
+  int nurbs_samples = 0;
+};
+
+// Our canonical program as motions: cycles expanded (canon::expand_cycle), NURBS linearised
+// (or sampled, see nurbs_samples), the feed in force attached to each motion.
+class Motions final : public canon::Sink {
+ public:
+  explicit Motions(MotionOptions options = {});
+  void call(const canon::Call& call) override;
+  std::vector<Motion> motions;
+
+ private:
+  [[nodiscard]] canon::Point map(canon::Point p) const;
+  void add_arc(const canon::ArcFeed& arc);
+  MotionOptions options_;
+  canon::Point position_{};
+  double feed_ = 0;
+};
+
+// The default options for a profile: its chord tolerance, no set-up, no arc split.
+[[nodiscard]] MotionOptions options_for(const profile::Profile& profile);
+
+// `count` points of the curve at equal steps of the parameter over its knot range (count >= 2).
+[[nodiscard]] std::vector<canon::Point> sample(const canon::NurbsFeed& nurbs, int count);
+
+// Drops straight motions that end where they start (a dialect that positions before a cycle
+// and then runs it repeats the position; a block that only sets a feed moves nowhere), and
+// merges a traverse into the previous one when both are on one line in the same direction (a
+// controller's cycle may retract in two steps where the canonical expansion takes one).
+[[nodiscard]] std::vector<Motion> normalised(const std::vector<Motion>& motions);
+
+// Linearises a NURBS exactly as the Motions sink does (same tolerance → same points), for
+// checkers that read a native spline back.
+[[nodiscard]] std::vector<canon::Point> linearize(const canon::NurbsFeed& nurbs, double tolerance);
+
+struct Outcome {
+  std::size_t compared = 0;
+  double max_deviation = 0;
+};
+
+// Compares motion by motion (kind, count, every number, the feed of feed motions) and adds a
+// gtest failure for each difference above kTolerance (and for a different count or kind; the
+// comparison stops at the first different kind). `who` names the other side in messages.
+Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
+                            const std::string& who);
+
+// An input file posted with one profile: the canonical program and the text.
+struct Posted {
+  std::shared_ptr<const profile::LoadedProfile> profile;
+  std::vector<canon::Call> calls;
+  std::string text;
+};
+
+// Loads the built-in profile `profile_id`, interprets `input` (STEP-NC) and renders it. Adds
+// gtest failures for load, interpretation or rendering errors; `profile` is null when the
+// profile does not load.
+[[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id);
+
+// The motions of `calls` with `options`.
+[[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
+                                             const MotionOptions& options);
+
+}  // namespace ncpost::interop

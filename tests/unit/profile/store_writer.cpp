@@ -1,0 +1,27 @@
+// Test helper for ProfileStoreCrash: puts two versions of profile "crash" into DIR, alternately,
+// until it is killed. Usage: profile_store_writer DIR
+#include <cstdio>
+
+#include "ncpost/profile/profile.hpp"
+#include "store_fixture.hpp"
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: profile_store_writer DIR\n");
+    return 2;
+  }
+  ncpost::xslt::initialise();
+  using namespace ncpost::profile;
+  ProfileStore store(argv[1], StoreOptions{.writable = true, .fallback = builtin_directory()});
+  const std::string json[2] = {test_store::profile_json("crash", "Version A"),
+                               test_store::profile_json("crash", "Version B")};
+  const std::string xsl[2] = {test_store::stylesheet("A"), test_store::stylesheet("B")};
+  for (unsigned i = 0;; ++i) {
+    const auto r = store.put("crash", json[i % 2], xsl[i % 2]);
+    if (!r.profile) {
+      for (const auto& d : r.diagnostics)
+        std::fprintf(stderr, "%s\n", ncpost::xslt::format(d).c_str());
+      return 1;
+    }
+  }
+}
