@@ -60,6 +60,20 @@ Response http_problem(unsigned status, diag::Code code, std::string_view title,
   return problem(status, diag::info(code).id, title, detail, one);
 }
 
+// Most handlers answer a malformed query the same way.
+Response bad_request(std::string detail) {
+  return http_problem(400, diag::Code::HttpBadRequest, "Bad request", std::move(detail));
+}
+
+// The upload of a job route, or nullopt after the problem (413, 415, a broken multipart body)
+// has been sent.
+std::optional<Upload> take_upload_or_respond(Request& request, Exchange& exchange) {
+  std::optional<Response> error;
+  auto upload = take_upload(request, error);
+  if (!upload) exchange.respond(std::move(*error));
+  return upload;
+}
+
 Response json_response(unsigned status, const json& body) {
   Response r{static_cast<http::status>(status), 11};
   r.set(http::field::content_type, "application/json");
@@ -339,21 +353,19 @@ void handle_profile_put(Request& request, Services& services, Exchange& exchange
   const auto boundary = multipart_boundary(request[http::field::content_type]);
   if (!boundary) {
     exchange.respond(
-        http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                     "PUT /v1/profiles/{id} takes multipart/form-data with the parts 'profile' and "
-                     "'stylesheet'"));
+        bad_request("PUT /v1/profiles/{id} takes multipart/form-data with the parts 'profile' and "
+                    "'stylesheet'"));
     return;
   }
   const MultipartResult parts = parse_multipart(request.body(), *boundary);
   if (!parts.ok()) {
-    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request", parts.error));
+    exchange.respond(bad_request(parts.error));
     return;
   }
   const auto* profile_part = parts.find("profile");
   const auto* stylesheet_part = parts.find("stylesheet");
   if (profile_part == nullptr || stylesheet_part == nullptr) {
-    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                                  "the parts 'profile' and 'stylesheet' are both required"));
+    exchange.respond(bad_request("the parts 'profile' and 'stylesheet' are both required"));
     return;
   }
   if (!services.profiles->writable()) {
@@ -464,9 +476,9 @@ void post_json(Services& services, Exchange& exchange, const pipeline::LoadedMod
 void handle_post(Request& request, Services& services, Exchange& exchange) {
   const auto id = query_param(request.target(), "profile");
   if (!id || id->empty()) {
-    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                                  "the query parameter 'profile' is required "
-                                  "(POST /v1/posts?profile=ID; see GET /v1/profiles)"));
+    exchange.respond(
+        bad_request("the query parameter 'profile' is required "
+                    "(POST /v1/posts?profile=ID; see GET /v1/profiles)"));
     return;
   }
   exchange.profile = *id;
@@ -477,12 +489,8 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
     exchange.respond(profile_load_problem(profile_diagnostics, *id));
     return;
   }
-  std::optional<Response> error;
-  auto upload = take_upload(request, error);
-  if (!upload) {
-    exchange.respond(std::move(*error));
-    return;
-  }
+  auto upload = take_upload_or_respond(request, exchange);
+  if (!upload) return;
   // The same input, profile version and engine give the same program.
   const std::uint64_t input_hash = std::hash<std::string_view>{}(upload->bytes);
   const std::uint64_t context_hash =
@@ -549,22 +557,16 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
 void handle_conversion(Request& request, Services& services, Exchange& exchange) {
   const auto to = query_param(request.target(), "to");
   if (!to || (*to != "p21" && *to != "p28")) {
-    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                                  "the query parameter 'to' must be p21 or p28"));
+    exchange.respond(bad_request("the query parameter 'to' must be p21 or p28"));
     return;
   }
   const auto binding = query_param(request.target(), "binding");
   if (binding && ((*binding != "late" && *binding != "early") || *to != "p28")) {
-    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                                  "'binding' is late or early, and only with to=p28"));
+    exchange.respond(bad_request("'binding' is late or early, and only with to=p28"));
     return;
   }
-  std::optional<Response> error;
-  auto upload = take_upload(request, error);
-  if (!upload) {
-    exchange.respond(std::move(*error));
-    return;
-  }
+  auto upload = take_upload_or_respond(request, exchange);
+  if (!upload) return;
   // Conversion is lossless whatever the schema says of the data: not validated (as the CLI).
   auto loaded = load_upload(request, services, exchange, *upload, false);
   if (!loaded) return;
@@ -589,12 +591,8 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
 }
 
 void handle_inspection(Request& request, Services& services, Exchange& exchange) {
-  std::optional<Response> error;
-  auto upload = take_upload(request, error);
-  if (!upload) {
-    exchange.respond(std::move(*error));
-    return;
-  }
+  auto upload = take_upload_or_respond(request, exchange);
+  if (!upload) return;
   const std::string name = upload->name;
   const auto started = Clock::now();
   pipeline::LoadedModel loaded = pipeline::load(std::move(upload->bytes), *services.schemas);
@@ -631,16 +629,11 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
 void handle_trace(Request& request, Services& services, Exchange& exchange) {
   const std::string format = query_param(request.target(), "format").value_or("text");
   if (format != "text" && format != "xml") {
-    exchange.respond(http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                                  "the query parameter 'format' must be text or xml"));
+    exchange.respond(bad_request("the query parameter 'format' must be text or xml"));
     return;
   }
-  std::optional<Response> error;
-  auto upload = take_upload(request, error);
-  if (!upload) {
-    exchange.respond(std::move(*error));
-    return;
-  }
+  auto upload = take_upload_or_respond(request, exchange);
+  if (!upload) return;
   const std::string name = upload->name;
   auto loaded = load_upload(request, services, exchange, *upload, true);
   if (!loaded) return;
@@ -675,12 +668,8 @@ void handle_trace(Request& request, Services& services, Exchange& exchange) {
 }
 
 void handle_schema(Request& request, Services& services, Exchange& exchange) {
-  std::optional<Response> error;
-  auto upload = take_upload(request, error);
-  if (!upload) {
-    exchange.respond(std::move(*error));
-    return;
-  }
+  auto upload = take_upload_or_respond(request, exchange);
+  if (!upload) return;
   const auto started = Clock::now();
   const express::ParseResult result = express::parse_express(upload->bytes);
   if (!result.ok()) {
@@ -761,20 +750,18 @@ std::optional<Upload> take_upload(Request& request, std::optional<Response>& err
   if (is_multipart(content_type)) {
     const auto boundary = multipart_boundary(content_type);
     if (!boundary) {
-      error = http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                           "multipart/form-data without a valid boundary parameter");
+      error = bad_request("multipart/form-data without a valid boundary parameter");
       return std::nullopt;
     }
     const MultipartResult parts = parse_multipart(request.body(), *boundary);
     if (!parts.ok()) {
-      error = http_problem(400, diag::Code::HttpBadRequest, "Bad request", parts.error);
+      error = bad_request(parts.error);
       return std::nullopt;
     }
     const MultipartPart* part = parts.find("file");
     if (part == nullptr && parts.parts.size() == 1) part = &parts.parts.front();
     if (part == nullptr) {
-      error = http_problem(400, diag::Code::HttpBadRequest, "Bad request",
-                           "multipart/form-data upload needs a part named 'file'");
+      error = bad_request("multipart/form-data upload needs a part named 'file'");
       return std::nullopt;
     }
     upload.bytes = std::string(part->body);
@@ -787,7 +774,7 @@ std::optional<Upload> take_upload(Request& request, std::optional<Response>& err
     upload.content_type = std::string(content_type);
   }
   if (upload.bytes.empty()) {
-    error = http_problem(400, diag::Code::HttpBadRequest, "Bad request", "the upload is empty");
+    error = bad_request("the upload is empty");
     return std::nullopt;
   }
   return upload;
