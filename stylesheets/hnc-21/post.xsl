@@ -29,12 +29,24 @@
 
   <!-- Two-digit G words, as HNC-21 programs (and the paper's G01) are usually written. -->
   <xsl:template match="STRAIGHT_TRAVERSE | STRAIGHT_FEED">
-    <xsl:variable name="g">
-      <xsl:choose><xsl:when test="self::STRAIGHT_TRAVERSE">G00</xsl:when><xsl:otherwise>G01</xsl:otherwise></xsl:choose>
-    </xsl:variable>
-    <xsl:variable name="axes"><xsl:call-template name="xyz"/></xsl:variable>
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat($g, $axes)"/></xsl:call-template>
-    <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>
+    <xsl:variable name="g" select="substring('G01G00', 1 + 3 * boolean(self::STRAIGHT_TRAVERSE), 3)"/>
+    <xsl:choose>
+      <xsl:when test="@a or @b or @c">
+        <xsl:variable name="axes"><xsl:call-template name="xyz"/></xsl:variable>
+        <xsl:call-template name="block"><xsl:with-param name="text" select="concat($g, $axes)"/></xsl:call-template>
+        <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>
+      </xsl:when>
+      <!-- "block" with $numbered = 'yes' and "xyz", inline (see ncpost-common.xsl). -->
+      <xsl:otherwise>
+        <xsl:variable name="x" select="number(@x)"/>
+        <xsl:variable name="y" select="number(@y)"/>
+        <xsl:variable name="z" select="number(@z)"/>
+        <xsl:variable name="axes" select="concat(' X', ext:format(ext:setup-x($x, $y, $z), 'length'),
+                       ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
+                       ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))"/>
+        <xsl:value-of select="concat(ext:line(concat('N', ext:block(), ' ', $g, $axes)), '&#10;', ext:moved-to($x, $y, $z))"/>
+      </xsl:otherwise>
+    </xsl:choose>
   </xsl:template>
 
   <!-- One G02/G03 block from the current position to (@x, @y, @z) of the context node. -->

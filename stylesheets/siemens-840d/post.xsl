@@ -96,14 +96,12 @@
         <xsl:variable name="sx" select="ext:position('x')"/>
         <xsl:variable name="sy" select="ext:position('y')"/>
         <xsl:variable name="sz" select="ext:position('z')"/>
-        <xsl:variable name="i" select="ext:format(ext:arc-i(ext:setup-x($sx, $sy, $sz), ext:setup-x($cx, $cy, $cz)), 'length')"/>
-        <xsl:variable name="j" select="ext:format(ext:arc-j(ext:setup-y($sx, $sy, $sz), ext:setup-y($cx, $cy, $cz)), 'length')"/>
-        <xsl:variable name="k" select="ext:format(ext:arc-k(ext:setup-z($sx, $sy, $sz), ext:setup-z($cx, $cy, $cz)), 'length')"/>
-        <xsl:value-of select="ext:line(concat('N', ext:block(), ' ', $g, $axes,
-            substring(concat(' I', $i), 1, 1000 * ($pl != 1)),
-            substring(concat(' J', $j), 1, 1000 * ($pl != 2)),
-            substring(concat(' K', $k), 1, 1000 * ($pl != 0)),
-            $turns))"/>
+        <xsl:variable name="text" select="concat($g, $axes,
+            substring(concat(' I', ext:format(ext:arc-i(ext:setup-x($sx, $sy, $sz), ext:setup-x($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 1)),
+            substring(concat(' J', ext:format(ext:arc-j(ext:setup-y($sx, $sy, $sz), ext:setup-y($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 2)),
+            substring(concat(' K', ext:format(ext:arc-k(ext:setup-z($sx, $sy, $sz), ext:setup-z($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 0)),
+            $turns)"/>
+        <xsl:value-of select="ext:line(concat('N', ext:block(), ' ', $text))"/>
         <xsl:text>&#10;</xsl:text>
       </xsl:otherwise>
     </xsl:choose>

@@ -17,6 +17,7 @@
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/verify/verify.hpp"
 
 namespace ncpost::stepnc {
 namespace {
@@ -75,6 +76,29 @@ struct Summary {
     z0 = std::min(z0, z), z1 = std::max(z1, z);
   }
 };
+
+// The independent verifier (engine/verify, no code shared with the generator) on what the
+// generator made. A pointed drill cannot make a spherical or flat-with-radius bottom by itself:
+// that case must leave uncovered floor (VERIFY-004), and nothing else.
+void expect_verified(const fs::path& file, const std::vector<canon::Call>& calls) {
+  const pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry());
+  const AttributeReader attributes(loaded.model, *loaded.schema);
+  const verify::VerifyResult result = verify::verify_calls(loaded.model, attributes, calls);
+  const bool pointed = file.stem() == "holes-pointed-bottoms";
+  std::size_t uncovered = 0;
+  for (const auto& f : result.findings) {
+    if (f.diagnostic.severity != diag::Severity::Error) continue;
+    if (pointed && f.diagnostic.code_id() == "VERIFY-004") {
+      ++uncovered;
+      continue;
+    }
+    ADD_FAILURE() << file.filename() << ": " << diag::format(f.diagnostic, file.string());
+  }
+  if (pointed) {
+    EXPECT_GT(uncovered, 0u) << "the verifier should see the cone a drill leaves";
+  }
+  EXPECT_FALSE(result.features.empty()) << file.filename();
+}
 
 // Workingsteps grouped by a name prefix: ex1E splits one ex1 workingstep into several
 // ("WS ROUGH POCKET1 A", "... B", ...) with rapid movements in between.
@@ -197,6 +221,7 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
   if (GetParam() != "wrong-tools" && GetParam() != "unsupported" && GetParam() != "hostile") {
     for (const auto& d : r.diagnostics)
       EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, GetParam());
+    expect_verified(cases() / (GetParam() + ".stp"), r.calls);
   }
 }
 
