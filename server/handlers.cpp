@@ -285,8 +285,28 @@ void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
   exchange.respond(json_response(200, body));
 }
 
-Response profile_load_problem(const std::vector<xslt::FileDiagnostic>& diagnostics,
-                              std::string_view id) {
+// The store's diagnostics name files on the server; a client learns the profile-relative path
+// (e.g. "profiles/fanuc-0i/post.xsl"), not where the service is installed.
+std::vector<xslt::FileDiagnostic> without_server_paths(
+    std::vector<xslt::FileDiagnostic> diagnostics, const profile::ProfileStore& store) {
+  // Absolute roots only: a relative --profiles DIR reveals nothing, and a short relative name
+  // would match inside ordinary words.
+  std::error_code ec;
+  const std::string roots[] = {std::filesystem::absolute(store.directory(), ec).string(),
+                               profile::builtin_directory().string()};
+  for (auto& d : diagnostics)
+    for (const std::string& root : roots) {
+      if (root.size() < 2 || root.front() != '/') continue;
+      for (std::string* text : {&d.file, &d.diagnostic.message})
+        for (auto at = text->find(root); at != std::string::npos; at = text->find(root, at))
+          text->replace(at, root.size(), "profiles");
+    }
+  return diagnostics;
+}
+
+Response profile_load_problem(const std::vector<xslt::FileDiagnostic>& store_diagnostics,
+                              std::string_view id, const profile::ProfileStore& store) {
+  const auto diagnostics = without_server_paths(store_diagnostics, store);
   const bool unknown = std::any_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
     return d.diagnostic.code == diag::Code::ProfileUnknown ||
            d.diagnostic.code == diag::Code::ProfileBadId;
@@ -303,7 +323,7 @@ void handle_profile_get(Request& request, Services& services, Exchange& exchange
   std::vector<xslt::FileDiagnostic> diagnostics;
   const auto loaded = services.profiles->load(exchange.path_id, diagnostics);
   if (!loaded) {
-    exchange.respond(profile_load_problem(diagnostics, exchange.path_id));
+    exchange.respond(profile_load_problem(diagnostics, exchange.path_id, *services.profiles));
     return;
   }
   const std::string etag = "\"" + loaded->version + "\"";
@@ -486,7 +506,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   // The job keeps this version even if the profile is replaced while it runs.
   const auto loaded_profile = services.profiles->load(*id, profile_diagnostics);
   if (!loaded_profile) {
-    exchange.respond(profile_load_problem(profile_diagnostics, *id));
+    exchange.respond(profile_load_problem(profile_diagnostics, *id, *services.profiles));
     return;
   }
   auto upload = take_upload_or_respond(request, exchange);

@@ -192,6 +192,8 @@ TEST(ServerRoutes, Profiles) {
   auto unknown = curl({server.url("/v1/profiles/no-such-machine")});
   EXPECT_EQ(unknown.status, 404);
   EXPECT_NE(unknown.body.find("PROFILE-003"), std::string::npos) << unknown.body;
+  // The client learns nothing of where the service is installed.
+  EXPECT_EQ(unknown.body.find(NCPOST_SOURCE_DIR), std::string::npos) << unknown.body;
 }
 
 TEST(ServerRoutes, NcRoutesAreNotImplemented) {
