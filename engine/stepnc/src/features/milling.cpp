@@ -288,6 +288,40 @@ struct Region {
 
 bool clear_region(Context& ctx, const Region& region);
 
+// A rectangular or circular closed profile as a Shape in the feature's coordinates: the
+// boundary of pockets and outside profiles. `corner` is the rectangle's corner radius (0: sharp).
+// False after reporting what is wrong or not implemented.
+bool read_closed_profile(Context& ctx, const Instance& f, const Instance& boundary, double corner,
+                         std::string_view plane_owner, Shape& shape) {
+  if (ctx.is(&boundary, "rectangular_closed_profile")) {
+    const auto w = ctx.toleranced(boundary, "profile_width");
+    const auto l = ctx.toleranced(boundary, "profile_length");
+    if (!w || !l || !(w->size > 0) || !(l->size > 0))
+      return ctx.bad(boundary, ctx.d(boundary) + " needs a positive width and length");
+    // Length along the profile's x axis, width along y: as NIST's ex1/ex1E pair places it.
+    shape = Shape::rectangle(l->size / 2, w->size / 2, corner);
+    if (shape.corner > std::min(shape.a, shape.b) + kEps)
+      return ctx.bad(f, ctx.d(f) + " orthogonal_radius " + fmt(shape.corner) +
+                            " is more than half the width of " + ctx.d(boundary));
+  } else if (ctx.is(&boundary, "circular_closed_profile")) {
+    const auto dia = ctx.toleranced(boundary, "diameter");
+    if (!dia || !(dia->size > 0))
+      return ctx.bad(boundary, ctx.d(boundary) + " needs a positive diameter");
+    shape = Shape::circle(dia->size / 2);
+  } else {
+    return ctx.not_implemented(ctx.d(f) + " bounded by " + ctx.d(boundary));
+  }
+  if (ctx.set(boundary, "placement")) {
+    const auto frame = ctx.g.placement(ctx.g.get(boundary, "placement"));
+    if (!frame) return false;
+    if (std::abs(frame->z.z - 1) > 1e-9 || std::abs(frame->origin.z) > kEps)
+      return ctx.not_implemented(ctx.d(boundary) + " placed out of the " +
+                                 std::string(plane_owner) + " plane");
+    shape.frame = *frame;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool generate_pocket(Context& ctx) {
@@ -310,31 +344,8 @@ bool generate_pocket(Context& ctx) {
   // The profile, in the pocket's coordinates.
   Shape shape;
   const auto corner = ctx.toleranced(f, "orthogonal_radius");
-  if (ctx.is(boundary, "rectangular_closed_profile")) {
-    const auto w = ctx.toleranced(*boundary, "profile_width");
-    const auto l = ctx.toleranced(*boundary, "profile_length");
-    if (!w || !l || !(w->size > 0) || !(l->size > 0))
-      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive width and length");
-    // Length along the profile's x axis, width along y: as NIST's ex1/ex1E pair places it.
-    shape = Shape::rectangle(l->size / 2, w->size / 2, corner ? corner->size : 0);
-    if (shape.corner > std::min(shape.a, shape.b) + kEps)
-      return ctx.bad(f, ctx.d(f) + " orthogonal_radius " + fmt(shape.corner) +
-                            " is more than half the width of " + ctx.d(*boundary));
-  } else if (ctx.is(boundary, "circular_closed_profile")) {
-    const auto dia = ctx.toleranced(*boundary, "diameter");
-    if (!dia || !(dia->size > 0))
-      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive diameter");
-    shape = Shape::circle(dia->size / 2);
-  } else {
-    return ctx.not_implemented(ctx.d(f) + " bounded by " + ctx.d(*boundary));
-  }
-  if (ctx.set(*boundary, "placement")) {
-    const auto frame = ctx.g.placement(ctx.g.get(*boundary, "placement"));
-    if (!frame) return false;
-    if (std::abs(frame->z.z - 1) > 1e-9 || std::abs(frame->origin.z) > kEps)
-      return ctx.not_implemented(ctx.d(*boundary) + " placed out of the pocket's plane");
-    shape.frame = *frame;
-  }
+  if (!read_closed_profile(ctx, f, *boundary, corner ? corner->size : 0, "pocket's", shape))
+    return false;
   Region region;
   region.shape = shape;
   region.through = through;
@@ -608,27 +619,7 @@ bool generate_outside_profile(Context& ctx) {
   const Instance* boundary = ctx.ref(f, "feature_boundary", "profile");
   if (boundary == nullptr) return ctx.bad(f, ctx.d(f) + " has no feature_boundary");
   Shape shape;
-  if (ctx.is(boundary, "rectangular_closed_profile")) {
-    const auto w = ctx.toleranced(*boundary, "profile_width");
-    const auto l = ctx.toleranced(*boundary, "profile_length");
-    if (!w || !l || !(w->size > 0) || !(l->size > 0))
-      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive width and length");
-    shape = Shape::rectangle(l->size / 2, w->size / 2, 0);
-  } else if (ctx.is(boundary, "circular_closed_profile")) {
-    const auto dia = ctx.toleranced(*boundary, "diameter");
-    if (!dia || !(dia->size > 0))
-      return ctx.bad(*boundary, ctx.d(*boundary) + " needs a positive diameter");
-    shape = Shape::circle(dia->size / 2);
-  } else {
-    return ctx.not_implemented(ctx.d(f) + " bounded by " + ctx.d(*boundary));
-  }
-  if (ctx.set(*boundary, "placement")) {
-    const auto frame = ctx.g.placement(ctx.g.get(*boundary, "placement"));
-    if (!frame) return false;
-    if (std::abs(frame->z.z - 1) > 1e-9 || std::abs(frame->origin.z) > kEps)
-      return ctx.not_implemented(ctx.d(*boundary) + " placed out of the profile's plane");
-    shape.frame = *frame;
-  }
+  if (!read_closed_profile(ctx, f, *boundary, 0, "profile's", shape)) return false;
   const auto depth = ctx.depth();
   const auto tool = ctx.tool();
   if (!depth || !tool) return false;
