@@ -77,7 +77,7 @@ std::filesystem::path large_program(int megabytes) {
   if (var.empty()) {                                                                        \
     if (corpus_required()) FAIL() << "the corpus or make_large_stepnc is missing";          \
     GTEST_SKIP() << "needs the corpus (nist_toolkit_ex1E.stp) and bench/make_large_stepnc " \
-                    "(NCPOST_BUILD_BENCH=ON)";                                              \
+                    "(built with the tests)";                                               \
   }
 
 // What a raw client read of a chunked response: head, decoded body, whether the terminal chunk
