@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "corpus.hpp"
+#include "golden.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/profile/profile.hpp"
@@ -41,16 +42,7 @@ std::string post(const fs::path& file, const std::string& profile_id) {
   return text;
 }
 
-void expect_golden(const std::string& actual, const fs::path& golden) {
-  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN");
-      update && std::string(update) == "1") {
-    fs::create_directories(golden.parent_path());
-    std::ofstream(golden, std::ios::binary) << actual;
-    return;
-  }
-  ASSERT_TRUE(fs::exists(golden)) << golden;
-  EXPECT_EQ(actual, test::read_file(golden)) << "differs from " << golden;
-}
+using test::expect_golden;
 
 const char* const kProfiles[] = {"linuxcnc", "fanuc-0i",     "haas-ngc",          "mitsubishi-m80",
                                  "hnc-21",   "siemens-840d", "heidenhain-tnc640", "okuma-osp",

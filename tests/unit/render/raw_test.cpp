@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "corpus.hpp"
+#include "golden.hpp"
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
@@ -167,16 +168,7 @@ std::vector<std::string> compare(const DemoMotions& demo, const ByWorkingstep& o
   return problems;
 }
 
-void expect_golden(const std::string& actual, const fs::path& golden) {
-  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN");
-      update && std::string(update) == "1") {
-    fs::create_directories(golden.parent_path());
-    std::ofstream(golden, std::ios::binary) << actual;
-    return;
-  }
-  ASSERT_TRUE(fs::exists(golden)) << golden;
-  EXPECT_EQ(actual, test::read_file(golden)) << "differs from " << golden;
-}
+using test::expect_golden;
 
 TEST(RawMode, ProfileDeclaresRaw) {
   const auto profile = demo_profile();
