@@ -10,8 +10,6 @@
 namespace ncpost::canon {
 namespace {
 
-using detail::append_integer;
-
 std::string_view xml_units(Units u) {
   switch (u) {
     case Units::Inches:
@@ -55,26 +53,47 @@ std::string_view element_name(const T& c) {
     return name(Call{c});  // the rest are a few numbers at most
 }
 
+// The shortest round-trip text of a number, as append_xml_number writes it, in `buffer`.
+std::string_view xml_number(double value, char (&buffer)[32]) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "INF" : "-INF";
+  if (value == 0) return "0";  // also -0
+  // The shortest round-trip form of a double needs at most 24 characters.
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return {buffer, static_cast<std::size_t>(result.ptr - buffer)};
+}
+
+std::string_view xml_integer(long long value, char (&buffer)[32]) {
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return {buffer, static_cast<std::size_t>(result.ptr - buffer)};
+}
+
+// The whitespace before an element at `indent`: a newline ends the previous line.
+constexpr std::string_view kSpaces = "        ";
+std::string_view spaces(int n) {
+  return kSpaces.substr(0, static_cast<std::size_t>(n));
+}
+
 // Writes one call as one element (a NURBS as an element with children), on its own line.
 class ElementWriter {
  public:
-  ElementWriter(std::string& out, int indent) : out_(out), indent_(indent) {}
+  ElementWriter(XmlEvents& out, int indent) : out_(out), indent_(indent) {}
 
-  void operator()(const UseLengthUnits& c) { open(c), text("units", xml_units(c.units)), empty(); }
+  void operator()(const UseLengthUnits& c) { open(c), text("units", xml_units(c.units)), empty(c); }
   void operator()(const SetOriginOffsets& c) {
     open(c);
     number("x", c.offset.x), number("y", c.offset.y), number("z", c.offset.z);
     rotary(c.rotary);
-    empty();
+    empty(c);
   }
   void operator()(const SetFeedReference& c) {
     open(c);
     text("reference", c.reference == FeedReference::Workpiece ? "workpiece" : "xyz");
-    empty();
+    empty(c);
   }
-  void operator()(const SelectPlane& c) { open(c), text("plane", xml_plane(c.plane)), empty(); }
-  void operator()(const StraightTraverse& c) { open(c), pose(c.to), empty(); }
-  void operator()(const StraightFeed& c) { open(c), pose(c.to), empty(); }
+  void operator()(const SelectPlane& c) { open(c), text("plane", xml_plane(c.plane)), empty(c); }
+  void operator()(const StraightTraverse& c) { open(c), pose(c.to), empty(c); }
+  void operator()(const StraightFeed& c) { open(c), pose(c.to), empty(c); }
   void operator()(const ArcFeed& c) {
     open(c);
     number("x", c.end.x), number("y", c.end.y), number("z", c.end.z);
@@ -90,39 +109,40 @@ class ElementWriter {
     }
     rotary(c.end.rotary);
     tool_axis(c.end.tool_axis);
-    empty();
+    empty(c);
   }
   void operator()(const NurbsFeed& c) {
     open(c);
     integer("degree", c.degree);
     rotary(c.rotary);
     tool_axis(c.tool_axis);
-    out_ += ">\n";
+    const std::string_view inner = spaces(indent_ + 2);
     for (const auto& p : c.points) {
-      indent(indent_ + 2);
-      out_ += "<point";
+      out_.text("\n"), out_.text(inner);
+      out_.start_element("point");
       number("x", p.x), number("y", p.y), number("z", p.z), number("w", p.weight);
-      out_ += "/>\n";
+      out_.end_element("point");
     }
     for (const double k : c.knots) {
-      indent(indent_ + 2);
-      out_ += "<knot";
+      out_.text("\n"), out_.text(inner);
+      out_.start_element("knot");
       number("value", k);
-      out_ += "/>\n";
+      out_.end_element("knot");
     }
-    indent(indent_);
-    out_ += "</NURBS_FEED>\n";
+    out_.text("\n"), out_.text(spaces(indent_));
+    out_.end_element("NURBS_FEED");
+    out_.text("\n");
   }
-  void operator()(const SetFeedRate& c) { open(c), number("rate", c.rate), empty(); }
-  void operator()(const SetSpindleSpeed& c) { open(c), number("rpm", c.rpm), empty(); }
-  void operator()(const SelectTool& c) { open(c), integer("slot", c.slot), empty(); }
-  void operator()(const ChangeTool& c) { open(c), integer("slot", c.slot), empty(); }
-  void operator()(const UseToolLengthOffset& c) { open(c), number("length", c.length), empty(); }
-  void operator()(const Dwell& c) { open(c), number("seconds", c.seconds), empty(); }
+  void operator()(const SetFeedRate& c) { open(c), number("rate", c.rate), empty(c); }
+  void operator()(const SetSpindleSpeed& c) { open(c), number("rpm", c.rpm), empty(c); }
+  void operator()(const SelectTool& c) { open(c), integer("slot", c.slot), empty(c); }
+  void operator()(const ChangeTool& c) { open(c), integer("slot", c.slot), empty(c); }
+  void operator()(const UseToolLengthOffset& c) { open(c), number("length", c.length), empty(c); }
+  void operator()(const Dwell& c) { open(c), number("seconds", c.seconds), empty(c); }
   void operator()(const Comment& c) { with_content(c, c.text); }
   void operator()(const Message& c) { with_content(c, c.text); }
-  void operator()(const Begin& c) { open(c), entity(c.entity), empty(); }
-  void operator()(const End& c) { open(c), entity(c.entity), empty(); }
+  void operator()(const Begin& c) { open(c), entity(c.entity), empty(c); }
+  void operator()(const End& c) { open(c), entity(c.entity), empty(c); }
   void operator()(const Cycle& c) {
     open(c);
     number("x", c.x), number("y", c.y);
@@ -146,62 +166,48 @@ class ElementWriter {
     }
     rotary(c.rotary);
     tool_axis(c.tool_axis);
-    empty();
+    empty(c);
   }
   // The calls without arguments; a new call with arguments does not compile until handled.
   template <class T>
   requires std::is_empty_v<T>
-  void operator()(const T& c) { open(c), empty(); }
+  void operator()(const T& c) { open(c), empty(c); }
 
   // The attributes of a structure marker (also used for <workingstep>).
   void entity(const Entity& e) {
-    if (e.id != 0) {
-      out_ += " id=\"";
-      append_integer(out_, e.id);
-      out_ += '"';
-    }
+    if (e.id != 0) integer("id", static_cast<long long>(e.id));
     if (!e.type.empty()) text("type", e.type);
     text("name", e.name);
   }
 
  private:
-  void indent(int n) { out_.append(static_cast<std::size_t>(n), ' '); }
   template <class T>
   void open(const T& c) {
-    indent(indent_);
-    out_ += '<';
-    out_ += element_name(c);
+    name_ = element_name(c);
+    out_.text(spaces(indent_));
+    out_.start_element(name_);
   }
-  void empty() { out_ += "/>\n"; }
+  template <class T>
+  void empty(const T&) {
+    out_.end_element(name_);
+    out_.text("\n");
+  }
+  // Always a text event, also when empty: the text form is then `<COMMENT></COMMENT>`.
   template <class T>
   void with_content(const T& c, std::string_view content) {
     open(c);
-    out_ += '>';
-    xmltext::append_escaped(out_, content, false);
-    out_ += "</";
-    out_ += element_name(c);
-    out_ += ">\n";
-  }
-  void attribute_start(std::string_view attribute) {
-    out_ += ' ';
-    out_ += attribute;
-    out_ += "=\"";
+    out_.text(content);
+    empty(c);
   }
   void number(std::string_view attribute, double v) {
-    attribute_start(attribute);
-    append_xml_number(out_, v);
-    out_ += '"';
+    char buffer[32];
+    out_.attribute(attribute, xml_number(v, buffer));
   }
   void integer(std::string_view attribute, long long v) {
-    attribute_start(attribute);
-    append_integer(out_, v);
-    out_ += '"';
+    char buffer[32];
+    out_.attribute(attribute, xml_integer(v, buffer));
   }
-  void text(std::string_view attribute, std::string_view v) {
-    attribute_start(attribute);
-    xmltext::append_escaped(out_, v, true);
-    out_ += '"';
-  }
+  void text(std::string_view attribute, std::string_view v) { out_.attribute(attribute, v); }
   void rotary(const std::optional<Rotary>& r) {
     if (r) number("a", r->a), number("b", r->b), number("c", r->c);
   }
@@ -214,47 +220,94 @@ class ElementWriter {
     tool_axis(p.tool_axis);
   }
 
-  std::string& out_;
+  XmlEvents& out_;
   int indent_;
+  std::string_view name_;
 };
 
-void open_workingstep(std::string& out, const Entity& e, bool continued) {
-  out += "  <workingstep";
+void open_workingstep(XmlEvents& out, const Entity& e, bool continued) {
+  out.text("  ");
+  out.start_element("workingstep");
   ElementWriter(out, 0).entity(e);
-  if (continued) out += " continued=\"true\"";
-  out += ">\n";
+  if (continued) out.attribute("continued", "true");
+  out.text("\n");
+}
+
+void close_workingstep(XmlEvents& out) {
+  out.text("  ");
+  out.end_element("workingstep");
+  out.text("\n");
 }
 
 }  // namespace
 
 void append_xml_number(std::string& out, double value) {
-  if (std::isnan(value)) {
-    out += "NaN";
+  char buffer[32];
+  out += xml_number(value, buffer);
+}
+
+void XmlText::start_element(std::string_view name) {
+  if (start_tag_open_) out_ += '>';
+  out_ += '<';
+  out_ += name;
+  start_tag_open_ = true;
+}
+
+void XmlText::attribute(std::string_view name, std::string_view value) {
+  out_ += ' ';
+  out_ += name;
+  out_ += "=\"";
+  xmltext::append_escaped(out_, value, true);
+  out_ += '"';
+}
+
+void XmlText::text(std::string_view characters) {
+  if (start_tag_open_) {
+    out_ += '>';
+    start_tag_open_ = false;
+  }
+  xmltext::append_escaped(out_, characters, false);
+}
+
+void XmlText::end_element(std::string_view name) {
+  if (start_tag_open_) {
+    out_ += "/>";
+    start_tag_open_ = false;
     return;
   }
-  if (std::isinf(value)) {
-    out += value > 0 ? "INF" : "-INF";
-    return;
-  }
-  if (value == 0) {  // also -0
-    out += '0';
-    return;
-  }
-  char buffer[32];  // the shortest round-trip form of a double needs at most 24
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
+  out_ += "</";
+  out_ += name;
+  out_ += '>';
 }
 
 void XmlChunkWriter::append_chunk(std::string& out, const ChunkView& chunk) {
+  XmlText text(out);
+  append_chunk(text, chunk);
+}
+void XmlChunkWriter::open(std::string& out, std::uint64_t seq) {
+  XmlText text(out);
+  open(text, seq);
+}
+void XmlChunkWriter::append(std::string& out, std::span<const Call> calls) {
+  XmlText text(out);
+  append(text, calls);
+}
+void XmlChunkWriter::close(std::string& out) {
+  XmlText text(out);
+  close(text);
+}
+
+void XmlChunkWriter::append_chunk(XmlEvents& out, const ChunkView& chunk) {
   open(out, chunk.seq);
   append(out, chunk.calls);
   close(out);
 }
 
-void XmlChunkWriter::open(std::string& out, std::uint64_t seq) {
-  out += "<chunk seq=\"";
-  append_integer(out, seq);
-  out += "\">\n";
+void XmlChunkWriter::open(XmlEvents& out, std::uint64_t seq) {
+  out.start_element("chunk");
+  char buffer[32];
+  out.attribute("seq", xml_integer(static_cast<long long>(seq), buffer));
+  out.text("\n");
   // A workingstep left open by the previous chunk (split at the size limit) goes on here.
   open_here_ = false;
   if (open_workingstep_) {
@@ -263,11 +316,11 @@ void XmlChunkWriter::open(std::string& out, std::uint64_t seq) {
   }
 }
 
-void XmlChunkWriter::append(std::string& out, std::span<const Call> calls) {
+void XmlChunkWriter::append(XmlEvents& out, std::span<const Call> calls) {
   for (const Call& call : calls) {
     if (const auto* b = std::get_if<Begin>(&call); b != nullptr && b->scope == Scope::Workingstep) {
       // Workingsteps do not nest; a second begin closes the first so the XML stays well-formed.
-      if (open_here_) out += "  </workingstep>\n";
+      if (open_here_) close_workingstep(out);
       open_workingstep(out, b->entity, false);
       open_workingstep_ = b->entity;
       open_here_ = true;
@@ -275,7 +328,7 @@ void XmlChunkWriter::append(std::string& out, std::span<const Call> calls) {
     }
     if (const auto* e = std::get_if<End>(&call);
         e != nullptr && e->scope == Scope::Workingstep && open_here_) {
-      out += "  </workingstep>\n";
+      close_workingstep(out);
       open_workingstep_.reset();
       open_here_ = false;
       continue;
@@ -285,10 +338,11 @@ void XmlChunkWriter::append(std::string& out, std::span<const Call> calls) {
   }
 }
 
-void XmlChunkWriter::close(std::string& out) {
-  if (open_here_) out += "  </workingstep>\n";
+void XmlChunkWriter::close(XmlEvents& out) {
+  if (open_here_) close_workingstep(out);
   open_here_ = false;
-  out += "</chunk>\n";
+  out.end_element("chunk");
+  out.text("\n");
 }
 
 void XmlChunkSink::chunk(const ChunkView& chunk) {

@@ -26,6 +26,38 @@ class Collect final : public canon::Sink {
 
 }  // namespace
 
+// The XML form's events, built straight into the input tree, with the size the same XML would
+// have as text (RenderOptions::batch_bytes is measured in it).
+class Renderer::TreeEvents final : public canon::XmlEvents {
+ public:
+  explicit TreeEvents(xslt::InputTree& tree) : tree_(tree) {}
+  void start_element(std::string_view name) override {
+    tree_.start_element(name);
+    text_bytes_ += name.size() + 1;
+  }
+  void attribute(std::string_view name, std::string_view value) override {
+    tree_.attribute(name, value);
+    text_bytes_ += name.size() + value.size() + 4;
+  }
+  void text(std::string_view characters) override {
+    tree_.text(characters);
+    text_bytes_ += characters.size() + 1;
+  }
+  void end_element(std::string_view name) override {
+    tree_.end_element();
+    text_bytes_ += name.size() + 3;
+  }
+  void clear() {
+    tree_.clear();
+    text_bytes_ = 0;
+  }
+  [[nodiscard]] std::size_t text_bytes() const noexcept { return text_bytes_; }
+
+ private:
+  xslt::InputTree& tree_;
+  std::size_t text_bytes_ = 0;
+};
+
 class Renderer::ChunkRenderer final : public canon::ChunkSink {
  public:
   explicit ChunkRenderer(Renderer& owner) : owner_(owner) {}
@@ -45,6 +77,7 @@ Renderer::Renderer(const profile::LoadedProfile& profile, TextSink out, RenderOp
               {"profile_id", profile.profile.id},
               {"arcs", profile.profile.arcs == profile::Arcs::R ? "r" : "ijk"},
               {"tool", "0"}},
+      tree_events_(std::make_unique<TreeEvents>(tree_)),
       chunk_sink_(std::make_unique<ChunkRenderer>(*this)),
       chunker_(std::make_unique<canon::Chunker>(*chunk_sink_, options.chunk)),
       single_chunk_(options.single_chunk),
@@ -213,15 +246,15 @@ void Renderer::render_chunk(const canon::ChunkView& chunk) {
     batch_writer_ = xml_writer_;
     batch_tool_ = tool_;
     if (batch_delay_.count() > 0) batch_started_ = std::chrono::steady_clock::now();
-    xml_.clear();
-    xml_writer_.open(xml_, chunk.seq);
+    tree_events_->clear();
+    xml_writer_.open(*tree_events_, chunk.seq);
   }
-  xml_writer_.append(xml_, chunk.calls);
+  xml_writer_.append(*tree_events_, chunk.calls);
   batch_calls_.insert(batch_calls_.end(), chunk.calls.begin(), chunk.calls.end());
   batch_chunks_.emplace_back(chunk.seq, batch_calls_.size());
   for (const auto& c : chunk.calls)
     if (const auto* t = std::get_if<canon::ChangeTool>(&c)) tool_ = t->slot;
-  if (xml_.size() >= batch_bytes_ ||
+  if (tree_events_->text_bytes() >= batch_bytes_ ||
       (batch_delay_.count() > 0 &&
        std::chrono::steady_clock::now() - batch_started_ >= batch_delay_))
     render_batch();
@@ -230,13 +263,13 @@ void Renderer::render_chunk(const canon::ChunkView& chunk) {
 void Renderer::render_batch() {
   if (batch_chunks_.empty() || failed_) return;
   in_batch_ = true;
-  xml_writer_.close(xml_);
+  xml_writer_.close(*tree_events_);
   // The tool in the spindle when the batch starts: a stylesheet cannot see a CHANGE_TOOL of an
   // earlier transform (G43 H needs it).
   params_[3].second = std::to_string(batch_tool_);
   const std::uint64_t first = batch_chunks_.front().first;
   const std::uint64_t last = batch_chunks_.back().first;
-  auto result = xslt::transform(*profile_.stylesheet, xml_, job_, params_,
+  auto result = xslt::transform(*profile_.stylesheet, tree_, job_, params_,
                                 input_name_ + "#chunk" + std::to_string(first) +
                                     (last != first ? "-" + std::to_string(last) : std::string()));
   if (result.ok) {
@@ -265,12 +298,12 @@ void Renderer::render_batch() {
 
 void Renderer::transform_chunk(const canon::ChunkView& chunk) {
   if (failed_) return;
-  xml_.clear();
-  xml_writer_.append_chunk(xml_, chunk);
+  tree_events_->clear();
+  xml_writer_.append_chunk(*tree_events_, chunk);
   params_[3].second = std::to_string(tool_);
   for (const auto& c : chunk.calls)
     if (const auto* t = std::get_if<canon::ChangeTool>(&c)) tool_ = t->slot;
-  auto result = xslt::transform(*profile_.stylesheet, xml_, job_, params_,
+  auto result = xslt::transform(*profile_.stylesheet, tree_, job_, params_,
                                 input_name_ + "#chunk" + std::to_string(chunk.seq));
   for (auto& d : result.diagnostics) diagnostics_.push_back(std::move(d));
   if (!result.ok) {

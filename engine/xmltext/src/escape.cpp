@@ -7,53 +7,57 @@ namespace {
 
 constexpr std::string_view kReplacement = "\xEF\xBF\xBD";
 
-}  // namespace
+enum class Form { Content, Attribute, Characters };
 
-void append_escaped(std::string& out, std::string_view text, bool in_attribute) {
+// The one walk over the text: runs that need nothing are copied whole; markup characters are
+// escaped unless `form` is Characters; what XML 1.0 cannot carry becomes U+FFFD in every form.
+void append(std::string& out, std::string_view text, Form form) {
+  const bool escape = form != Form::Characters;
+  const bool in_attribute = form == Form::Attribute;
   std::size_t i = 0;
   while (i < text.size()) {
-    // Copy the longest run that needs nothing, in one append.
     std::size_t run = i;
     while (run < text.size()) {
       const auto c = static_cast<unsigned char>(text[run]);
-      if (c < 0x20 || c >= 0x80 || c == '<' || c == '>' || c == '&' || c == '"') break;
+      if (c < 0x20 || c >= 0x80 || (escape && (c == '<' || c == '>' || c == '&' || c == '"')))
+        break;
       ++run;
     }
     out.append(text.data() + i, run - i);
     i = run;
     if (i >= text.size()) break;
     const auto c = static_cast<unsigned char>(text[i]);
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        ++i;
-        continue;
-      case '>':
-        out += "&gt;";
-        ++i;
-        continue;
-      case '&':
-        out += "&amp;";
-        ++i;
-        continue;
-      case '"':
-        out += in_attribute ? "&quot;" : "\"";
-        ++i;
-        continue;
-      case '\t':
-      case '\n':
-        if (in_attribute)
-          out += c == '\t' ? "&#9;" : "&#10;";
-        else
-          out.push_back(static_cast<char>(c));
-        ++i;
-        continue;
-      case '\r':
-        out += "&#13;";
-        ++i;
-        continue;
-      default:
-        break;
+    if (escape) {
+      switch (c) {
+        case '<':
+          out += "&lt;";
+          ++i;
+          continue;
+        case '>':
+          out += "&gt;";
+          ++i;
+          continue;
+        case '&':
+          out += "&amp;";
+          ++i;
+          continue;
+        case '"':
+          out += in_attribute ? "&quot;" : "\"";
+          ++i;
+          continue;
+        default:
+          break;
+      }
+    }
+    if (c == '\t' || c == '\n' || c == '\r') {
+      // Kept as they are in content; escaped in attributes (a parser would turn a literal one
+      // into a space) and for CR (a parser would drop a literal one before LF).
+      if (!escape || (!in_attribute && c != '\r'))
+        out.push_back(static_cast<char>(c));
+      else
+        out += c == '\t' ? "&#9;" : c == '\n' ? "&#10;" : "&#13;";
+      ++i;
+      continue;
     }
     if (c < 0x20) {
       out += kReplacement;
@@ -71,6 +75,16 @@ void append_escaped(std::string& out, std::string_view text, bool in_attribute) 
       i += len;
     }
   }
+}
+
+}  // namespace
+
+void append_escaped(std::string& out, std::string_view text, bool in_attribute) {
+  append(out, text, in_attribute ? Form::Attribute : Form::Content);
+}
+
+void append_characters(std::string& out, std::string_view text) {
+  append(out, text, Form::Characters);
 }
 
 }  // namespace ncpost::xmltext

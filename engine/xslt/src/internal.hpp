@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ncpost/xslt/input_tree.hpp"
 #include "ncpost/xslt/xslt.hpp"
 
 namespace ncpost::xslt {
@@ -41,6 +42,7 @@ struct Access {
   static double& last_c(JobState& j) noexcept { return j.last_c_; }
   static std::array<double, 3>& position(JobState& j) noexcept { return j.position_; }
   static bool& has_position(JobState& j) noexcept { return j.has_position_; }
+  static InputTree::Impl& tree(const InputTree& t) noexcept { return *t.impl_; }
 };
 
 namespace detail {
@@ -50,6 +52,11 @@ inline constexpr const char* kExtNamespace = "urn:ncpost:ext";
 // Options for every document libxml2 parses here: no entity expansion (no NOENT), no DTD
 // loading (no DTDLOAD), no huge-document relaxation (no HUGE), no network.
 inline constexpr int kParseOptions = XML_PARSE_NONET | XML_PARSE_NOCDATA;
+
+// An InputTree lent to a new document shell for one transform, and taken back (the shell is
+// freed, the nodes stay in the tree's arena).
+[[nodiscard]] xmlDocPtr lend_tree(const InputTree& tree, const std::string& url);
+void take_back_tree(const InputTree& tree, xmlDocPtr doc);
 
 enum class Phase : std::uint8_t { Compile, Transform };
 

@@ -3,6 +3,7 @@
 // parameters, xsltApplyStylesheetUser, check ctxt->state, serialize, free.
 
 #include <libxml/parser.h>
+#include <libxslt/imports.h>
 #include <libxslt/security.h>
 #include <libxslt/transform.h>
 #include <libxslt/variables.h>
@@ -54,10 +55,22 @@ bool any_code(const std::vector<FileDiagnostic>& items, diag::Code code) {
                      [code](const FileDiagnostic& d) { return d.diagnostic.code == code; });
 }
 
-}  // namespace
+// Where the document comes from: XML text to parse, or a tree built in memory.
+struct Source {
+  std::string_view xml;
+  const InputTree* tree = nullptr;
+};
 
-TransformResult transform(const CompiledStylesheet& stylesheet, std::string_view xml, JobState& job,
-                          const Params& params, std::string_view input_name) {
+// Whether libxslt would strip whitespace text from the input, which frees input nodes.
+bool strips_whitespace(xsltStylesheetPtr style) {
+  for (xsltStylesheetPtr s = style; s != nullptr; s = xsltNextImport(s))
+    if (s->stripSpaces != nullptr || s->stripAll != 0) return true;
+  return false;
+}
+
+TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobState& job,
+                    const Params& params, std::string_view input_name) {
+  const std::string_view xml = source.xml;
   TransformResult result;
   const std::string sheet_file = stylesheet.file().string();
   const std::string input(input_name);
@@ -95,15 +108,24 @@ TransformResult transform(const CompiledStylesheet& stylesheet, std::string_view
   {
     detail::ErrorScope errors(collector);
     detail::BudgetScope accounting(budget);
-    xmlDocPtr doc = xmlReadMemory(xml.data(), static_cast<int>(xml.size()), input.c_str(), nullptr,
-                                  detail::kParseOptions);
-    if (doc != nullptr && (doc->intSubset != nullptr || doc->extSubset != nullptr)) {
+    xmlDocPtr doc = nullptr;
+    if (source.tree == nullptr) {
+      doc = xmlReadMemory(xml.data(), static_cast<int>(xml.size()), input.c_str(), nullptr,
+                          detail::kParseOptions);
+    } else if (!source.tree->complete()) {
+      collector.add(diag::Code::XsltInputXml, input, 0, 0,
+                    "the document built in memory has no root element, or an unclosed one");
+    } else {
+      doc = detail::lend_tree(*source.tree, input);
+    }
+    if (source.tree == nullptr && doc != nullptr &&
+        (doc->intSubset != nullptr || doc->extSubset != nullptr)) {
       collector.add(diag::Code::XsltDtdRefused, input, 0, 0,
                     "the document has a DOCTYPE; none is accepted");
       xmlFreeDoc(doc);
       doc = nullptr;
     }
-    if (doc != nullptr && budget.tripped != detail::Budget::Trip::None) {
+    if (source.tree == nullptr && doc != nullptr && budget.tripped != detail::Budget::Trip::None) {
       tripped_in_parse = true;  // the document alone is over the budget: do not start
       xmlFreeDoc(doc);
       doc = nullptr;
@@ -160,7 +182,10 @@ TransformResult transform(const CompiledStylesheet& stylesheet, std::string_view
       xmlFreeDoc(out);
       xsltFreeTransformContext(ctxt);
     }
-    xmlFreeDoc(doc);
+    if (source.tree != nullptr)
+      detail::take_back_tree(*source.tree, doc);
+    else
+      xmlFreeDoc(doc);
     collector.finish();
   }
 
@@ -258,6 +283,22 @@ TransformResult transform(const CompiledStylesheet& stylesheet, std::string_view
   if (!result.ok) result.output.clear();
   result.diagnostics = std::move(items);
   return result;
+}
+
+}  // namespace
+
+TransformResult transform(const CompiledStylesheet& stylesheet, std::string_view xml, JobState& job,
+                          const Params& params, std::string_view input_name) {
+  return run(stylesheet, Source{xml, nullptr}, job, params, input_name);
+}
+
+TransformResult transform(const CompiledStylesheet& stylesheet, const InputTree& tree,
+                          JobState& job, const Params& params, std::string_view input_name) {
+  if (initialised() && strips_whitespace(Access::style(stylesheet))) {
+    const std::string xml = tree.to_xml();
+    return run(stylesheet, Source{xml, nullptr}, job, params, input_name);
+  }
+  return run(stylesheet, Source{{}, &tree}, job, params, input_name);
 }
 
 }  // namespace ncpost::xslt

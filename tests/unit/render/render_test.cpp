@@ -128,6 +128,73 @@ TEST_F(RenderTest, ChunkedEqualsWholeProgramEx1E) {
   expect_chunked_equals_whole(*builtin("fanuc-0i"), calls);
 }
 
+// The tree the renderer builds for its stylesheets equals the tree libxml2 parses from the
+// same chunks' XML text, chunk by chunk and for the whole program as one chunk.
+class TreeOf final : public canon::XmlEvents {
+ public:
+  explicit TreeOf(xslt::InputTree& tree) : tree_(tree) {}
+  void start_element(std::string_view name) override { tree_.start_element(name); }
+  void attribute(std::string_view name, std::string_view value) override {
+    tree_.attribute(name, value);
+  }
+  void text(std::string_view characters) override { tree_.text(characters); }
+  void end_element(std::string_view) override { tree_.end_element(); }
+
+ private:
+  xslt::InputTree& tree_;
+};
+
+void expect_tree_equals_parsed_text(const std::vector<canon::Call>& calls) {
+  for (const std::size_t max_calls : {std::size_t{3}, canon::ChunkLimits{}.max_calls}) {
+    canon::ChunkBuffer chunks;
+    canon::Chunker chunker(chunks, canon::ChunkLimits{max_calls});
+    for (const auto& c : calls) chunker.call(c);
+    chunker.finish();
+    std::vector<std::pair<std::string, std::string>> texts_and_trees;
+    canon::XmlChunkWriter text_writer, tree_writer;
+    xslt::InputTree tree;
+    TreeOf events(tree);
+    std::uint64_t seq = 0;
+    for (const auto& chunk : chunks.chunks()) {
+      const canon::ChunkView view{seq++, chunk};
+      std::string text;
+      text_writer.append_chunk(text, view);
+      tree.clear();
+      tree_writer.append_chunk(events, view);
+      ASSERT_TRUE(tree.complete());
+      texts_and_trees.emplace_back(xslt::describe_parsed(text), tree.describe());
+    }
+    ASSERT_FALSE(texts_and_trees.empty());
+    for (const auto& [parsed, built] : texts_and_trees) {
+      ASSERT_FALSE(parsed.empty());
+      EXPECT_EQ(built, parsed);
+    }
+  }
+}
+
+TEST_F(RenderTest, InputTreeEqualsParsedXml) {
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
+  for (const char* c : {"curves.stp", "placement-rotated-setup.stp", "executables.stp"}) {
+    SCOPED_TRACE(c);
+    expect_tree_equals_parsed_text(program(cases / c));
+  }
+  expect_tree_equals_parsed_text(cycle_program());
+  // Names and comments with everything XML must escape or replace, and an empty comment.
+  auto calls = cycle_program();
+  const std::string nasty = std::string("<&\"'\t\r\n") + '\x02' + "\xFF" + "\xE2\x82\xAC";
+  calls.insert(calls.begin() + 3, canon::Comment{nasty});
+  calls.insert(calls.begin() + 3, canon::Comment{""});
+  calls.insert(calls.begin() + 3, canon::Message{nasty});
+  calls.insert(calls.begin() + 2,
+               canon::Begin{canon::Scope::Workplan, entity(7, "WORKPLAN", nasty)});
+  expect_tree_equals_parsed_text(calls);
+}
+
+TEST_F(RenderTest, InputTreeEqualsParsedXmlEx1E) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  expect_tree_equals_parsed_text(program(corpus / "p21" / "nist_toolkit_ex1E.stp"));
+}
+
 TEST_F(RenderTest, FanucWritesNativeCycles) {
   std::vector<xslt::FileDiagnostic> d;
   const std::string text = render_program(*builtin("fanuc-0i"), cycle_program(), d);

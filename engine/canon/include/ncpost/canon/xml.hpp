@@ -35,6 +35,37 @@ inline constexpr std::string_view kXmlEpilogue = "</program>\n";
 // -0 as "0", NaN and infinities as xsd:double spells them ("NaN", "INF", "-INF").
 void append_xml_number(std::string& out, double value);
 
+// The XML form as a stream of events instead of text, for a consumer that builds a document
+// tree directly (the renderer does, so that no text is written and parsed again for its
+// stylesheet). Attribute values and text are the characters written, not escaped. The text
+// target below escapes them; a tree target stores what a parser would read back from that
+// text (xmltext::append_characters), so the tree equals the parsed text, whitespace text
+// between elements included.
+class XmlEvents {
+ public:
+  virtual ~XmlEvents() = default;
+  virtual void start_element(std::string_view name) = 0;
+  virtual void attribute(std::string_view name, std::string_view value) = 0;
+  virtual void text(std::string_view characters) = 0;
+  virtual void end_element(std::string_view name) = 0;
+};
+
+// The events as XML text, appended to `out`: an element without children is written
+// `<name .../>`. Everything the writer below starts it also finishes within the same call, so
+// a short-lived XmlText per call writes the same bytes as one long-lived one.
+class XmlText final : public XmlEvents {
+ public:
+  explicit XmlText(std::string& out) : out_(out) {}
+  void start_element(std::string_view name) override;
+  void attribute(std::string_view name, std::string_view value) override;
+  void text(std::string_view characters) override;
+  void end_element(std::string_view name) override;
+
+ private:
+  std::string& out_;
+  bool start_tag_open_ = false;
+};
+
 // Writes chunks one by one. It remembers one thing between chunks: a workingstep split over
 // several chunks (ChunkLimits::max_calls) is closed at the end of each and reopened, with
 // continued="true", at the start of the next, so every chunk stays well-formed on its own.
@@ -44,17 +75,23 @@ void append_xml_number(std::string& out, double value);
 // append_chunk() writes for one chunk holding all of them. The renderer uses this to run one
 // transform over a batch of chunks. The writer is a small value: copy it to remember its state
 // (the renderer does, to re-render a failed batch chunk by chunk).
+//
+// Each function writes text to a string, or the same XML as events.
 class XmlChunkWriter {
  public:
   // Appends `<chunk seq="N">\n ... </chunk>\n`.
   void append_chunk(std::string& out, const ChunkView& chunk);
+  void append_chunk(XmlEvents& out, const ChunkView& chunk);
 
   // Starts `<chunk seq="N">`; reopens a workingstep left open by the previous chunk.
   void open(std::string& out, std::uint64_t seq);
+  void open(XmlEvents& out, std::uint64_t seq);
   // Appends the calls, inside the element that open() started.
   void append(std::string& out, std::span<const Call> calls);
+  void append(XmlEvents& out, std::span<const Call> calls);
   // Closes an open workingstep (remembered for the next chunk) and the element.
   void close(std::string& out);
+  void close(XmlEvents& out);
 
  private:
   std::optional<Entity> open_workingstep_;

@@ -72,6 +72,7 @@ class Renderer final : public canon::Sink {
 
  private:
   class ChunkRenderer;
+  class TreeEvents;
   void forward(const canon::Call& call);
   void check_limits(const canon::Call& call);
   void check_point(double x, double y, double z, const canon::Call& call);
@@ -88,7 +89,9 @@ class Renderer final : public canon::Sink {
   xslt::JobState job_;
   xslt::Params params_;
   canon::XmlChunkWriter xml_writer_;
-  std::string xml_;
+  // The chunk or batch being written: its XML built as the transform's input tree.
+  xslt::InputTree tree_;
+  std::unique_ptr<TreeEvents> tree_events_;
   std::unique_ptr<ChunkRenderer> chunk_sink_;
   std::unique_ptr<canon::Chunker> chunker_;
   std::vector<xslt::FileDiagnostic> diagnostics_;
@@ -98,7 +101,7 @@ class Renderer final : public canon::Sink {
   std::size_t limit_reports_ = 0;
   bool single_chunk_ = false;
   std::vector<canon::Call> whole_;
-  // The batch being gathered: its XML (in xml_, an open <chunk>), its calls and chunk ends
+  // The batch being gathered: its XML (in tree_, an open <chunk>), its calls and chunk ends
   // (to re-render it chunk by chunk if it fails), and the state at its start.
   std::size_t batch_bytes_ = 0;
   std::chrono::milliseconds batch_delay_{0};

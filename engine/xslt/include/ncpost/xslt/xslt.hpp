@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/xslt/input_tree.hpp"
 
 namespace ncpost::xslt {
 
@@ -215,6 +216,11 @@ struct TransformResult {
 // the job's extension state. `input_name` names the document in diagnostics. Errors end the
 // job, never the process; the next call works as before.
 [[nodiscard]] TransformResult transform(const CompiledStylesheet& stylesheet, std::string_view xml,
+                                        JobState& job, const Params& params = {},
+                                        std::string_view input_name = "input.xml");
+// The same for a document built in memory (input_tree.hpp): no parse. The tree is read, never
+// changed, and can be cleared and reused after the call.
+[[nodiscard]] TransformResult transform(const CompiledStylesheet& stylesheet, const InputTree& tree,
                                         JobState& job, const Params& params = {},
                                         std::string_view input_name = "input.xml");
 
