@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "ext_call.hpp"
 #include "ext_math.hpp"
 #include "internal.hpp"
 
@@ -27,9 +28,6 @@ namespace {
 
 const xmlChar* ns() {
   return reinterpret_cast<const xmlChar*>(kExtNamespace);
-}
-const xmlChar* name_of(const char* text) {
-  return reinterpret_cast<const xmlChar*>(text);
 }
 
 // Per transform: the run that transform() put in ctxt->_private (null when a transform was
@@ -49,162 +47,6 @@ void ext_shutdown(xsltTransformContextPtr, const xmlChar*, void* data) {
 }
 
 constexpr std::size_t kMaxPieces = 100000;
-
-// One call of an extension function: pops its arguments, reports errors against the
-// stylesheet instruction, pushes exactly one result. A profile calls these functions several
-// times per motion, so the common paths allocate nothing of their own: arguments sit in a
-// fixed array, the job is found through ctxt->_private (xsltGetExtData is a hash look-up per
-// call), numbers are read straight from a single attribute's text, strings are viewed in place.
-class Call {
- public:
-  static constexpr int kMaxArgs = 12;  // more than any function takes
-
-  Call(xmlXPathParserContextPtr x, int nargs, const char* name, int min_args, int max_args)
-      : x_(x), name_(name) {
-    for (int n = nargs - 1; n >= 0; --n) {
-      xmlXPathObjectPtr value = valuePop(x_);
-      if (n < kMaxArgs)
-        args_[static_cast<std::size_t>(n)] = value;
-      else
-        xmlXPathFreeObject(value);
-    }
-    count_ = static_cast<std::size_t>(std::clamp(nargs, 0, kMaxArgs));
-    tctxt_ = xsltXPathGetTransformContext(x_);
-    if (tctxt_ != nullptr) {
-      // transform() puts its run there; a context it did not start is not ours.
-      auto* run = static_cast<TransformRun*>(tctxt_->_private);
-      if (run != nullptr && run->ctxt == tctxt_) run_ = run;
-    }
-    if (run_ == nullptr) {
-      fail("needs a transform started by ncpost::xslt::transform()");
-    } else if (nargs < min_args || nargs > max_args) {
-      fail(min_args == max_args
-               ? "takes " + std::to_string(min_args) + " argument(s), not " + std::to_string(nargs)
-               : "takes " + std::to_string(min_args) + " to " + std::to_string(max_args) +
-                     " arguments, not " + std::to_string(nargs));
-    }
-  }
-  ~Call() {
-    for (std::size_t n = 0; n < count_; ++n) xmlXPathFreeObject(args_[n]);
-    for (xmlChar* text : casts_)
-      if (text != nullptr) xmlFree(text);
-    if (!pushed_) valuePush(x_, xmlXPathNewCString(""));
-  }
-  Call(const Call&) = delete;
-  Call& operator=(const Call&) = delete;
-
-  [[nodiscard]] bool ok() const noexcept { return !failed_; }
-  [[nodiscard]] std::size_t count() const noexcept { return count_; }
-  JobState& job() { return *run_->job; }
-  const JobConfig& config() { return run_->job->config(); }
-
-  double number(std::size_t n, const char* what) {
-    const double v = to_number(args_[n]);
-    if (!failed_ && !std::isfinite(v)) fail(std::string(what) + " is not a finite number");
-    return v;
-  }
-  std::string string(std::size_t n) { return std::string(view(n)); }
-  // The string value of argument n, valid until the call ends.
-  std::string_view view(std::size_t n) {
-    xmlXPathObjectPtr a = args_[n];
-    if (a == nullptr) return {};
-    const xmlChar* text = nullptr;
-    if (a->type == XPATH_STRING) {
-      text = a->stringval;
-    } else {
-      if (casts_[n] == nullptr) casts_[n] = xmlXPathCastToString(a);
-      text = casts_[n];
-    }
-    return text != nullptr ? std::string_view(reinterpret_cast<const char*>(text)) : "";
-  }
-  [[nodiscard]] bool is_string(std::size_t n) const {
-    return args_[n] != nullptr && args_[n]->type == XPATH_STRING;
-  }
-
-  void fail(const std::string& message) {
-    if (failed_) return;
-    failed_ = true;
-    if (tctxt_ == nullptr) return;
-    xsltTransformError(tctxt_, nullptr, tctxt_->inst, "ext:%s: %s\n", name_, message.c_str());
-    tctxt_->state = XSLT_STATE_STOPPED;  // the first ext error ends the job; no cascade
-  }
-  void warn(diag::Code code, const std::string& message) {
-    if (run_ == nullptr || run_->collector == nullptr) return;
-    const Location where = location_of(tctxt_ != nullptr ? tctxt_->inst : nullptr);
-    run_->collector->add(code, where.file, where.line, 0,
-                         std::string("ext:") + name_ + ": " + message);
-  }
-
-  void push_string(const std::string& s) {
-    if (pushed_) return;
-    pushed_ = true;
-    valuePush(x_, xmlXPathNewString(reinterpret_cast<const xmlChar*>(s.c_str())));
-  }
-  // Pushes argument n back as the result when it is a string already (no copy).
-  void push_argument(std::size_t n) {
-    if (pushed_) return;
-    if (!is_string(n)) {
-      push_string(std::string(view(n)));
-      return;
-    }
-    pushed_ = true;
-    valuePush(x_, args_[n]);
-    args_[n] = nullptr;
-  }
-  void push_number(double v) {
-    if (pushed_) return;
-    pushed_ = true;
-    valuePush(x_, xmlXPathNewFloat(v));
-  }
-  // A node-set of <point x=".." y=".." z=".."/> elements in a result tree fragment that lives
-  // as long as the instruction (or the variable that holds it), as EXSLT's str:tokenize does.
-  void push_points(const std::vector<Point3>& points) {
-    if (pushed_ || tctxt_ == nullptr) return;
-    xmlDocPtr container = xsltCreateRVT(tctxt_);
-    if (container == nullptr) return;
-    xsltRegisterLocalRVT(tctxt_, container);
-    xmlXPathObjectPtr set = xmlXPathNewNodeSet(nullptr);
-    if (set == nullptr) return;
-    for (const Point3& p : points) {
-      xmlNodePtr node = xmlNewDocNode(container, nullptr, name_of("point"), nullptr);
-      if (node == nullptr) break;
-      xmlNewProp(node, name_of("x"), name_of(shortest(p.x).c_str()));
-      xmlNewProp(node, name_of("y"), name_of(shortest(p.y).c_str()));
-      xmlNewProp(node, name_of("z"), name_of(shortest(p.z).c_str()));
-      xmlAddChild(reinterpret_cast<xmlNodePtr>(container), node);
-      xmlXPathNodeSetAddUnique(set->nodesetval, node);
-    }
-    pushed_ = true;
-    valuePush(x_, set);
-  }
-
- private:
-  // As xmlXPathCastToNumber, without its copy of the text when the argument is one attribute
-  // (a coordinate: @x), which is what profiles pass almost always.
-  static double to_number(xmlXPathObjectPtr a) {
-    if (a == nullptr) return std::nan("");
-    if (a->type == XPATH_NUMBER) return a->floatval;
-    if (a->type == XPATH_NODESET && a->nodesetval != nullptr && a->nodesetval->nodeNr == 1) {
-      const xmlNode* node = a->nodesetval->nodeTab[0];
-      if (node != nullptr && node->type == XML_ATTRIBUTE_NODE && node->children != nullptr &&
-          node->children->next == nullptr && node->children->type == XML_TEXT_NODE &&
-          node->children->content != nullptr) {
-        return xmlXPathStringEvalNumber(node->children->content);
-      }
-    }
-    return xmlXPathCastToNumber(a);
-  }
-
-  xmlXPathParserContextPtr x_;
-  const char* name_;
-  std::array<xmlXPathObjectPtr, kMaxArgs> args_{};
-  std::size_t count_ = 0;
-  std::array<xmlChar*, kMaxArgs> casts_{};  // string values of non-string arguments
-  xsltTransformContextPtr tctxt_ = nullptr;
-  TransformRun* run_ = nullptr;
-  bool failed_ = false;
-  bool pushed_ = false;
-};
 
 std::optional<int> turns_of(Call& call, std::size_t n) {
   const double t = call.number(n, "turns");
@@ -237,12 +79,7 @@ std::optional<PlaneArc> plane_arc(Call& call, std::size_t sx, std::size_t ex, st
 void fn_block(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "block", 0, 0);
   if (!call.ok()) return;
-  const BlockNumbers& rules = call.config().block;
-  std::int64_t& next = Access::next_block(call.job());
-  if (next > rules.maximum || next < rules.start) next = rules.start;
-  const std::int64_t current = next;
-  next = current > rules.maximum - rules.increment ? rules.start : current + rules.increment;
-  call.push_string(std::to_string(current));
+  call.push_string(std::to_string(next_block_number(call.job())));
 }
 
 void fn_block_reset(xmlXPathParserContextPtr x, int nargs) {
@@ -254,42 +91,24 @@ void fn_block_reset(xmlXPathParserContextPtr x, int nargs) {
 
 // ---- number formatting and units ----
 
-double output_unit_mm(const JobConfig& config) {
-  return config.units == Units::Inch ? 25.4 : 1.0;
-}
-
 void fn_format(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "format", 2, 2);
   if (!call.ok()) return;
-  const std::string_view quantity = call.view(1);
-  const JobConfig& config = call.config();
-  const NumberFormat* format = nullptr;
-  double scale = 1.0;
-  if (quantity == "length") {
-    format = &config.length;
-    scale = Access::program_unit_mm(call.job()) / output_unit_mm(config);
-  } else if (quantity == "feed") {
-    format = &config.feed;
-    scale = Access::program_unit_mm(call.job()) / output_unit_mm(config);
-  } else if (quantity == "angle") {
-    format = &config.angle;
-  } else if (quantity == "speed") {
-    format = &config.speed;
-  } else if (quantity == "dwell") {
-    format = &config.dwell;
-  } else {
-    call.fail("unknown quantity '" + std::string(quantity) +
-              "' (length, angle, feed, speed or dwell)");
+  const std::string_view name = call.view(1);
+  const std::optional<Quantity> quantity = quantity_named(name);
+  if (!quantity) {
+    call.fail("unknown quantity '" + std::string(name) + "' (length, angle, feed, speed or dwell)");
     return;
   }
   const double value = call.number(0, "the value");
   if (!call.ok()) return;
-  const double scaled = value * scale * format->scale;
-  if (!std::isfinite(scaled)) {
+  const std::optional<std::string> text =
+      format_quantity(call.config(), Access::program_unit_mm(call.job()), *quantity, value);
+  if (!text) {
     call.fail("the value is out of range");
     return;
   }
-  call.push_string(format_number(scaled, *format));
+  call.push_string(*text);
 }
 
 void fn_units(xmlXPathParserContextPtr x, int nargs) {
@@ -389,12 +208,9 @@ template <int Row, bool WithTranslation>
 void setup_component(xmlXPathParserContextPtr x, int nargs, const char* name) {
   Call call(x, nargs, name, 3, 3);
   if (!call.ok()) return;
-  const double p[3] = {call.number(0, "x"), call.number(1, "y"), call.number(2, "z")};
+  const std::array<double, 3> p{call.number(0, "x"), call.number(1, "y"), call.number(2, "z")};
   if (!call.ok()) return;
-  const SetupTransform& s = call.config().setup;
-  double v = s.matrix[Row * 3] * p[0] + s.matrix[Row * 3 + 1] * p[1] + s.matrix[Row * 3 + 2] * p[2];
-  if (WithTranslation) v += s.translation[Row];
-  call.push_number(v);
+  call.push_number(setup_axis(call.config().setup, Row, p, WithTranslation));
 }
 
 void fn_setup_x(xmlXPathParserContextPtr x, int n) {
@@ -601,38 +417,9 @@ void fn_comment(xmlXPathParserContextPtr x, int nargs) {
 void fn_line(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "line", 1, 1);
   if (!call.ok()) return;
-  const std::string_view text = call.view(0);
-  const std::size_t limit = call.config().max_line_length;
-  if (limit != 0) {
-    const std::size_t length = characters(text);
-    if (length > limit) {
-      call.warn(diag::Code::XsltLineTooLong,
-                "block of " + std::to_string(length) + " characters; the controller takes " +
-                    std::to_string(limit) + ": " + std::string(text.substr(0, 80)));
-    }
-  }
+  check_line_length(call, call.view(0));
   call.push_argument(0);
 }
-
-// No C++ exception may cross libxml2's C frames: an allocation failure inside a function
-// ends the job like any other error of the function.
-template <void (*F)(xmlXPathParserContextPtr, int)>
-void guarded(xmlXPathParserContextPtr x, int nargs) noexcept {
-  try {
-    F(x, nargs);
-  } catch (...) {
-    xsltTransformContextPtr t = xsltXPathGetTransformContext(x);
-    if (t != nullptr) {
-      xsltTransformError(t, nullptr, t->inst, "ext: internal error (out of memory)\n");
-      t->state = XSLT_STATE_STOPPED;
-    }
-  }
-}
-
-struct Function {
-  const char* name;
-  xmlXPathFunction function;
-};
 
 constexpr Function kFunctions[] = {
     {"block", guarded<fn_block>},
@@ -669,6 +456,8 @@ constexpr Function kFunctions[] = {
 void register_extensions() {
   xsltRegisterExtModule(ns(), ext_init, ext_shutdown);
   for (const Function& f : kFunctions)
+    xsltRegisterExtModuleFunction(name_of(f.name), ns(), f.function);
+  for (const Function& f : word_functions())
     xsltRegisterExtModuleFunction(name_of(f.name), ns(), f.function);
 }
 

@@ -62,6 +62,40 @@ std::string format_number(double value, const NumberFormat& format) {
   return s;
 }
 
+std::optional<Quantity> quantity_named(std::string_view name) {
+  if (name == "length") return Quantity::Length;
+  if (name == "angle") return Quantity::Angle;
+  if (name == "feed") return Quantity::Feed;
+  if (name == "speed") return Quantity::Speed;
+  if (name == "dwell") return Quantity::Dwell;
+  return std::nullopt;
+}
+
+std::optional<std::string> format_quantity(const JobConfig& config, double program_unit_mm,
+                                           Quantity quantity, double value) {
+  const NumberFormat* format = nullptr;
+  double scale = 1.0;
+  switch (quantity) {
+    case Quantity::Length:
+    case Quantity::Feed:
+      format = quantity == Quantity::Length ? &config.length : &config.feed;
+      scale = program_unit_mm / (config.units == Units::Inch ? 25.4 : 1.0);
+      break;
+    case Quantity::Angle:
+      format = &config.angle;
+      break;
+    case Quantity::Speed:
+      format = &config.speed;
+      break;
+    case Quantity::Dwell:
+      format = &config.dwell;
+      break;
+  }
+  const double scaled = value * scale * format->scale;
+  if (!std::isfinite(scaled)) return std::nullopt;
+  return format_number(scaled, *format);
+}
+
 std::string shortest(double value) {
   if (value == 0) return "0";
   char buffer[64];

@@ -15,6 +15,26 @@ namespace ncpost::xslt::detail {
 // `value` (finite, already scaled) written as `format` says; C locale.
 [[nodiscard]] std::string format_number(double value, const NumberFormat& format);
 
+// The quantities ext:format knows, and their formats and scales.
+enum class Quantity { Length, Angle, Feed, Speed, Dwell };
+[[nodiscard]] std::optional<Quantity> quantity_named(std::string_view name);
+// ext:format: `value` in the program's unit (`program_unit_mm`, for lengths and feeds) scaled
+// to the controller's unit and the format's own scale, then written; nothing when the scaled
+// value is not finite.
+[[nodiscard]] std::optional<std::string> format_quantity(const JobConfig& config,
+                                                         double program_unit_mm, Quantity quantity,
+                                                         double value);
+
+// One machine axis (row 0, 1, 2) of the set-up transform of p; a direction (an arc's offset)
+// is turned without the translation.
+[[nodiscard]] inline double setup_axis(const SetupTransform& s, int row,
+                                       const std::array<double, 3>& p, bool translate) {
+  const auto r = static_cast<std::size_t>(row) * 3;
+  double v = s.matrix[r] * p[0] + s.matrix[r + 1] * p[1] + s.matrix[r + 2] * p[2];
+  if (translate) v += s.translation[static_cast<std::size_t>(row)];
+  return v;
+}
+
 // Shortest text that reads back to the same double (for numbers the functions put in nodes).
 [[nodiscard]] std::string shortest(double value);
 
