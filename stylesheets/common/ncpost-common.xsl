@@ -12,21 +12,18 @@
   <xsl:param name="arcs" select="'ijk'"/>
   <!-- The tool in the spindle when this chunk starts (0: none). -->
   <xsl:param name="tool" select="'0'"/>
-  <!-- 'yes': every block starts with N and ext:block(). Profiles override it. -->
-  <xsl:variable name="numbered" select="'no'"/>
+  <!-- 'yes' when every block starts with N and a block number: the profile's
+       block_numbers.numbered (profile.json), which ext:block-line() follows. -->
+  <xsl:variable name="numbered" select="ext:block-numbering()"/>
 
   <xsl:template match="/chunk"><xsl:apply-templates select="*"/></xsl:template>
   <xsl:template match="text()"/>
 
-  <!-- One block: optional N word, the line-length check, the newline. -->
+  <!-- One block: the N word when the profile numbers blocks, the line-length check, the
+       newline. -->
   <xsl:template name="block">
     <xsl:param name="text"/>
-    <xsl:choose>
-      <xsl:when test="$numbered = 'yes'">
-        <xsl:value-of select="ext:line(concat('N', ext:block(), ' ', $text))"/>
-      </xsl:when>
-      <xsl:otherwise><xsl:value-of select="ext:line($text)"/></xsl:otherwise>
-    </xsl:choose>
+    <xsl:value-of select="ext:block-line($text)"/>
     <xsl:text>&#10;</xsl:text>
   </xsl:template>
 
@@ -74,71 +71,19 @@
     </xsl:if>
   </xsl:template>
 
-  <!-- Motion. The hot templates (one run per motion) build their block as one string with
-       select= expressions, without result-tree fragments (<xsl:variable> with content) and
-       without calling "block" / "xyz" / "arc-centre" (a call with parameters costs about as
-       much as the motion's ext: functions): they do what those templates do, inline. A profile
-       that overrides "block", "xyz" or "arc-centre" therefore overrides the motion templates
-       too (heidenhain-tnc640 does; fanuc-family.xsl overrides ARC_FEED for its R arcs).
-       Motions with rotary axes (@a, @b, @c) take the general path through "xyz" (a straight
-       motion with more attributes than x, y, z; an arc with @a, @b or @c). Coordinates are read
-       once into numbers: number(@x) is what the ext: functions compute from @x. -->
+  <!-- Motion. These run once per motion, which makes them most of a post's time, so each is
+       two extension calls: ext:motion-words() (X Y Z, and A B C when present, through the
+       machine set-up and the length/angle formats; it also records the end as the current
+       position) or ext:arc-words(), then ext:block-line() (N word, line-length check). They call no named
+       template: a profile that wants other words overrides these templates themselves
+       (heidenhain-tnc640 does), not "xyz" or "block". docs/xslt-extensions.md, "Words". -->
   <xsl:template match="STRAIGHT_TRAVERSE">
-    <xsl:choose>
-      <xsl:when test="@*[4]">
-        <xsl:call-template name="straight-general"><xsl:with-param name="g" select="'G0'"/></xsl:call-template>
-      </xsl:when>
-      <xsl:when test="$numbered = 'yes'">
-        <xsl:variable name="x" select="number(@x)"/>
-        <xsl:variable name="y" select="number(@y)"/>
-        <xsl:variable name="z" select="number(@z)"/>
-        <xsl:variable name="axes" select="concat(' X', ext:format(ext:setup-x($x, $y, $z), 'length'),
-                       ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
-                       ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))"/>
-        <xsl:value-of select="concat(ext:line(concat('N', ext:block(), ' G0', $axes)), '&#10;', ext:moved-to($x, $y, $z))"/>
-      </xsl:when>
-      <xsl:otherwise>
-        <xsl:variable name="x" select="number(@x)"/>
-        <xsl:variable name="y" select="number(@y)"/>
-        <xsl:variable name="z" select="number(@z)"/>
-        <xsl:value-of select="concat(ext:line(concat('G0 X', ext:format(ext:setup-x($x, $y, $z), 'length'),
-                       ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
-                       ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))), '&#10;', ext:moved-to($x, $y, $z))"/>
-      </xsl:otherwise>
-    </xsl:choose>
+    <xsl:value-of select="ext:block-line(concat('G0', ext:motion-words()))"/>
+    <xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="STRAIGHT_FEED">
-    <xsl:choose>
-      <xsl:when test="@*[4]">
-        <xsl:call-template name="straight-general"><xsl:with-param name="g" select="'G1'"/></xsl:call-template>
-      </xsl:when>
-      <xsl:when test="$numbered = 'yes'">
-        <xsl:variable name="x" select="number(@x)"/>
-        <xsl:variable name="y" select="number(@y)"/>
-        <xsl:variable name="z" select="number(@z)"/>
-        <xsl:variable name="axes" select="concat(' X', ext:format(ext:setup-x($x, $y, $z), 'length'),
-                       ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
-                       ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))"/>
-        <xsl:value-of select="concat(ext:line(concat('N', ext:block(), ' G1', $axes)), '&#10;', ext:moved-to($x, $y, $z))"/>
-      </xsl:when>
-      <xsl:otherwise>
-        <xsl:variable name="x" select="number(@x)"/>
-        <xsl:variable name="y" select="number(@y)"/>
-        <xsl:variable name="z" select="number(@z)"/>
-        <xsl:value-of select="concat(ext:line(concat('G1 X', ext:format(ext:setup-x($x, $y, $z), 'length'),
-                       ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
-                       ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))), '&#10;', ext:moved-to($x, $y, $z))"/>
-      </xsl:otherwise>
-    </xsl:choose>
-  </xsl:template>
-  <!-- Through "xyz" and "block": motions with more than x, y, z (rotary axes, tool axis). -->
-  <xsl:template name="straight-general">
-    <xsl:param name="g"/>
-    <xsl:variable name="axes"><xsl:call-template name="xyz"/></xsl:variable>
-    <xsl:call-template name="block">
-      <xsl:with-param name="text" select="concat($g, $axes)"/>
-    </xsl:call-template>
-    <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>
+    <xsl:value-of select="ext:block-line(concat('G1', ext:motion-words()))"/>
+    <xsl:text>&#10;</xsl:text>
   </xsl:template>
 
   <!-- The arc's centre as incremental I, J, K from its start (ext:position), in its plane. -->
@@ -164,72 +109,20 @@
     </xsl:choose>
   </xsl:template>
 
+  <!-- G2/G3 with its plane's G17/G19/G18 first when the plane changed. $arc_form is 'ijk';
+       the FANUC family sets it to the profile's $arcs, for R where R can say the arc. -->
+  <xsl:variable name="arc_form" select="'ijk'"/>
   <xsl:template match="ARC_FEED">
     <xsl:if test="not(@plane)">
       <xsl:message terminate="yes">ARC_FEED in a tilted plane has no G2/G3 form on this controller</xsl:message>
     </xsl:if>
-    <!-- 0: xy (or none), 1: yz, 2: xz -->
-    <xsl:variable name="pl" select="(@plane = 'yz') + 2 * (@plane = 'xz')"/>
-    <xsl:variable name="plane" select="ext:modal('plane', substring('G17G19G18', 1 + 3 * $pl, 3))"/>
+    <xsl:variable name="plane" select="ext:modal('plane', substring('G17G19G18', 1 + 3 * ((@plane = 'yz') + 2 * (@plane = 'xz')), 3))"/>
     <xsl:if test="$plane != ''">
       <xsl:call-template name="block"><xsl:with-param name="text" select="$plane"/></xsl:call-template>
     </xsl:if>
-    <xsl:choose>
-      <xsl:when test="@a or @b or @c">
-        <xsl:call-template name="arc-general"/>
-      </xsl:when>
-      <xsl:otherwise>
-        <xsl:variable name="x" select="number(@x)"/>
-        <xsl:variable name="y" select="number(@y)"/>
-        <xsl:variable name="z" select="number(@z)"/>
-        <xsl:variable name="cx" select="number(@cx)"/>
-        <xsl:variable name="cy" select="number(@cy)"/>
-        <xsl:variable name="cz" select="number(@cz)"/>
-        <xsl:variable name="axes" select="concat(substring('G2G3', 1 + 2 * (@rotation &gt; 0), 2),
-                       ' X', ext:format(ext:setup-x($x, $y, $z), 'length'),
-                       ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
-                       ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))"/>
-        <!-- arc-ijk, inline -->
-        <xsl:variable name="sx" select="ext:position('x')"/>
-        <xsl:variable name="sy" select="ext:position('y')"/>
-        <xsl:variable name="sz" select="ext:position('z')"/>
-        <xsl:variable name="text" select="concat($axes,
-            substring(concat(' I', ext:format(ext:arc-i(ext:setup-x($sx, $sy, $sz), ext:setup-x($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 1)),
-            substring(concat(' J', ext:format(ext:arc-j(ext:setup-y($sx, $sy, $sz), ext:setup-y($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 2)),
-            substring(concat(' K', ext:format(ext:arc-k(ext:setup-z($sx, $sy, $sz), ext:setup-z($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 0)),
-            substring(concat(' P', translate(@rotation, '-', '')), 1, 1000 * (@rotation &gt; 1 or @rotation &lt; -1)))"/>
-        <xsl:choose>
-          <xsl:when test="$numbered = 'yes'">
-            <xsl:value-of select="concat(ext:line(concat('N', ext:block(), ' ', $text)), '&#10;', ext:moved-to($x, $y, $z))"/>
-          </xsl:when>
-          <xsl:otherwise>
-            <xsl:value-of select="concat(ext:line($text), '&#10;', ext:moved-to($x, $y, $z))"/>
-          </xsl:otherwise>
-        </xsl:choose>
-      </xsl:otherwise>
-    </xsl:choose>
+    <xsl:value-of select="ext:block-line(concat(substring('G2G3', 1 + 2 * (@rotation &gt; 0), 2), ext:arc-words($arc_form)))"/>
+    <xsl:text>&#10;</xsl:text>
   </xsl:template>
-
-  <!-- G2/G3 through "xyz" and "arc-centre": arcs with rotary axes. -->
-  <xsl:template name="arc-general">
-    <xsl:variable name="g">
-      <xsl:choose><xsl:when test="@rotation &gt; 0">G3</xsl:when><xsl:otherwise>G2</xsl:otherwise></xsl:choose>
-    </xsl:variable>
-    <xsl:variable name="axes"><xsl:call-template name="xyz"/></xsl:variable>
-    <xsl:variable name="centre"><xsl:call-template name="arc-centre"/></xsl:variable>
-    <xsl:variable name="turns">
-      <xsl:if test="@rotation &gt; 1 or @rotation &lt; -1">
-        <xsl:value-of select="concat(' P', translate(@rotation, '-', ''))"/>
-      </xsl:if>
-    </xsl:variable>
-    <xsl:call-template name="block">
-      <xsl:with-param name="text" select="concat($g, $axes, $centre, $turns)"/>
-    </xsl:call-template>
-    <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>
-  </xsl:template>
-
-  <!-- IJK by default; profiles with arcs 'r' override it. -->
-  <xsl:template name="arc-centre"><xsl:call-template name="arc-ijk"/></xsl:template>
 
   <xsl:template match="NURBS_FEED">
     <xsl:message terminate="yes">NURBS_FEED: this profile needs capabilities.nurbs = linearize</xsl:message>

@@ -9,7 +9,6 @@
     xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
   <xsl:import href="../common/fanuc-family.xsl"/>
   <xsl:output method="text" encoding="UTF-8"/>
-  <xsl:variable name="numbered" select="'no'"/>
   <xsl:variable name="o_padding" select="'00000'"/>
   <xsl:variable name="dwell_word" select="'P'"/>
 </xsl:stylesheet>

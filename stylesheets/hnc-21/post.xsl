@@ -10,7 +10,6 @@
     xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
   <xsl:import href="../common/ncpost-common.xsl"/>
   <xsl:output method="text" encoding="UTF-8"/>
-  <xsl:variable name="numbered" select="'yes'"/>
 
   <xsl:template match="PROJECT_BEGIN">
     <xsl:value-of select="concat('%', $program_number)"/>

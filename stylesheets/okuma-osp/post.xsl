@@ -15,7 +15,6 @@
     xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
   <xsl:import href="../common/ncpost-common.xsl"/>
   <xsl:output method="text" encoding="UTF-8"/>
-  <xsl:variable name="numbered" select="'yes'"/>
 
   <xsl:template match="PROJECT_BEGIN">
     <xsl:value-of select="concat('O', substring('0000', string-length($program_number) + 1), $program_number,

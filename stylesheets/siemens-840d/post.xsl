@@ -15,7 +15,6 @@
     xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
   <xsl:import href="../common/ncpost-common.xsl"/>
   <xsl:output method="text" encoding="UTF-8"/>
-  <xsl:variable name="numbered" select="'yes'"/>
 
   <!-- Sinumerik program names: letters, digits and underscores, the first two characters
        letters (NC is put in front otherwise). -->

@@ -260,13 +260,16 @@ std::optional<Profile> parse_profile(std::string_view text,
       }
     }
   }
-  if (const json* b =
-          c.object(doc, "", "block_numbers", true, {"start", "increment", "maximum", "wrap"},
-                   {"start", "increment", "maximum", "wrap"})) {
+  if (const json* b = c.object(doc, "", "block_numbers", true,
+                               {"start", "increment", "maximum", "wrap", "numbered"},
+                               {"start", "increment", "maximum", "wrap"})) {
     if (auto v = c.integer(*b, "/block_numbers", "start", 0, 99999999)) p.block.start = *v;
     if (auto v = c.integer(*b, "/block_numbers", "increment", 1, 99999999)) p.block.increment = *v;
     if (auto v = c.integer(*b, "/block_numbers", "maximum", 1, 99999999)) p.block.maximum = *v;
     if (auto v = c.boolean(*b, "/block_numbers", "wrap")) p.block_wrap = *v;
+    if (b->contains("numbered")) {
+      if (auto v = c.boolean(*b, "/block_numbers", "numbered")) p.block.numbered = *v;
+    }
     if (p.block.start > p.block.maximum) c.fail("/block_numbers/start", "greater than maximum");
   }
   if (const json* f =

@@ -102,13 +102,13 @@ void fn_format(xmlXPathParserContextPtr x, int nargs) {
   }
   const double value = call.number(0, "the value");
   if (!call.ok()) return;
-  const std::optional<std::string> text =
-      format_quantity(call.config(), Access::program_unit_mm(call.job()), *quantity, value);
-  if (!text) {
+  std::string text;
+  if (!append_quantity(text, call.config(), Access::program_unit_mm(call.job()), *quantity,
+                       value)) {
     call.fail("the value is out of range");
     return;
   }
-  call.push_string(*text);
+  call.push_string(text);
 }
 
 void fn_units(xmlXPathParserContextPtr x, int nargs) {

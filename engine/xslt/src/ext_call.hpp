@@ -218,7 +218,7 @@ inline std::int64_t next_block_number(JobState& job) {
 // controller takes.
 inline void check_line_length(Call& call, std::string_view text) {
   const std::size_t limit = call.config().max_line_length;
-  if (limit == 0) return;
+  if (limit == 0 || text.size() <= limit) return;  // never more characters than bytes
   const std::size_t length = characters(text);
   if (length > limit) {
     call.warn(diag::Code::XsltLineTooLong,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 namespace ncpost::xslt::detail {
@@ -37,28 +38,79 @@ std::size_t sequence_length(std::string_view s) {
 
 }  // namespace
 
-std::string format_number(double value, const NumberFormat& format) {
-  const int decimals = std::clamp(format.decimals, 0, 12);
+std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t size) {
+  decimals = std::clamp(decimals, 0, 12);
+  static constexpr double kPowers[] = {1e0, 1e1, 1e2, 1e3,  1e4,  1e5, 1e6,
+                                       1e7, 1e8, 1e9, 1e10, 1e11, 1e12};
+  const double scaled = std::abs(value) * kPowers[decimals];
+  // Below 1e12 the product is within 2^-14 of the exact |value| * 10^decimals (powers of ten
+  // up to 1e22 are exact doubles; one rounding of at most half an ulp, which is 2^-13 there),
+  // and floor/subtraction below are exact. So when the fraction is further than 1e-3 from
+  // one half, the exact value rounds the same way, and integers give printf's digits. Near a
+  // tie (and for huge or non-finite values) std::to_chars decides, which is exact.
+  if (std::isfinite(scaled) && scaled < 1e12 && size >= 32) {
+    const double whole = std::floor(scaled);
+    const double fraction = scaled - whole;
+    if (std::abs(fraction - 0.5) > 1e-3) {
+      std::uint64_t n = static_cast<std::uint64_t>(whole) + (fraction > 0.5 ? 1 : 0);
+      char digits[24];
+      int count = 0;
+      do {
+        digits[count++] = static_cast<char>('0' + n % 10);
+        n /= 10;
+      } while (n != 0);
+      while (count <= decimals) digits[count++] = '0';  // at least one digit before the point
+      std::size_t length = 0;
+      if (std::signbit(value)) buffer[length++] = '-';  // "-0.000" is made "0" by the caller
+      for (int i = count - 1; i >= 0; --i) {
+        buffer[length++] = digits[i];
+        if (i == decimals && decimals > 0) buffer[length++] = '.';
+      }
+      return length;
+    }
+  }
+  const auto done = std::to_chars(buffer, buffer + size, value, std::chars_format::fixed, decimals);
+  return done.ec == std::errc() ? static_cast<std::size_t>(done.ptr - buffer) : 0;
+}
+
+void append_number(std::string& out, double value, const NumberFormat& format) {
   char buffer[400];  // DBL_MAX in fixed notation with 12 decimals fits
-  const auto done =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
-  std::string s(buffer, done.ptr);
+  std::size_t end = fixed_digits(value, format.decimals, buffer, sizeof buffer);
+  if (end == 0) return;
+  std::size_t begin = 0;
+  const std::string_view text(buffer, end);
   // Anything that rounds to zero is "0", never "-0".
-  if (!s.empty() && s[0] == '-' && s.find_first_not_of("0.", 1) == std::string::npos) s.erase(0, 1);
-  std::size_t dot = s.find('.');
-  if (!format.trailing_zeros && dot != std::string::npos) {
-    while (s.back() == '0') s.pop_back();
+  if (end > 0 && buffer[0] == '-' && text.find_first_not_of("0.", 1) == std::string_view::npos)
+    begin = 1;
+  const std::size_t point = text.find('.', begin);
+  bool has_point = point != std::string_view::npos;
+  if (has_point && !format.trailing_zeros) {
+    while (buffer[end - 1] == '0') --end;
   }
-  if (dot != std::string::npos && dot + 1 == s.size()) {
-    if (!format.decimal_point) s.pop_back();
-  } else if (dot == std::string::npos && format.decimal_point) {
-    s += '.';
+  if (has_point && point + 1 == end) {
+    if (!format.decimal_point) {
+      --end;
+      has_point = false;
+    }
+  } else if (!has_point && format.decimal_point) {
+    buffer[end++] = '.';
+    has_point = true;
   }
-  dot = s.find('.');
-  if (!format.leading_zero && dot != std::string::npos && dot + 1 < s.size()) {
-    const std::size_t first = s[0] == '-' ? 1 : 0;
-    if (dot == first + 1 && s[first] == '0') s.erase(first, 1);
+  const bool negative = buffer[begin] == '-';
+  const std::size_t first = begin + (negative ? 1 : 0);
+  if (!format.leading_zero && has_point && buffer[first] == '0' && buffer[first + 1] == '.' &&
+      first + 2 < end) {
+    // "0.5" -> ".5", "-0.5" -> "-.5"
+    if (negative) out += '-';
+    out.append(buffer + first + 1, end - first - 1);
+    return;
   }
+  out.append(buffer + begin, end - begin);
+}
+
+std::string format_number(double value, const NumberFormat& format) {
+  std::string s;
+  append_number(s, value, format);
   return s;
 }
 
@@ -71,8 +123,8 @@ std::optional<Quantity> quantity_named(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<std::string> format_quantity(const JobConfig& config, double program_unit_mm,
-                                           Quantity quantity, double value) {
+bool append_quantity(std::string& out, const JobConfig& config, double program_unit_mm,
+                     Quantity quantity, double value) {
   const NumberFormat* format = nullptr;
   double scale = 1.0;
   switch (quantity) {
@@ -92,8 +144,9 @@ std::optional<std::string> format_quantity(const JobConfig& config, double progr
       break;
   }
   const double scaled = value * scale * format->scale;
-  if (!std::isfinite(scaled)) return std::nullopt;
-  return format_number(scaled, *format);
+  if (!std::isfinite(scaled)) return false;
+  append_number(out, scaled, *format);
+  return true;
 }
 
 std::string shortest(double value) {

@@ -14,16 +14,19 @@ namespace ncpost::xslt::detail {
 
 // `value` (finite, already scaled) written as `format` says; C locale.
 [[nodiscard]] std::string format_number(double value, const NumberFormat& format);
+void append_number(std::string& out, double value, const NumberFormat& format);
+// `value` rounded to `decimals` (0..12) in fixed notation as printf rounds the exact binary
+// value ("-0.500" for -0.5 with 3), in `buffer`; returns the length (0 if it does not fit).
+[[nodiscard]] std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t size);
 
 // The quantities ext:format knows, and their formats and scales.
 enum class Quantity { Length, Angle, Feed, Speed, Dwell };
 [[nodiscard]] std::optional<Quantity> quantity_named(std::string_view name);
 // ext:format: `value` in the program's unit (`program_unit_mm`, for lengths and feeds) scaled
-// to the controller's unit and the format's own scale, then written; nothing when the scaled
-// value is not finite.
-[[nodiscard]] std::optional<std::string> format_quantity(const JobConfig& config,
-                                                         double program_unit_mm, Quantity quantity,
-                                                         double value);
+// to the controller's unit and the format's own scale, then appended to `out`; false when the
+// scaled value is not finite (then nothing is appended).
+[[nodiscard]] bool append_quantity(std::string& out, const JobConfig& config,
+                                   double program_unit_mm, Quantity quantity, double value);
 
 // One machine axis (row 0, 1, 2) of the set-up transform of p; a direction (an arc's offset)
 // is turned without the translation.

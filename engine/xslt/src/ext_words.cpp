@@ -4,6 +4,7 @@
 // attributes straight from the context node. A motion template then costs two XPath function
 // calls instead of fifteen, which is most of a post's time (docs/xslt-extensions.md, "Words").
 
+#include <charconv>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -71,15 +72,12 @@ bool append_word(Call& call, std::string& out, char letter, Quantity quantity, d
     call.fail(std::string(1, static_cast<char>(std::tolower(letter))) + " is not a finite number");
     return false;
   }
-  const std::optional<std::string> text =
-      format_quantity(call.config(), Access::program_unit_mm(call.job()), quantity, value);
-  if (!text) {
+  out += ' ';
+  out += letter;
+  if (!append_quantity(out, call.config(), Access::program_unit_mm(call.job()), quantity, value)) {
     call.fail(std::string("the value of ") + letter + " is out of range");
     return false;
   }
-  out += ' ';
-  out += letter;
-  out += *text;
   return true;
 }
 
@@ -207,22 +205,53 @@ void fn_arc_words(xmlXPathParserContextPtr x, int nargs) {
   call.push_string(out);
 }
 
+// "N<next block number> <argument 0>", checked against the line length, as the result.
+void push_numbered(Call& call) {
+  char number[24];
+  const auto done = std::to_chars(number, number + sizeof number, next_block_number(call.job()));
+  const std::string_view text = call.view(0);
+  std::string line;
+  line.reserve(2 + static_cast<std::size_t>(done.ptr - number) + text.size());
+  line += 'N';
+  line.append(number, done.ptr);
+  line += ' ';
+  line += text;
+  check_line_length(call, line);
+  call.push_string(line);
+}
+
 // ext:numbered-line(text): "N<next block number> text", checked against the line length; as
 // ext:line(concat('N', ext:block(), ' ', text)).
 void fn_numbered_line(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "numbered-line", 1, 1);
   if (!call.ok()) return;
-  std::string line = "N" + std::to_string(next_block_number(call.job()));
-  line += ' ';
-  line += call.view(0);
-  check_line_length(call, line);
-  call.push_string(line);
+  push_numbered(call);
+}
+
+// ext:block-line(text): ext:numbered-line(text) when the profile numbers its blocks
+// (block_numbers.numbered), ext:line(text) when it does not.
+void fn_block_line(xmlXPathParserContextPtr x, int nargs) {
+  Call call(x, nargs, "block-line", 1, 1);
+  if (!call.ok()) return;
+  if (!call.config().block.numbered) {
+    check_line_length(call, call.view(0));
+    call.push_argument(0);
+    return;
+  }
+  push_numbered(call);
+}
+
+// ext:block-numbering(): 'yes' when the profile numbers its blocks, else 'no'.
+void fn_block_numbering(xmlXPathParserContextPtr x, int nargs) {
+  Call call(x, nargs, "block-numbering", 0, 0);
+  if (!call.ok()) return;
+  call.push_string(call.config().block.numbered ? "yes" : "no");
 }
 
 constexpr Function kWordFunctions[] = {
-    {"motion-words", guarded<fn_motion_words>},
-    {"arc-words", guarded<fn_arc_words>},
-    {"numbered-line", guarded<fn_numbered_line>},
+    {"motion-words", guarded<fn_motion_words>},       {"arc-words", guarded<fn_arc_words>},
+    {"numbered-line", guarded<fn_numbered_line>},     {"block-line", guarded<fn_block_line>},
+    {"block-numbering", guarded<fn_block_numbering>},
 };
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "support.hpp"
 
 namespace ncpost::xslt::test {
@@ -397,6 +399,153 @@ TEST_F(ExtTest, AnErrorStopsTheTransform) {
   EXPECT_FALSE(r.ok);
   ASSERT_EQ(r.diagnostics.size(), 1u) << all_messages(r.diagnostics);
   EXPECT_EQ(r.diagnostics[0].diagnostic.code_id(), "XSLT-030");
+}
+
+// ---- words (ext_words.cpp) ----
+
+class WordsTest : public ExtTest {
+ protected:
+  // Applies `templates` to the children of the root element of `xml`.
+  TransformResult apply(std::string_view templates, std::string_view xml, JobState& job,
+                        const Params& params = {}) {
+    auto compiled = compile_ok(tree_, sheet(R"x(<xsl:param name="form" select="'ijk'"/>
+<xsl:template match="/"><xsl:apply-templates select="*/*"/></xsl:template>
+)x" + std::string(templates)));
+    if (!compiled) return {};
+    return transform(*compiled, xml, job, params);
+  }
+  static JobConfig fanuc() {
+    JobConfig config;
+    config.length = {3, true, false, false, 1.0};
+    config.angle = {3, true, false, false, 1.0};
+    return config;
+  }
+};
+
+constexpr std::string_view kWordTemplates = R"x(
+<xsl:template match="STRAIGHT_FEED | STRAIGHT_TRAVERSE"><xsl:value-of select="ext:motion-words()"/>|</xsl:template>
+<xsl:template match="ARC_FEED"><xsl:value-of select="ext:arc-words($form)"/>|</xsl:template>)x";
+
+// The same words written with the single functions, as ncpost-common.xsl did before.
+constexpr std::string_view kSingleFunctionTemplates = R"x(
+<xsl:template match="STRAIGHT_FEED | STRAIGHT_TRAVERSE">
+  <xsl:value-of select="concat(' X', ext:format(ext:setup-x(@x, @y, @z), 'length'),
+      ' Y', ext:format(ext:setup-y(@x, @y, @z), 'length'), ' Z', ext:format(ext:setup-z(@x, @y, @z), 'length'))"/>
+  <xsl:if test="@a"><xsl:value-of select="concat(' A', ext:format(@a, 'angle'))"/></xsl:if>
+  <xsl:if test="@c"><xsl:value-of select="concat(' C', ext:format(@c, 'angle'))"/></xsl:if>
+  <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>|</xsl:template>
+<xsl:template match="ARC_FEED">
+  <xsl:variable name="sx" select="ext:position('x')"/>
+  <xsl:variable name="sy" select="ext:position('y')"/>
+  <xsl:variable name="sz" select="ext:position('z')"/>
+  <xsl:value-of select="concat(' X', ext:format(ext:setup-x(@x, @y, @z), 'length'),
+      ' Y', ext:format(ext:setup-y(@x, @y, @z), 'length'), ' Z', ext:format(ext:setup-z(@x, @y, @z), 'length'))"/>
+  <xsl:choose>
+    <xsl:when test="$form = 'r' and @plane = 'xy' and (@rotation = 1 or @rotation = -1) and
+                    ext:arc-sweep($sx, $sy, @x, @y, @cx, @cy, @rotation) &lt; 359.999 and
+                    ext:arc-sweep($sx, $sy, @x, @y, @cx, @cy, @rotation) &gt; -359.999">
+      <xsl:value-of select="concat(' R', ext:format(ext:arc-r($sx, $sy, @x, @y, @cx, @cy, @rotation), 'length'))"/>
+    </xsl:when>
+    <xsl:otherwise>
+      <xsl:variable name="i" select="ext:format(ext:arc-i(ext:setup-x($sx, $sy, $sz), ext:setup-x(@cx, @cy, @cz)), 'length')"/>
+      <xsl:variable name="j" select="ext:format(ext:arc-j(ext:setup-y($sx, $sy, $sz), ext:setup-y(@cx, @cy, @cz)), 'length')"/>
+      <xsl:variable name="k" select="ext:format(ext:arc-k(ext:setup-z($sx, $sy, $sz), ext:setup-z(@cx, @cy, @cz)), 'length')"/>
+      <xsl:choose>
+        <xsl:when test="@plane = 'yz'"><xsl:value-of select="concat(' J', $j, ' K', $k)"/></xsl:when>
+        <xsl:when test="@plane = 'xz'"><xsl:value-of select="concat(' I', $i, ' K', $k)"/></xsl:when>
+        <xsl:otherwise><xsl:value-of select="concat(' I', $i, ' J', $j)"/></xsl:otherwise>
+      </xsl:choose>
+    </xsl:otherwise>
+  </xsl:choose>
+  <xsl:if test="@rotation &gt; 1 or @rotation &lt; -1"><xsl:value-of select="concat(' P', translate(@rotation, '-', ''))"/></xsl:if>
+  <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>|</xsl:template>)x";
+
+constexpr std::string_view kArcs = R"x(<c>
+  <STRAIGHT_FEED x="10" y="2" z="3"/>
+  <ARC_FEED x="20" y="2" z="3" cx="15" cy="2" cz="3" plane="xy" rotation="-1"/>
+  <ARC_FEED x="20" y="2" z="1" cx="15" cy="2" cz="1" plane="xy" rotation="2"/>
+  <ARC_FEED x="20" y="2" z="1" cx="17.5" cy="-1.25" cz="1" plane="xy" rotation="1"/>
+  <STRAIGHT_TRAVERSE x="0" y="0" z="0" a="45" c="-90.0004"/>
+  <ARC_FEED x="0" y="10" z="10" cx="0" cy="0" cz="10" plane="yz" rotation="1"/>
+  <ARC_FEED x="-10" y="10" z="20" cx="-10" cy="10" cz="10" plane="xz" rotation="-3"/>
+  <STRAIGHT_FEED x="0.0004" y="-0.0004" z="123456.78951"/>
+</c>)x";
+
+TEST_F(WordsTest, MotionAndArcWordsEqualTheSingleFunctions) {
+  JobConfig rotated = fanuc();
+  rotated.setup = SetupTransform::from_rotation({0, 0, 1}, 90, {0, 0, -14.7});
+  JobConfig tilted = fanuc();
+  tilted.setup = SetupTransform::from_rotation({1, 1, 0.5}, 33.3, {2.5, -1, 7});
+  for (const JobConfig& config : {fanuc(), rotated, tilted, JobConfig{}}) {
+    for (const char* form : {"ijk", "r"}) {
+      SCOPED_TRACE(form);
+      JobState words_job(config), single_job(config);
+      const Params params{{"form", form}};
+      TransformResult words = apply(kWordTemplates, kArcs, words_job, params);
+      TransformResult single = apply(kSingleFunctionTemplates, kArcs, single_job, params);
+      ASSERT_TRUE(words.ok) << all_messages(words.diagnostics);
+      ASSERT_TRUE(single.ok) << all_messages(single.diagnostics);
+      EXPECT_EQ(words.output, single.output);
+    }
+  }
+}
+
+TEST_F(WordsTest, FanucWordsAsTheDocsShowThem) {
+  for (const auto& [form, arc] :
+       {std::pair{"r", " X20. Y2. Z3. R5."}, {"ijk", " X20. Y2. Z3. I5. J0."}}) {
+    JobState job(fanuc());
+    TransformResult r = apply(kWordTemplates, kArcs, job, {{"form", form}});
+    ASSERT_TRUE(r.ok) << all_messages(r.diagnostics);
+    EXPECT_EQ(r.output.substr(0, r.output.find('|', 15) + 1),
+              std::string(" X10. Y2. Z3.|") + arc + "|")
+        << r.output;
+    // Two turns: I J and the turn count, also when R is asked for.
+    EXPECT_NE(r.output.find("| X20. Y2. Z1. I-5. J0. P2|"), std::string::npos) << r.output;
+    // Rotary words, and the end recorded for the next arc (a YZ arc: J K).
+    EXPECT_NE(r.output.find("| X0. Y0. Z0. A45. C-90.|"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("| X0. Y10. Z10. J0. K10.|"), std::string::npos) << r.output;
+  }
+}
+
+TEST_F(WordsTest, ErrorsAreJobErrors) {
+  const std::string polar =
+      R"x(<xsl:template match="*"><xsl:value-of select="ext:arc-words('polar')"/></xsl:template>)x";
+  const std::tuple<std::string_view, std::string_view, std::string_view> cases[] = {
+      {kWordTemplates, R"(<c><STRAIGHT_FEED x="1" y="2"/></c>)", "x, y and z"},
+      {kWordTemplates, R"(<c><STRAIGHT_FEED x="1" y="2" z="NaN"/></c>)", "not finite"},
+      {kWordTemplates,
+       R"(<c><ARC_FEED x="1" y="2" z="0" cx="0" cy="0" cz="0" plane="xy" rotation="1"/></c>)",
+       "no position yet"},
+      {kWordTemplates, R"(<c><STRAIGHT_FEED x="1" y="2" z="0"/><ARC_FEED x="1" y="2" z="0"/></c>)",
+       "cx, cy, cz, rotation"},
+      {polar, "<c><ARC_FEED/></c>", "form 'polar'"}};
+  for (const auto& [templates, xml, expected] : cases) {
+    JobState job;
+    TransformResult r = apply(templates, xml, job);
+    EXPECT_FALSE(r.ok) << xml;
+    ASSERT_FALSE(r.diagnostics.empty()) << xml;
+    EXPECT_EQ(r.diagnostics.front().diagnostic.code_id(), "XSLT-030");
+    EXPECT_NE(r.diagnostics.front().diagnostic.message.find(expected), std::string::npos)
+        << all_messages(r.diagnostics);
+  }
+}
+
+TEST_F(WordsTest, BlockLineFollowsTheProfilesNumbering) {
+  JobConfig numbered;
+  numbered.block = {10, 10, 99999, true};
+  numbered.max_line_length = 12;
+  JobState job(numbered);
+  TransformResult r = run(
+      "concat(ext:block-numbering(), '|', ext:block-line('G1 X1.'), '|', ext:numbered-line('M3'), "
+      "'|', ext:block-line('G1 X100. Y200.'))",
+      job);
+  ASSERT_TRUE(r.ok) << all_messages(r.diagnostics);
+  EXPECT_EQ(r.output, "yes|N10 G1 X1.|N20 M3|N30 G1 X100. Y200.");
+  ASSERT_EQ(r.diagnostics.size(), 1u);  // the last block is too long: a warning
+  EXPECT_EQ(r.diagnostics[0].diagnostic.code_id(), "XSLT-031");
+  JobState plain;
+  EXPECT_EQ(eval("concat(ext:block-numbering(), '|', ext:block-line('G1 X1.'))", plain),
+            "no|G1 X1.");
 }
 
 }  // namespace

@@ -134,10 +134,12 @@ struct NumberFormat {
 };
 
 // ext:block(): start, start + increment, ...; a number beyond `maximum` wraps to `start`.
+// `numbered`: whether blocks carry N numbers at all (ext:block-line, ext:block-numbering).
 struct BlockNumbers {
   std::int64_t start = 10;
   std::int64_t increment = 10;
   std::int64_t maximum = 99999;
+  bool numbered = false;
 };
 
 // The machine set-up transform of ext:setup-x/y/z: p' = M p + t, M row-major. A rotation is

@@ -1,0 +1,81 @@
+// Number formatting: the integer fast path of fixed_digits gives exactly the digits of
+// std::to_chars (which rounds the exact binary value, as printf does), including ties, values
+// next to ties, both sides of the fast path's range, and negatives.
+
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "ext_math.hpp"
+
+namespace ncpost::xslt::detail {
+namespace {
+
+std::string reference(double value, int decimals) {
+  char buffer[400];
+  const auto done =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
+  return std::string(buffer, done.ptr);
+}
+
+std::string fast(double value, int decimals) {
+  char buffer[400];
+  return std::string(buffer, fixed_digits(value, decimals, buffer, sizeof buffer));
+}
+
+TEST(FixedDigits, AgreesWithToCharsOnRandomValues) {
+  std::mt19937_64 random(20261125);
+  std::uniform_real_distribution<double> magnitude(-3, 13);
+  std::uniform_int_distribution<int> decimals(0, 12);
+  for (int i = 0; i < 300000; ++i) {
+    const double v = std::pow(10.0, magnitude(random)) * (random() % 2 ? 1 : -1);
+    const int d = decimals(random);
+    ASSERT_EQ(fast(v, d), reference(v, d)) << v << " with " << d;
+  }
+}
+
+TEST(FixedDigits, AgreesWithToCharsAtAndNextToTies) {
+  for (int d = 0; d <= 12; ++d) {
+    const double unit = std::pow(10.0, -d);
+    for (long k = -2000; k <= 2000; ++k) {
+      // (k + 1/2) units: ties in decimal, usually not exact in binary; and their neighbours.
+      const double tie = (static_cast<double>(k) + 0.5) * unit;
+      for (double v : {tie, std::nextafter(tie, 1e300), std::nextafter(tie, -1e300)})
+        ASSERT_EQ(fast(v, d), reference(v, d)) << v << " with " << d;
+    }
+  }
+  // Exact binary ties round to even, as printf does.
+  EXPECT_EQ(fast(0.125, 2), "0.12");
+  EXPECT_EQ(fast(0.375, 2), "0.38");
+  EXPECT_EQ(fast(2.5, 0), "2");
+  EXPECT_EQ(fast(-2.5, 0), "-2");
+}
+
+TEST(FixedDigits, EdgesOfTheFastPath) {
+  for (int d = 0; d <= 12; ++d) {
+    const double edge = 1e12 / std::pow(10.0, d);
+    for (double v : {edge, std::nextafter(edge, 0.0), std::nextafter(edge, 1e300), -edge, 0.0, -0.0,
+                     1e-13, -1e-13, 0.4999999999, 999999.9995, 1.7976931348623157e308})
+      ASSERT_EQ(fast(v, d), reference(v, d)) << v << " with " << d;
+  }
+}
+
+TEST(FormatNumber, ControllerStyles) {
+  const NumberFormat fanuc{3, true, false, false, 1.0};
+  EXPECT_EQ(format_number(10.0, fanuc), "10.");
+  EXPECT_EQ(format_number(-0.5, fanuc), "-.5");
+  EXPECT_EQ(format_number(0.0004, fanuc), "0.");
+  EXPECT_EQ(format_number(-0.0004, fanuc), "0.");
+  EXPECT_EQ(format_number(91.9, fanuc), "91.9");
+  const NumberFormat fixed{3, true, true, true, 1.0};
+  EXPECT_EQ(format_number(-13.5, fixed), "-13.500");
+  const NumberFormat integer{0, false, true, false, 1.0};
+  EXPECT_EQ(format_number(720.4, integer), "720");
+  EXPECT_EQ(format_number(-0.4, integer), "0");
+}
+
+}  // namespace
+}  // namespace ncpost::xslt::detail
