@@ -109,6 +109,13 @@
     </xsl:choose>
   </xsl:template>
 
+  <!-- A run of motions (profile.json render.motion_runs): the blocks the three templates
+       around this one write for each motion, written by the engine from memory in one call
+       (docs/render.md, "Motion runs"). -->
+  <xsl:template match="motions">
+    <xsl:value-of select="ext:motion-run('G0', 'G1', 'G2', 'G3', $arc_form)"/>
+  </xsl:template>
+
   <!-- G2/G3 with its plane's G17/G19/G18 first when the plane changed. $arc_form is 'ijk';
        the FANUC family sets it to the profile's $arcs, for R where R can say the arc. -->
   <xsl:variable name="arc_form" select="'ijk'"/>

@@ -297,9 +297,9 @@ void XmlChunkWriter::close(std::string& out) {
   close(text);
 }
 
-void XmlChunkWriter::append_chunk(XmlEvents& out, const ChunkView& chunk) {
+void XmlChunkWriter::append_chunk(XmlEvents& out, const ChunkView& chunk, MotionRuns* runs) {
   open(out, chunk.seq);
-  append(out, chunk.calls);
+  append(out, chunk.calls, runs);
   close(out);
 }
 
@@ -316,8 +316,29 @@ void XmlChunkWriter::open(XmlEvents& out, std::uint64_t seq) {
   }
 }
 
-void XmlChunkWriter::append(XmlEvents& out, std::span<const Call> calls) {
+void XmlChunkWriter::append(XmlEvents& out, std::span<const Call> calls, MotionRuns* runs) {
+  std::size_t run_first = 0;
+  std::size_t run_count = 0;
+  auto end_run = [&] {
+    if (run_count == 0) return;
+    char buffer[32];
+    out.text(spaces(open_here_ ? 4 : 2));
+    out.start_element("motions");
+    out.attribute("first", xml_integer(static_cast<long long>(run_first), buffer));
+    out.attribute("count", xml_integer(static_cast<long long>(run_count), buffer));
+    out.end_element("motions");
+    out.text("\n");
+    run_count = 0;
+  };
   for (const Call& call : calls) {
+    if (runs != nullptr) {
+      if (const std::optional<std::size_t> index = runs->take(call)) {
+        if (run_count == 0) run_first = *index;
+        ++run_count;
+        continue;
+      }
+      end_run();
+    }
     if (const auto* b = std::get_if<Begin>(&call); b != nullptr && b->scope == Scope::Workingstep) {
       // Workingsteps do not nest; a second begin closes the first so the XML stays well-formed.
       if (open_here_) close_workingstep(out);
@@ -336,6 +357,7 @@ void XmlChunkWriter::append(XmlEvents& out, std::span<const Call> calls) {
     // Everything else, including a WORKINGSTEP_END without its begin, is an element.
     std::visit(ElementWriter(out, open_here_ ? 4 : 2), call);
   }
+  end_run();
 }
 
 void XmlChunkWriter::close(XmlEvents& out) {

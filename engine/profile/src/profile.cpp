@@ -218,7 +218,7 @@ std::optional<Profile> parse_profile(std::string_view text,
   c.check_keys(
       doc, "",
       {"$schema", "id", "name", "controller", "mode", "output", "block_numbers", "formats", "units",
-       "capabilities", "setup", "limits"},
+       "capabilities", "setup", "limits", "render"},
       {"id", "name", "controller", "output", "block_numbers", "formats", "units", "capabilities"});
   if (auto v = c.string(doc, "", "id", 1, 64)) {
     if (valid_id(*v))
@@ -317,6 +317,26 @@ std::optional<Profile> parse_profile(std::string_view text,
         c.fail("/setup/axis", "must not be the zero vector");
       else
         p.setup = xslt::SetupTransform::from_rotation(axis, angle, t);
+    }
+  }
+  if (const json* r = c.object(doc, "", "render", false, {"motion_runs"}, {})) {
+    if (r->contains("motion_runs")) {
+      const json& kinds = (*r)["motion_runs"];
+      if (!kinds.is_array()) c.fail("/render/motion_runs", "must be an array of call names");
+      for (std::size_t i = 0; kinds.is_array() && i < kinds.size(); ++i) {
+        const std::string here = "/render/motion_runs/" + std::to_string(i);
+        const std::string kind = kinds[i].is_string() ? kinds[i].get<std::string>() : "";
+        bool* flag = kind == "STRAIGHT_TRAVERSE" ? &p.motion_runs.traverse
+                     : kind == "STRAIGHT_FEED"   ? &p.motion_runs.feed
+                     : kind == "ARC_FEED"        ? &p.motion_runs.arc
+                                                 : nullptr;
+        if (flag == nullptr)
+          c.fail(here, "must be STRAIGHT_TRAVERSE, STRAIGHT_FEED or ARC_FEED");
+        else if (*flag)
+          c.fail(here, "is named twice");
+        else
+          *flag = true;
+      }
     }
   }
   if (const json* l = c.object(

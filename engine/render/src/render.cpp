@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "ncpost/canon/cycle.hpp"
 #include "ncpost/canon/trace.hpp"
@@ -58,6 +59,50 @@ class Renderer::TreeEvents final : public canon::XmlEvents {
   std::size_t text_bytes_ = 0;
 };
 
+// Takes the motions the profile wants as runs (render.motion_runs) out of the XML, with the
+// values their elements would carry: -0 as 0, as the XML form writes it.
+class Renderer::RunTaker final : public canon::MotionRuns {
+ public:
+  RunTaker(const profile::Profile::MotionRuns& kinds, std::vector<xslt::RunMotion>& motions)
+      : kinds_(kinds), motions_(motions) {}
+
+  std::optional<std::size_t> take(const canon::Call& call) override {
+    xslt::RunMotion m;
+    const canon::Pose* end = nullptr;
+    if (const auto* t = std::get_if<canon::StraightTraverse>(&call); t && kinds_.traverse) {
+      m.kind = xslt::RunMotion::Kind::Traverse;
+      end = &t->to;
+    } else if (const auto* f = std::get_if<canon::StraightFeed>(&call); f && kinds_.feed) {
+      m.kind = xslt::RunMotion::Kind::Feed;
+      end = &f->to;
+    } else if (const auto* a = std::get_if<canon::ArcFeed>(&call); a && kinds_.arc) {
+      const std::optional<canon::PlaneArc> p = canon::plane_arc(*a);
+      if (!p) return std::nullopt;  // a tilted arc stays an element (its template says why)
+      m.kind = xslt::RunMotion::Kind::Arc;
+      end = &a->end;
+      m.cx = plain(a->centre.x), m.cy = plain(a->centre.y), m.cz = plain(a->centre.z);
+      m.plane = p->plane == canon::Plane::Yz   ? xslt::RunMotion::Plane::Yz
+                : p->plane == canon::Plane::Xz ? xslt::RunMotion::Plane::Xz
+                                               : xslt::RunMotion::Plane::Xy;
+      m.rotation = p->rotation;
+    } else {
+      return std::nullopt;
+    }
+    m.x = plain(end->x), m.y = plain(end->y), m.z = plain(end->z);
+    if (end->rotary) {
+      m.has_rotary = true;
+      m.a = plain(end->rotary->a), m.b = plain(end->rotary->b), m.c = plain(end->rotary->c);
+    }
+    motions_.push_back(m);
+    return motions_.size() - 1;
+  }
+
+ private:
+  static double plain(double v) { return v == 0 ? 0.0 : v; }
+  const profile::Profile::MotionRuns& kinds_;
+  std::vector<xslt::RunMotion>& motions_;
+};
+
 class Renderer::ChunkRenderer final : public canon::ChunkSink {
  public:
   explicit ChunkRenderer(Renderer& owner) : owner_(owner) {}
@@ -78,6 +123,9 @@ Renderer::Renderer(const profile::LoadedProfile& profile, TextSink out, RenderOp
               {"arcs", profile.profile.arcs == profile::Arcs::R ? "r" : "ijk"},
               {"tool", "0"}},
       tree_events_(std::make_unique<TreeEvents>(tree_)),
+      run_taker_(profile.profile.motion_runs.any()
+                     ? std::make_unique<RunTaker>(profile.profile.motion_runs, run_motions_)
+                     : nullptr),
       chunk_sink_(std::make_unique<ChunkRenderer>(*this)),
       chunker_(std::make_unique<canon::Chunker>(*chunk_sink_, options.chunk)),
       single_chunk_(options.single_chunk),
@@ -247,9 +295,10 @@ void Renderer::render_chunk(const canon::ChunkView& chunk) {
     batch_tool_ = tool_;
     if (batch_delay_.count() > 0) batch_started_ = std::chrono::steady_clock::now();
     tree_events_->clear();
+    run_motions_.clear();
     xml_writer_.open(*tree_events_, chunk.seq);
   }
-  xml_writer_.append(*tree_events_, chunk.calls);
+  xml_writer_.append(*tree_events_, chunk.calls, run_taker_.get());
   batch_calls_.insert(batch_calls_.end(), chunk.calls.begin(), chunk.calls.end());
   batch_chunks_.emplace_back(chunk.seq, batch_calls_.size());
   for (const auto& c : chunk.calls)
@@ -269,13 +318,9 @@ void Renderer::render_batch() {
   params_[3].second = std::to_string(batch_tool_);
   const std::uint64_t first = batch_chunks_.front().first;
   const std::uint64_t last = batch_chunks_.back().first;
-  auto result = xslt::transform(*profile_.stylesheet, tree_, job_, params_,
-                                input_name_ + "#chunk" + std::to_string(first) +
-                                    (last != first ? "-" + std::to_string(last) : std::string()));
-  if (result.ok) {
-    for (auto& d : result.diagnostics) diagnostics_.push_back(std::move(d));
-    emit(result.output);
-  } else {
+  const std::string name = input_name_ + "#chunk" + std::to_string(first) +
+                           (last != first ? "-" + std::to_string(last) : std::string());
+  if (!transform_tree(name, std::numeric_limits<std::uint64_t>::max())) {
     // Rendered chunk by chunk from the batch's start instead, the failure is reported as it
     // would have been without batching: the text of the chunks before the failing one is
     // written and the diagnostics name that chunk. The failed run's state and diagnostics are
@@ -299,20 +344,44 @@ void Renderer::render_batch() {
 void Renderer::transform_chunk(const canon::ChunkView& chunk) {
   if (failed_) return;
   tree_events_->clear();
-  xml_writer_.append_chunk(*tree_events_, chunk);
+  run_motions_.clear();
+  xml_writer_.append_chunk(*tree_events_, chunk, run_taker_.get());
   params_[3].second = std::to_string(tool_);
   for (const auto& c : chunk.calls)
     if (const auto* t = std::get_if<canon::ChangeTool>(&c)) tool_ = t->slot;
-  auto result = xslt::transform(*profile_.stylesheet, tree_, job_, params_,
-                                input_name_ + "#chunk" + std::to_string(chunk.seq));
+  (void)transform_tree(input_name_ + "#chunk" + std::to_string(chunk.seq), chunk.seq);
+}
+
+// Runs the stylesheet over tree_ and, when it succeeded, writes the text. A chunk's failure
+// (`seq` names it) is reported as RENDER-002; a batch's (seq = max) is left to the caller,
+// which renders its chunks one by one.
+bool Renderer::transform_tree(const std::string& name, std::uint64_t seq) {
+  const bool batch = seq == std::numeric_limits<std::uint64_t>::max();
+  job_.set_run_motions(run_motions_);
+  auto result = xslt::transform(*profile_.stylesheet, tree_, job_, params_, name);
+  const std::size_t unrendered = job_.run_motions_not_rendered();
+  job_.set_run_motions({});
+  if (result.ok && unrendered > 0) {
+    result.ok = false;
+    result.diagnostics.push_back(
+        {name,
+         diag::make(diag::Code::RenderRunNotRendered, 0, 0,
+                    std::to_string(unrendered) + " of " + std::to_string(run_motions_.size()) +
+                        " motions of <motions> runs were not rendered: profile '" +
+                        profile_.profile.id +
+                        "' sets render.motion_runs, so its stylesheet needs a template "
+                        "for <motions> that calls ext:motion-run()")});
+  }
+  if (batch && !result.ok) return false;
   for (auto& d : result.diagnostics) diagnostics_.push_back(std::move(d));
   if (!result.ok) {
     report(diag::Code::RenderTransform, diag::Severity::Error,
            "the stylesheet of profile '" + profile_.profile.id + "' failed on chunk " +
-               std::to_string(chunk.seq));
-    return;
+               std::to_string(seq));
+    return false;
   }
   emit(result.output);
+  return true;
 }
 
 void Renderer::emit(std::string& text) {

@@ -142,24 +142,12 @@ void fn_program_units(xmlXPathParserContextPtr x, int nargs) {
 void fn_modal(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "modal", 2, 2);
   if (!call.ok()) return;
-  const std::string_view group = call.view(0);
-  const std::string_view word = call.view(1);
-  auto& modal = Access::modal(call.job());
-  const auto found = modal.find(group);
-  if (found != modal.end()) {
-    if (found->second == word) {
-      call.push_string("");
-      return;
-    }
-    found->second = word;
-  } else {
-    if (modal.size() >= call.config().max_modal_groups) {
-      call.fail("more than " + std::to_string(call.config().max_modal_groups) + " modal groups");
-      return;
-    }
-    modal.emplace(std::string(group), std::string(word));
-  }
-  call.push_argument(1);
+  const std::optional<bool> changed = update_modal(call, call.view(0), call.view(1));
+  if (!changed) return;
+  if (*changed)
+    call.push_argument(1);
+  else
+    call.push_string("");
 }
 
 void fn_modal_reset(xmlXPathParserContextPtr x, int nargs) {

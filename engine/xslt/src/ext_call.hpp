@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -214,6 +216,24 @@ inline std::int64_t next_block_number(JobState& job) {
   return current;
 }
 
+// ext:modal()'s memory: whether `word` differs from the group's last word (then it is
+// remembered); nothing, with the call failed, when a new group would pass the limit.
+inline std::optional<bool> update_modal(Call& call, std::string_view group, std::string_view word) {
+  auto& modal = Access::modal(call.job());
+  const auto found = modal.find(group);
+  if (found != modal.end()) {
+    if (found->second == word) return false;
+    found->second = word;
+    return true;
+  }
+  if (modal.size() >= call.config().max_modal_groups) {
+    call.fail("more than " + std::to_string(call.config().max_modal_groups) + " modal groups");
+    return std::nullopt;
+  }
+  modal.emplace(std::string(group), std::string(word));
+  return true;
+}
+
 // ext:line()'s check: a warning (the text is kept) when the block is longer than the
 // controller takes.
 inline void check_line_length(Call& call, std::string_view text) {
@@ -225,6 +245,21 @@ inline void check_line_length(Call& call, std::string_view text) {
               "block of " + std::to_string(length) + " characters; the controller takes " +
                   std::to_string(limit) + ": " + std::string(text.substr(0, 80)));
   }
+}
+
+// Appends `text` as one block: "N<next> text" when the profile numbers its blocks
+// (ext:block-line), checked against the line length; no newline.
+inline void append_block_line(Call& call, std::string& out, std::string_view text, bool numbered) {
+  const std::size_t start = out.size();
+  if (numbered) {
+    char number[24];
+    const auto done = std::to_chars(number, number + sizeof number, next_block_number(call.job()));
+    out += 'N';
+    out.append(number, done.ptr);
+    out += ' ';
+  }
+  out += text;
+  check_line_length(call, std::string_view(out).substr(start));
 }
 
 }  // namespace ncpost::xslt::detail

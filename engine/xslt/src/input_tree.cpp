@@ -69,12 +69,13 @@ struct InputTree::Impl {
     bytes = (bytes + 7) & ~std::size_t{7};
     total += bytes;
     if (bytes > kBlockBytes / 4) {
-      large.push_back(std::make_unique<std::byte[]>(bytes));
+      large.push_back(std::unique_ptr<std::byte[]>(new std::byte[bytes]));  // not zeroed
       return large.back().get();
     }
     if (blocks.empty() || used + bytes > kBlockBytes) {
       if (!blocks.empty()) ++block;
-      if (block == blocks.size()) blocks.push_back(std::make_unique<std::byte[]>(kBlockBytes));
+      if (block == blocks.size())
+        blocks.push_back(std::unique_ptr<std::byte[]>(new std::byte[kBlockBytes]));  // not zeroed
       used = 0;
     }
     void* p = blocks[block].get() + used;

@@ -43,6 +43,10 @@ struct Access {
   static std::array<double, 3>& position(JobState& j) noexcept { return j.position_; }
   static bool& has_position(JobState& j) noexcept { return j.has_position_; }
   static InputTree::Impl& tree(const InputTree& t) noexcept { return *t.impl_; }
+  static std::span<const RunMotion> run_motions(const JobState& j) noexcept {
+    return j.run_motions_;
+  }
+  static std::vector<std::uint8_t>& run_rendered(JobState& j) noexcept { return j.run_rendered_; }
 };
 
 namespace detail {

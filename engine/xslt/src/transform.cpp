@@ -20,6 +20,15 @@ namespace ncpost::xslt {
 JobState::JobState(JobConfig config, Limits limits)
     : config_(std::move(config)), limits_(limits), next_block_(config_.block.start) {}
 
+void JobState::set_run_motions(std::span<const RunMotion> motions) {
+  run_motions_ = motions;
+  run_rendered_.assign(motions.size(), 0);
+}
+
+std::size_t JobState::run_motions_not_rendered() const noexcept {
+  return static_cast<std::size_t>(std::count(run_rendered_.begin(), run_rendered_.end(), 0));
+}
+
 void JobState::reset() {
   next_block_ = config_.block.start;
   modal_.clear();

@@ -361,6 +361,88 @@ TEST_F(RenderTest, FailureInABatchEndsWhereUnbatchedDoes) {
   EXPECT_EQ(batched_limit, unbatched_limit);
 }
 
+// Motion runs (render.motion_runs) change how motions reach the stylesheet, never the text.
+void expect_runs_change_nothing(const profile::LoadedProfile& with_runs,
+                                const std::vector<canon::Call>& calls) {
+  ASSERT_TRUE(with_runs.profile.motion_runs.any()) << with_runs.profile.id;
+  profile::LoadedProfile without = with_runs;
+  without.profile.motion_runs = {};
+  for (const RenderOptions& options :
+       {RenderOptions{}, RenderOptions{{3}, false, 0}, RenderOptions{{}, true}}) {
+    std::vector<xslt::FileDiagnostic> d1, d2;
+    const std::string runs = render_program(with_runs, calls, d1, options);
+    const std::string elements = render_program(without, calls, d2, options);
+    EXPECT_FALSE(runs.empty());
+    EXPECT_EQ(runs, elements);
+    ASSERT_EQ(d1.size(), d2.size());
+    for (std::size_t i = 0; i < d1.size(); ++i) EXPECT_EQ(xslt::format(d1[i]), xslt::format(d2[i]));
+  }
+}
+
+TEST_F(RenderTest, MotionRunsWriteWhatTheElementTemplatesWrite) {
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
+  for (const char* id :
+       {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "okuma-osp", "siemens-840d"}) {
+    auto p = builtin(id);
+    ASSERT_TRUE(p);
+    for (const char* c : {"curves.stp", "placement-rotated-setup.stp", "executables.stp"}) {
+      SCOPED_TRACE(std::string(id) + " " + c);
+      expect_runs_change_nothing(*p, program(cases / c));
+    }
+    SCOPED_TRACE(std::string(id) + " cycles");
+    expect_runs_change_nothing(*p, cycle_program());
+  }
+}
+
+TEST_F(RenderTest, MotionRunsWriteWhatTheElementTemplatesWriteEx1AndEx1E) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  for (const char* file : {"nist_toolkit_ex1.stp", "nist_toolkit_ex1E.stp"}) {
+    const auto calls = program(corpus / "p21" / file);
+    for (const char* id : {"linuxcnc", "fanuc-0i", "siemens-840d"}) {
+      SCOPED_TRACE(std::string(id) + " " + file);
+      expect_runs_change_nothing(*builtin(id), calls);
+    }
+  }
+}
+
+// A profile that asks for runs with a stylesheet that has no template for them would lose
+// motions silently (XSLT's built-in rule writes nothing for an empty element): it is an error.
+TEST_F(RenderTest, RunsLeftUnrenderedAreAnError) {
+  auto base = builtin("linuxcnc");
+  ASSERT_TRUE(base);
+  const fs::path dir = base->directory;
+  const std::vector<fs::path> roots{dir, dir.parent_path() / "common"};
+  // No template (an empty one over the common one), and one that renders each run twice.
+  const char* const templates[] = {R"x(<xsl:template match="motions"/>)x",
+                                   R"x(<xsl:template match="motions">
+            <xsl:value-of select="ext:motion-run('G0', 'G1', 'G2', 'G3', 'ijk')"/>
+            <xsl:value-of select="ext:motion-run('G0', 'G1', 'G2', 'G3', 'ijk')"/>
+          </xsl:template>)x"};
+  for (const char* motions_template : templates) {
+    SCOPED_TRACE(motions_template);
+    const std::string text = std::string(R"(<xsl:stylesheet version="1.0"
+        xmlns:xsl="http://www.w3.org/1999/XSL/Transform" xmlns:ext="urn:ncpost:ext"
+        exclude-result-prefixes="ext">
+      <xsl:import href="../common/ncpost-common.xsl"/>
+      <xsl:output method="text"/>)") +
+                             motions_template + "</xsl:stylesheet>";
+    auto compiled = xslt::compile_text(text, dir / "post.xsl", roots);
+    ASSERT_TRUE(compiled.ok()) << (compiled.diagnostics.empty()
+                                       ? ""
+                                       : xslt::format(compiled.diagnostics[0]));
+    profile::LoadedProfile p = *base;
+    p.stylesheet = compiled.stylesheet;
+    std::vector<xslt::FileDiagnostic> d;
+    (void)render_program(p, cycle_program(), d);
+    EXPECT_TRUE(xslt::has_errors(d));
+    const bool named = std::any_of(d.begin(), d.end(), [](const xslt::FileDiagnostic& f) {
+      return f.diagnostic.code == diag::Code::RenderRunNotRendered ||
+             f.diagnostic.message.find("rendered before") != std::string::npos;
+    });
+    EXPECT_TRUE(named);
+  }
+}
+
 TEST_F(RenderTest, CrLfLineEndings) {
   auto base = builtin("linuxcnc");
   profile::LoadedProfile p = *base;

@@ -66,6 +66,18 @@ class XmlText final : public XmlEvents {
   bool start_tag_open_ = false;
 };
 
+// Lets a consumer take consecutive motions out of the XML: each maximal sequence of calls it
+// takes is written as one `<motions first="F" count="N"/>` element, F being the index take()
+// returned for the sequence's first call, and the consumer renders them from its own memory
+// (the renderer does, for profiles that ask for it: docs/render.md, "Motion runs").
+class MotionRuns {
+ public:
+  virtual ~MotionRuns() = default;
+  // The call's index in the consumer's memory when it joins a run; nothing when it is written
+  // as an element.
+  virtual std::optional<std::size_t> take(const Call& call) = 0;
+};
+
 // Writes chunks one by one. It remembers one thing between chunks: a workingstep split over
 // several chunks (ChunkLimits::max_calls) is closed at the end of each and reopened, with
 // continued="true", at the start of the next, so every chunk stays well-formed on its own.
@@ -81,14 +93,14 @@ class XmlChunkWriter {
  public:
   // Appends `<chunk seq="N">\n ... </chunk>\n`.
   void append_chunk(std::string& out, const ChunkView& chunk);
-  void append_chunk(XmlEvents& out, const ChunkView& chunk);
+  void append_chunk(XmlEvents& out, const ChunkView& chunk, MotionRuns* runs = nullptr);
 
   // Starts `<chunk seq="N">`; reopens a workingstep left open by the previous chunk.
   void open(std::string& out, std::uint64_t seq);
   void open(XmlEvents& out, std::uint64_t seq);
   // Appends the calls, inside the element that open() started.
   void append(std::string& out, std::span<const Call> calls);
-  void append(XmlEvents& out, std::span<const Call> calls);
+  void append(XmlEvents& out, std::span<const Call> calls, MotionRuns* runs = nullptr);
   // Closes an open workingstep (remembered for the next chunk) and the element.
   void close(std::string& out);
   void close(XmlEvents& out);

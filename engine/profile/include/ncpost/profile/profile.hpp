@@ -70,6 +70,14 @@ struct Profile {
   double chord_tolerance = 0.001;  // program length units
   xslt::SetupTransform setup{};
   Limits limits{};
+  // render.motion_runs: the motions the renderer hands to ext:motion-run() as runs instead of
+  // one element each (docs/render.md, "Motion runs"). Arcs only with a plane.
+  struct MotionRuns {
+    bool traverse = false;
+    bool feed = false;
+    bool arc = false;
+    [[nodiscard]] bool any() const noexcept { return traverse || feed || arc; }
+  } motion_runs{};
 };
 
 // Parses and validates profile.json. On any problem returns nullopt and adds PROFILE-001/002

@@ -73,6 +73,7 @@ class Renderer final : public canon::Sink {
  private:
   class ChunkRenderer;
   class TreeEvents;
+  class RunTaker;
   void forward(const canon::Call& call);
   void check_limits(const canon::Call& call);
   void check_point(double x, double y, double z, const canon::Call& call);
@@ -80,6 +81,7 @@ class Renderer final : public canon::Sink {
   void render_chunk(const canon::ChunkView& chunk);
   void transform_chunk(const canon::ChunkView& chunk);
   void render_batch();
+  bool transform_tree(const std::string& name, std::uint64_t first_seq);
   void emit(std::string& text);
   [[nodiscard]] std::string where(const canon::Call& call) const;
 
@@ -92,6 +94,9 @@ class Renderer final : public canon::Sink {
   // The chunk or batch being written: its XML built as the transform's input tree.
   xslt::InputTree tree_;
   std::unique_ptr<TreeEvents> tree_events_;
+  // Motions written as runs into tree_ (profile render.motion_runs), for ext:motion-run.
+  std::vector<xslt::RunMotion> run_motions_;
+  std::unique_ptr<RunTaker> run_taker_;  // null when the profile asks for no runs
   std::unique_ptr<ChunkRenderer> chunk_sink_;
   std::unique_ptr<canon::Chunker> chunker_;
   std::vector<xslt::FileDiagnostic> diagnostics_;

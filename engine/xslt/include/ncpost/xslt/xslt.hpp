@@ -180,6 +180,23 @@ struct JobConfig {
   std::size_t max_modal_groups = 256;
 };
 
+// A motion that ext:motion-run() renders from memory. A renderer may write one
+// `<motions first="F" count="N"/>` element for N consecutive motions instead of N elements,
+// and hand their values to the job (JobState::set_run_motions) before the transform; the
+// values are the ones the elements would carry (docs/render.md, "Motion runs").
+struct RunMotion {
+  enum class Kind : std::uint8_t { Traverse, Feed, Arc };
+  enum class Plane : std::uint8_t { Xy, Yz, Xz };
+  Kind kind = Kind::Feed;
+  double x = 0, y = 0, z = 0;  // end point
+  bool has_rotary = false;
+  double a = 0, b = 0, c = 0;  // rotary axes, when has_rotary
+  // Arcs: centre, plane, and turns signed about the plane's normal (never 0).
+  double cx = 0, cy = 0, cz = 0;
+  Plane plane = Plane::Xy;
+  int rotation = 1;
+};
+
 // The state of one job (one program, rendered in one or many transforms, one thread at a
 // time): block counter, modal memory, program units, last C angle, current position. Create one per
 // job; do not share it between concurrent transforms.
@@ -192,6 +209,12 @@ class JobState {
   // Back to the start of a program (block numbers, modal memory, units, C angle, position).
   void reset();
 
+  // The motions that the next transform's <motions> elements refer to by index; the span must
+  // stay valid until the transform returns. Each is marked when ext:motion-run renders it.
+  void set_run_motions(std::span<const RunMotion> motions);
+  // How many of them were not rendered (a stylesheet without a template for <motions>).
+  [[nodiscard]] std::size_t run_motions_not_rendered() const noexcept;
+
  private:
   friend struct Access;
   JobConfig config_;
@@ -202,6 +225,8 @@ class JobState {
   double last_c_ = 0.0;           // ext:rotary(): C kept when the tool axis is vertical
   std::array<double, 3> position_{0, 0, 0};  // ext:moved-to() / ext:position()
   bool has_position_ = false;
+  std::span<const RunMotion> run_motions_;
+  std::vector<std::uint8_t> run_rendered_;  // per motion of run_motions_: rendered yet
 };
 
 // Top-level xsl:param values, passed as strings (quoted, never evaluated as XPath).
