@@ -35,7 +35,7 @@
   <!-- Dwell: G4 with the family member's word; its units come from the profile's dwell format
        (FANUC: P in milliseconds; Haas: P in seconds with a point; Mitsubishi: X in seconds). -->
   <xsl:template match="DWELL">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('G4 ', $dwell_word, ext:format(@seconds, 'dwell'))"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat('G4 ', $dwell_word, ext:format(@seconds, 'dwell')))"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
 
   <!-- Cycles: G0 to the safe level over the hole, then the cycle with G98 (return to the
@@ -58,27 +58,26 @@
       <xsl:choose><xsl:when test="@safe_z = @r_z">G99</xsl:when><xsl:otherwise>G98</xsl:otherwise></xsl:choose>
     </xsl:variable>
     <xsl:variable name="safe"><xsl:call-template name="xyz"><xsl:with-param name="z" select="@safe_z"/></xsl:call-template></xsl:variable>
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('G0', $safe)"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat('G0', $safe))"/><xsl:text>&#10;</xsl:text>
     <xsl:variable name="q">
       <xsl:if test="self::PECK_DRILL_CYCLE"><xsl:value-of select="concat(' Q', ext:format(@peck, 'length'))"/></xsl:if>
     </xsl:variable>
     <xsl:variable name="p">
       <xsl:if test="@dwell &gt; 0"><xsl:value-of select="concat(' P', ext:format(@dwell, 'dwell'))"/></xsl:if>
     </xsl:variable>
-    <xsl:call-template name="block">
-      <xsl:with-param name="text" select="concat($return, ' ', $code,
-          ' X', ext:format(ext:setup-x(@x, @y, @bottom_z), 'length'),
-          ' Y', ext:format(ext:setup-y(@x, @y, @bottom_z), 'length'),
-          ' Z', ext:format(ext:setup-z(@x, @y, @bottom_z), 'length'),
-          ' R', ext:format(ext:setup-z(@x, @y, @r_z), 'length'), $q, $p,
-          ' F', ext:format(@feed, 'feed'))"/>
-    </xsl:call-template>
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'G80'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat($return, ' ', $code,
+        ' X', ext:format(ext:setup-x(@x, @y, @bottom_z), 'length'),
+        ' Y', ext:format(ext:setup-y(@x, @y, @bottom_z), 'length'),
+        ' Z', ext:format(ext:setup-z(@x, @y, @bottom_z), 'length'),
+        ' R', ext:format(ext:setup-z(@x, @y, @r_z), 'length'), $q, $p,
+        ' F', ext:format(@feed, 'feed')))"/>
+    <xsl:text>&#10;</xsl:text>
+    <xsl:value-of select="ext:block-line('G80')"/><xsl:text>&#10;</xsl:text>
     <xsl:value-of select="ext:moved-to(@x, @y, @safe_z)"/>
   </xsl:template>
 
   <xsl:template match="PROGRAM_END">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M30'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M30')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="PROJECT_END"><xsl:text>%&#10;</xsl:text></xsl:template>
 </xsl:stylesheet>

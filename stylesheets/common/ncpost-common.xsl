@@ -67,7 +67,7 @@
   <xsl:template match="SELECT_PLANE">
     <xsl:variable name="word" select="ext:modal('plane', substring('G17G19G18', 1 + 3 * (@plane = 'yz') + 6 * (@plane = 'xz'), 3))"/>
     <xsl:if test="$word != ''">
-      <xsl:call-template name="block"><xsl:with-param name="text" select="$word"/></xsl:call-template>
+      <xsl:value-of select="ext:block-line($word)"/><xsl:text>&#10;</xsl:text>
     </xsl:if>
   </xsl:template>
 
@@ -125,7 +125,7 @@
     </xsl:if>
     <xsl:variable name="plane" select="ext:modal('plane', substring('G17G19G18', 1 + 3 * ((@plane = 'yz') + 2 * (@plane = 'xz')), 3))"/>
     <xsl:if test="$plane != ''">
-      <xsl:call-template name="block"><xsl:with-param name="text" select="$plane"/></xsl:call-template>
+      <xsl:value-of select="ext:block-line($plane)"/><xsl:text>&#10;</xsl:text>
     </xsl:if>
     <xsl:value-of select="ext:block-line(concat(substring('G2G3', 1 + 2 * (@rotation &gt; 0), 2), ext:arc-words($arc_form)))"/>
     <xsl:text>&#10;</xsl:text>
@@ -137,27 +137,27 @@
 
   <!-- Feed, spindle, tools, coolant -->
   <xsl:template match="SET_FEED_RATE">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('F', ext:format(@rate, 'feed'))"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat('F', ext:format(@rate, 'feed')))"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="SET_SPINDLE_SPEED">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('S', ext:format(@rpm, 'speed'))"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat('S', ext:format(@rpm, 'speed')))"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="START_SPINDLE_CLOCKWISE">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M3'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M3')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="START_SPINDLE_COUNTERCLOCKWISE">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M4'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M4')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="STOP_SPINDLE_TURNING">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M5'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M5')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="SPINDLE_RETRACT"/>
   <!-- Each call on its own (a chunk boundary may fall between them): T.., then T.. M6. -->
   <xsl:template match="SELECT_TOOL">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('T', @slot)"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat('T', @slot))"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="CHANGE_TOOL">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('T', @slot, ' M6')"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat('T', @slot, ' M6'))"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <!-- The tool in the spindle: the last CHANGE_TOOL of this chunk, or the renderer's $tool. -->
   <xsl:template name="current-tool">
@@ -170,29 +170,29 @@
     <xsl:variable name="tool"><xsl:call-template name="current-tool"/></xsl:variable>
     <xsl:choose>
       <xsl:when test="@length = 0">
-        <xsl:call-template name="block"><xsl:with-param name="text" select="'G49'"/></xsl:call-template>
+        <xsl:value-of select="ext:block-line('G49')"/><xsl:text>&#10;</xsl:text>
       </xsl:when>
       <xsl:when test="$tool != '0'">
-        <xsl:call-template name="block"><xsl:with-param name="text" select="concat('G43 H', $tool)"/></xsl:call-template>
+        <xsl:value-of select="ext:block-line(concat('G43 H', $tool))"/><xsl:text>&#10;</xsl:text>
       </xsl:when>
       <xsl:otherwise>
-        <xsl:call-template name="block"><xsl:with-param name="text" select="'G43'"/></xsl:call-template>
+        <xsl:value-of select="ext:block-line('G43')"/><xsl:text>&#10;</xsl:text>
       </xsl:otherwise>
     </xsl:choose>
   </xsl:template>
   <xsl:template match="FLOOD_ON">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M8'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M8')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="MIST_ON">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M7'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M7')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="FLOOD_OFF | MIST_OFF">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M9'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M9')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
 
   <!-- Other -->
   <xsl:template match="DWELL">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="concat('G4 P', ext:format(@seconds, 'dwell'))"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line(concat('G4 P', ext:format(@seconds, 'dwell')))"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="COMMENT">
     <xsl:call-template name="comment-block"><xsl:with-param name="text" select="string(.)"/></xsl:call-template>
@@ -201,10 +201,10 @@
     <xsl:call-template name="comment-block"><xsl:with-param name="text" select="concat('MSG ', string(.))"/></xsl:call-template>
   </xsl:template>
   <xsl:template match="OPTIONAL_PROGRAM_STOP">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M1'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M1')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
   <xsl:template match="PROGRAM_STOP">
-    <xsl:call-template name="block"><xsl:with-param name="text" select="'M0'"/></xsl:call-template>
+    <xsl:value-of select="ext:block-line('M0')"/><xsl:text>&#10;</xsl:text>
   </xsl:template>
 
   <xsl:template match="DRILL_CYCLE | PECK_DRILL_CYCLE | TAP_CYCLE | BORE_CYCLE | REAM_CYCLE">

@@ -38,50 +38,33 @@ std::size_t sequence_length(std::string_view s) {
 
 }  // namespace
 
-std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t size) {
-  decimals = std::clamp(decimals, 0, 12);
-  static constexpr double kPowers[] = {1e0, 1e1, 1e2, 1e3,  1e4,  1e5, 1e6,
-                                       1e7, 1e8, 1e9, 1e10, 1e11, 1e12};
+namespace {
+
+constexpr double kPowers[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12};
+constexpr std::uint64_t kIntegerPowers[] = {
+    1,        10,        100,        1000,        10000,        100000,       1000000,
+    10000000, 100000000, 1000000000, 10000000000, 100000000000, 1000000000000};
+
+// |value| * 10^decimals rounded as printf rounds the exact binary value, when integers can
+// tell. Below 1e12 the product is within 2^-14 of the exact one (powers of ten up to 1e22 are
+// exact doubles; one rounding of at most half an ulp, which is 2^-13 there), and floor and the
+// subtraction are exact. So when the fraction is further than 1e-3 from one half, the exact
+// value rounds the same way. Nothing near a tie, or for huge or non-finite values.
+std::optional<std::uint64_t> rounded_scaled(double value, int decimals) {
   const double scaled = std::abs(value) * kPowers[decimals];
-  // Below 1e12 the product is within 2^-14 of the exact |value| * 10^decimals (powers of ten
-  // up to 1e22 are exact doubles; one rounding of at most half an ulp, which is 2^-13 there),
-  // and floor/subtraction below are exact. So when the fraction is further than 1e-3 from
-  // one half, the exact value rounds the same way, and integers give printf's digits. Near a
-  // tie (and for huge or non-finite values) std::to_chars decides, which is exact.
-  if (std::isfinite(scaled) && scaled < 1e12 && size >= 32) {
-    const double whole = std::floor(scaled);
-    const double fraction = scaled - whole;
-    if (std::abs(fraction - 0.5) > 1e-3) {
-      std::uint64_t n = static_cast<std::uint64_t>(whole) + (fraction > 0.5 ? 1 : 0);
-      char digits[24];
-      int count = 0;
-      do {
-        digits[count++] = static_cast<char>('0' + n % 10);
-        n /= 10;
-      } while (n != 0);
-      while (count <= decimals) digits[count++] = '0';  // at least one digit before the point
-      std::size_t length = 0;
-      if (std::signbit(value)) buffer[length++] = '-';  // "-0.000" is made "0" by the caller
-      for (int i = count - 1; i >= 0; --i) {
-        buffer[length++] = digits[i];
-        if (i == decimals && decimals > 0) buffer[length++] = '.';
-      }
-      return length;
-    }
-  }
-  const auto done = std::to_chars(buffer, buffer + size, value, std::chars_format::fixed, decimals);
-  return done.ec == std::errc() ? static_cast<std::size_t>(done.ptr - buffer) : 0;
+  if (!(scaled < 1e12)) return std::nullopt;  // also NaN
+  const double whole = std::floor(scaled);
+  const double fraction = scaled - whole;
+  if (std::abs(fraction - 0.5) <= 1e-3) return std::nullopt;
+  return static_cast<std::uint64_t>(whole) + (fraction > 0.5 ? 1 : 0);
 }
 
-void append_number(std::string& out, double value, const NumberFormat& format) {
-  char buffer[400];  // DBL_MAX in fixed notation with 12 decimals fits
-  std::size_t end = fixed_digits(value, format.decimals, buffer, sizeof buffer);
-  if (end == 0) return;
+// The format's rules applied to printf-style fixed text ("-12.500"), appended to `out`.
+void append_trimmed(std::string& out, char* buffer, std::size_t end, const NumberFormat& format) {
   std::size_t begin = 0;
   const std::string_view text(buffer, end);
   // Anything that rounds to zero is "0", never "-0".
-  if (end > 0 && buffer[0] == '-' && text.find_first_not_of("0.", 1) == std::string_view::npos)
-    begin = 1;
+  if (buffer[0] == '-' && text.find_first_not_of("0.", 1) == std::string_view::npos) begin = 1;
   const std::size_t point = text.find('.', begin);
   bool has_point = point != std::string_view::npos;
   if (has_point && !format.trailing_zeros) {
@@ -106,6 +89,70 @@ void append_number(std::string& out, double value, const NumberFormat& format) {
     return;
   }
   out.append(buffer + begin, end - begin);
+}
+
+}  // namespace
+
+std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t size) {
+  decimals = std::clamp(decimals, 0, 12);
+  if (const std::optional<std::uint64_t> rounded = rounded_scaled(value, decimals);
+      rounded && size >= 32) {
+    std::uint64_t n = *rounded;
+    char digits[24];
+    int count = 0;
+    do {
+      digits[count++] = static_cast<char>('0' + n % 10);
+      n /= 10;
+    } while (n != 0);
+    while (count <= decimals) digits[count++] = '0';  // at least one digit before the point
+    std::size_t length = 0;
+    if (std::signbit(value)) buffer[length++] = '-';  // "-0.000" is made "0" by the caller
+    for (int i = count - 1; i >= 0; --i) {
+      buffer[length++] = digits[i];
+      if (i == decimals && decimals > 0) buffer[length++] = '.';
+    }
+    return length;
+  }
+  const auto done = std::to_chars(buffer, buffer + size, value, std::chars_format::fixed, decimals);
+  return done.ec == std::errc() ? static_cast<std::size_t>(done.ptr - buffer) : 0;
+}
+
+void append_number(std::string& out, double value, const NumberFormat& format) {
+  const int decimals = std::clamp(format.decimals, 0, 12);
+  const std::optional<std::uint64_t> rounded = rounded_scaled(value, decimals);
+  if (!rounded) {
+    char buffer[400];  // DBL_MAX in fixed notation with 12 decimals fits
+    const std::size_t end = fixed_digits(value, decimals, buffer, sizeof buffer - 1);
+    if (end > 0) append_trimmed(out, buffer, end, format);
+    return;
+  }
+  // The same rules on integers: no text to trim afterwards. Written into a local buffer and
+  // appended once (this runs for every coordinate of every block).
+  const std::uint64_t whole = *rounded / kIntegerPowers[decimals];
+  std::uint64_t fraction = *rounded % kIntegerPowers[decimals];
+  int fraction_digits = decimals;
+  if (!format.trailing_zeros) {
+    while (fraction_digits > 0 && fraction % 10 == 0) {
+      fraction /= 10;
+      --fraction_digits;
+    }
+  }
+  char text[48];
+  char* at = text;
+  if (*rounded != 0 && std::signbit(value)) *at++ = '-';
+  if (whole != 0 || format.leading_zero || fraction_digits == 0)
+    at = std::to_chars(at, text + 20, whole).ptr;  // below 1e12: 12 digits at most
+  if (fraction_digits > 0) {
+    *at = '.';
+    for (int i = fraction_digits; i >= 1; --i) {
+      at[i] = static_cast<char>('0' + fraction % 10);
+      fraction /= 10;
+    }
+    at += fraction_digits + 1;
+  } else if (format.decimal_point) {
+    *at++ = '.';
+  }
+  out.append(text, static_cast<std::size_t>(at - text));
 }
 
 std::string format_number(double value, const NumberFormat& format) {

@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "ext_math.hpp"
 
@@ -60,6 +62,44 @@ TEST(FixedDigits, EdgesOfTheFastPath) {
     for (double v : {edge, std::nextafter(edge, 0.0), std::nextafter(edge, 1e300), -edge, 0.0, -0.0,
                      1e-13, -1e-13, 0.4999999999, 999999.9995, 1.7976931348623157e308})
       ASSERT_EQ(fast(v, d), reference(v, d)) << v << " with " << d;
+  }
+}
+
+// The format rules as first written: std::to_chars's fixed text, trimmed as text.
+std::string reference_format(double value, const NumberFormat& format) {
+  std::string s = reference(value, std::clamp(format.decimals, 0, 12));
+  if (!s.empty() && s[0] == '-' && s.find_first_not_of("0.", 1) == std::string::npos) s.erase(0, 1);
+  std::size_t dot = s.find('.');
+  if (!format.trailing_zeros && dot != std::string::npos) {
+    while (s.back() == '0') s.pop_back();
+  }
+  if (dot != std::string::npos && dot + 1 == s.size()) {
+    if (!format.decimal_point) s.pop_back();
+  } else if (dot == std::string::npos && format.decimal_point) {
+    s += '.';
+  }
+  dot = s.find('.');
+  if (!format.leading_zero && dot != std::string::npos && dot + 1 < s.size()) {
+    const std::size_t first = s[0] == '-' ? 1 : 0;
+    if (dot == first + 1 && s[first] == '0') s.erase(first, 1);
+  }
+  return s;
+}
+
+TEST(FormatNumber, IntegerPathAgreesWithTheTextRules) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> magnitude(-4, 12);
+  std::vector<double> values{0.0, -0.0, 0.5, -0.5, 0.0004, -0.0004, 10, 100, 1e11, 0.125, 2.5};
+  for (int i = 0; i < 20000; ++i)
+    values.push_back(std::pow(10.0, magnitude(random)) * (random() % 2 ? 1 : -1));
+  for (int flags = 0; flags < 8; ++flags) {
+    for (int decimals = 0; decimals <= 12; ++decimals) {
+      const NumberFormat format{decimals, (flags & 1) != 0, (flags & 2) != 0, (flags & 4) != 0,
+                                1.0};
+      for (const double v : values)
+        ASSERT_EQ(format_number(v, format), reference_format(v, format))
+            << v << " decimals " << decimals << " flags " << flags;
+    }
   }
 }
 
