@@ -477,11 +477,13 @@ def general_cases():
     p.write([("D ROUGH", f, bs(p, "ROUGH", "D R", t, tech, cp, 3.0, None, 0.5, 0.2, ramp)),
              ("D FINISH", f, bs(p, "FINISH", "D F", t, tech, bc, 6.0, None, None, None))])
 
-    p = program("pocket-star", "five-pointed star pocket: its offsets split into one region per point, each machined from its own innermost ring")
+    p = program("pocket-star", "a concave star, and twin lobes joined by a neck: their offsets split into one island per lobe, each machined from its own innermost ring")
     t, tech = mill(p, 10, 25), p.tech(0.03, -40.0)
     f = general_pocket(p, "STAR", 0, 0, polyline(p, star(45, 20)), 5, corner=6)
+    twin = general_pocket(p, "TWIN LOBES", 0, 100, polyline(p, [(0, 0), (40, 0), (40, 12), (60, 12), (60, 0), (100, 0), (100, 40), (60, 40), (60, 28), (40, 28), (40, 40), (0, 40)]), 6, corner=6)
     cp = p.add("CONTOUR_PARALLEL(0.5,.T.,$,.CONVENTIONAL.)")
-    p.write([("STAR ROUGH", f, bs(p, "ROUGH", "STAR R", t, tech, cp, 5.0, None, 0.0, 0.0))])
+    p.write([("STAR ROUGH", f, bs(p, "ROUGH", "STAR R", t, tech, cp, 5.0, None, 0.0, 0.0)),
+             ("TWIN ROUGH", twin, bs(p, "ROUGH", "TWIN R", t, tech, cp, 3.0, None, 0.0, 0.0))])
 
     p = program("pocket-ngon", "hexagonal pocket (across flats): one-way lines along y, then contour-bidirectional")
     t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)

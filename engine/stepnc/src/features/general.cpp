@@ -61,7 +61,8 @@ bool circle_through(P a, P b, P c, P& centre, double& radius) {
 }
 
 // The path through `pts` as lines and arcs: a run of at least four points within `tolerance` of
-// one circle, whose chords also stay within it, is one arc. The polygons of round joins and of
+// one circle, whose chords' sagittas are at most twice that (round joins are made with chords
+// of sagitta `tolerance`), is one arc: the arc is within 3 × `tolerance` of the polygon. The polygons of round joins and of
 // offset arcs are such runs, so their offsets come out as the arcs they are.
 std::vector<Span2> fit_arcs(const std::vector<P>& pts, double tolerance) {
   std::vector<Span2> out;
@@ -87,7 +88,7 @@ std::vector<Span2> fit_arcs(const std::vector<P>& pts, double tolerance) {
         const double half = (pts[k + 1] - pts[k]).length() / 2;
         ok = std::abs(u.length() - r) <= tolerance && (step > 0) == ccw &&
              std::abs(step) < std::numbers::pi / 2 &&
-             r - std::sqrt(std::max(0.0, r * r - half * half)) <= tolerance;
+             r - std::sqrt(std::max(0.0, r * r - half * half)) <= 2 * tolerance;
         sweep += step;
       }
       if (!ok || std::abs(sweep) > 2 * std::numbers::pi - 1e-3) break;
@@ -174,10 +175,12 @@ struct Group {
 
 class Planner {
  public:
+  // `centres` is `source` shrunk by `base`: inner rings are shrunk from `source` at once, so
+  // that a round join about one of its corners stays one arc.
   Planner(Context& ctx, const Tool& tool, const OperationData& o, const Entry& entry,
-          const Areas& centres, double margin)
+          const Areas& centres, const Areas& source, double base, double margin)
       : ctx_(ctx), tool_(tool), approach_(o.approach), entry_(entry), centres_(centres),
-        margin_(margin), polygons_(ctx.opt.chord_tolerance) {}
+        source_(source), base_(base), margin_(margin), polygons_(ctx.opt.chord_tolerance) {}
 
   // A site among sampled points: the helix where there is most room, a ramp along a segment.
   bool site(const std::vector<P>& candidates, const std::vector<std::pair<P, P>>& ramps,
@@ -262,6 +265,8 @@ class Planner {
   const Instance* approach_;  // set whenever entry_.explicit_entry
   const Entry& entry_;
   const Areas& centres_;
+  const Areas& source_;
+  double base_;
   double margin_;
   poly::Polygons polygons_;
   bool plunge_noted_ = false;
@@ -282,7 +287,7 @@ std::optional<double> Planner::inradius() {
   const double precision = std::max(1e-3, 1e-4 * tool_.radius);
   for (int k = 0; k < 64 && hi - lo > precision; ++k) {
     const double mid = (lo + hi) / 2;
-    const auto e = polygons_.offset(centres_, -mid);
+    const auto e = polygons_.offset(source_, -(base_ + mid));
     if (!e) return std::nullopt;
     (e->empty() ? hi : lo) = mid;
   }
@@ -322,7 +327,7 @@ std::optional<std::vector<Group>> Planner::rings(double step0, bool ccw, bool wa
     for (std::size_t k = 0; k <= n; ++k) {
       const double inset = k < n ? static_cast<double>(k) * s : *room - std::min(0.05 * s, 0.01);
       std::optional<Areas> level = k == 0 ? std::optional<Areas>(centres_)
-                                          : polygons_.offset(centres_, -inset);
+                                          : polygons_.offset(source_, -(base_ + inset));
       if (!level) return std::nullopt;
       for (Area& a : *level) {
         if (!a.holes.empty()) {
@@ -619,9 +624,9 @@ bool play(const Play& p, const std::vector<Group>& groups) {
 // ---- pockets ------------------------------------------------------------------------------------
 
 // The margin by which every centre region is kept inside the exact one: the round joins' chords
-// (chord_tolerance), the arcs fitted back (twice that), Clipper's grid.
+// (chord_tolerance), the arcs fitted back (three times that), Clipper's grid.
 double margin(const Context& ctx) {
-  return 3 * ctx.opt.chord_tolerance + 4 * poly::kResolution;
+  return 5 * ctx.opt.chord_tolerance + 4 * poly::kResolution;
 }
 
 bool corner_checks(Context& ctx, const Outline& outline, const Tool& tool,
@@ -653,6 +658,8 @@ bool corner_checks(Context& ctx, const Outline& outline, const Tool& tool,
 // What a general pocket (closed or open) hands to the common machining.
 struct PocketRegion {
   Areas centres;   // where the tool centre may go
+  Areas source;    // what `centres` is shrunk from (by `base`)
+  double base = 0;
   Areas floor;     // what it must reach (the floor inset by the side allowance)
   bool through = false;
   std::optional<Toleranced> fillet;
@@ -726,7 +733,7 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
     ctx.note(*o.retract, ctx.d(*o.retract) + ": the tool leaves " + ctx.d(f) +
                              " along its axis, from inside the machined pocket");
 
-  Planner planner(ctx, tool, o, entry, region.centres, margin(ctx));
+  Planner planner(ctx, tool, o, entry, region.centres, region.source, region.base, margin(ctx));
   std::optional<std::vector<Group>> groups;
   if (pattern == Pattern::Rings) {
     groups = planner.rings(step, ccw, walls_only);
@@ -938,7 +945,7 @@ bool general_pocket(Context& ctx, const Instance& boundary, bool through,
                                           ctx.opt.corner_tolerance))
              : std::nullopt;
   if (!centres || !floor) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
-  PocketRegion region{*centres, *floor, through, fillet};
+  PocketRegion region{*centres, *pocket, d + margin(ctx), *floor, through, fillet};
   return machine_pocket(ctx, *tool, o, region, *depth);
 }
 
@@ -1017,7 +1024,7 @@ bool generate_open_pocket(Context& ctx) {
            : std::nullopt;
   const auto floor = inset ? polygons.intersection(*inset, Areas{Area{*ring, {}}}) : std::nullopt;
   if (!centres || !floor) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
-  PocketRegion region{*centres, *floor, through, ctx.toleranced(f, "planar_radius")};
+  PocketRegion region{*centres, *centres, 0, *floor, through, ctx.toleranced(f, "planar_radius")};
   return machine_pocket(ctx, *tool, o, region, *depth);
 }
 
