@@ -38,6 +38,19 @@ std::optional<Outline> read_curve(Context& ctx, const Instance& profile, const I
     }
     frame = *f;
   }
+  // A list longer than the limit is refused before any of it is read.
+  const char* list = ctx.is(&curve, "polyline")          ? "points"
+                     : ctx.is(&curve, "composite_curve") ? "segments"
+                                                          : nullptr;
+  if (list != nullptr) {
+    const auto items = ctx.g.get(curve, list);
+    if (items && items->is_list() && items->count() > ctx.opt.max_profile_elements + 1) {
+      ctx.bad(curve, ctx.d(curve) + " has " + std::to_string(items->count()) +
+                         " elements, more than FeatureOptions::max_profile_elements (" +
+                         std::to_string(ctx.opt.max_profile_elements) + ")");
+      return std::nullopt;
+    }
+  }
   detail::CurveReader reader(ctx.g, kArcTolerance);
   auto segments = reader.segments(curve);
   if (!segments) return std::nullopt;
