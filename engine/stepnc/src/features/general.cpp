@@ -177,10 +177,14 @@ class Planner {
  public:
   // `centres` is `source` shrunk by `base`: inner rings are shrunk from `source` at once, so
   // that a round join about one of its corners stays one arc.
+  // Shrunk by `rho` or more, `source` and `sharp` (its corners not filleted) give the same
+  // region, and `sharp` has far fewer points: its polygon's arcs do not fold over.
   Planner(Context& ctx, const Tool& tool, const OperationData& o, const Entry& entry,
-          const Areas& centres, const Areas& source, double base, double margin)
+          const Areas& centres, const Areas& source, const Areas& sharp, double rho, double base,
+          double margin)
       : ctx_(ctx), tool_(tool), approach_(o.approach), entry_(entry), centres_(centres),
-        source_(source), base_(base), margin_(margin), polygons_(ctx.opt.chord_tolerance) {}
+        source_(source), sharp_(sharp), rho_(rho), base_(base), margin_(margin),
+        polygons_(ctx.opt.chord_tolerance) {}
 
   // A site among sampled points: the helix where there is most room, a ramp along a segment.
   bool site(const std::vector<P>& candidates, const std::vector<std::pair<P, P>>& ramps,
@@ -259,6 +263,16 @@ class Planner {
   // The largest distance from the region's boundary that a point of it has.
   std::optional<double> inradius();
   bool covered(const std::vector<Ring>& rings, const std::vector<Chain>& chains);
+  // Rings that are the boundaries of nested regions (`levels`, from the outermost) cover all of
+  // the outermost when, in each, what is further than the tool radius from its boundary lies
+  // within the tool radius of the next one: a test on each region, not on the union of all
+  // the swept bands (which costs far more).
+  bool rings_cover(const std::vector<Areas>& levels, const std::vector<double>& insets);
+  // `source` shrunk by `base` + `inset`.
+  std::optional<Areas> shrunk(double inset) {
+    const double by = base_ + inset;
+    return polygons_.offset(by >= rho_ ? sharp_ : source_, -by);
+  }
 
   Context& ctx_;
   const Tool& tool_;
@@ -266,6 +280,8 @@ class Planner {
   const Entry& entry_;
   const Areas& centres_;
   const Areas& source_;
+  const Areas& sharp_;
+  double rho_;
   double base_;
   double margin_;
   poly::Polygons polygons_;
@@ -273,6 +289,10 @@ class Planner {
 };
 
 std::optional<double> Planner::inradius() {
+  // On a simplified outline (within `coarse` either way): the answer only spaces the rings,
+  // and the innermost ring is put `coarse` further out, so that it is never empty.
+  const double coarse = std::min(0.02 * tool_.radius, 0.1);
+  const Areas outline = poly::simplified(centres_, coarse);
   double lo = 0;
   double hi = 0;
   for (const Area& a : centres_) {
@@ -287,11 +307,11 @@ std::optional<double> Planner::inradius() {
   const double precision = std::max(1e-3, 1e-4 * tool_.radius);
   for (int k = 0; k < 64 && hi - lo > precision; ++k) {
     const double mid = (lo + hi) / 2;
-    const auto e = polygons_.offset(source_, -(base_ + mid));
+    const auto e = polygons_.offset(outline, -mid);
     if (!e) return std::nullopt;
     (e->empty() ? hi : lo) = mid;
   }
-  return lo;
+  return std::max(0.0, lo - coarse);
 }
 
 bool Planner::covered(const std::vector<Ring>& rings, const std::vector<Chain>& chains) {
@@ -303,6 +323,27 @@ bool Planner::covered(const std::vector<Ring>& rings, const std::vector<Chain>& 
   if (!left) return false;
   const auto significant = polygons_.offset(*left, -ctx_.opt.corner_tolerance / 2);
   return significant && significant->empty();
+}
+
+bool Planner::rings_cover(const std::vector<Areas>& levels, const std::vector<double>& insets) {
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    // Further than the tool radius from ring k: the source shrunk that much more, less the
+    // islands that ring k does not go round (slivers left out of the plan).
+    const auto deeper = shrunk(insets[k] + tool_.radius);
+    const auto far = deeper ? polygons_.intersection(*deeper, levels[k]) : std::nullopt;
+    if (!far) return false;
+    Areas rest = *far;
+    if (!rest.empty() && k + 1 < levels.size()) {
+      const auto near = polygons_.offset(levels[k + 1], tool_.radius);
+      const auto left = near ? polygons_.difference(rest, *near) : std::nullopt;
+      if (!left) return false;
+      rest = *left;
+    }
+    if (rest.empty()) continue;
+    const auto significant = polygons_.offset(rest, -ctx_.opt.corner_tolerance / 2);
+    if (!significant || !significant->empty()) return false;
+  }
+  return true;
 }
 
 std::optional<std::vector<Group>> Planner::rings(double step0, bool ccw, bool walls_only) {
@@ -323,11 +364,12 @@ std::optional<std::vector<Group>> Planner::rings(double step0, bool ccw, bool wa
       std::vector<std::size_t> children;
     };
     std::vector<Node> nodes;
+    std::vector<double> insets;
     std::size_t points = 0;
     for (std::size_t k = 0; k <= n; ++k) {
       const double inset = k < n ? static_cast<double>(k) * s : *room - std::min(0.05 * s, 0.01);
-      std::optional<Areas> level = k == 0 ? std::optional<Areas>(centres_)
-                                          : polygons_.offset(source_, -(base_ + inset));
+      insets.push_back(inset);
+      std::optional<Areas> level = k == 0 ? std::optional<Areas>(centres_) : shrunk(inset);
       if (!level) return std::nullopt;
       for (Area& a : *level) {
         if (!a.holes.empty()) {
@@ -357,9 +399,9 @@ std::optional<std::vector<Group>> Planner::rings(double step0, bool ccw, bool wa
         return std::nullopt;
       }
     }
-    std::vector<Ring> all;
-    for (const Node& node : nodes) all.push_back(node.ring);
-    if (!covered(all, {})) continue;
+    std::vector<Areas> levels(n + 1);
+    for (const Node& node : nodes) levels[node.level].push_back(Area{node.ring, {}});
+    if (!walls_only && !rings_cover(levels, insets)) continue;
 
     // Post-order from each outermost ring: a branch's innermost ring first, each ring entered
     // from the one inside it by the shortest feed (it stays between the two rings).
@@ -659,6 +701,8 @@ bool corner_checks(Context& ctx, const Outline& outline, const Tool& tool,
 struct PocketRegion {
   Areas centres;   // where the tool centre may go
   Areas source;    // what `centres` is shrunk from (by `base`)
+  Areas sharp;     // `source` without its corner fillets, of radius `rho`
+  double rho = 0;
   double base = 0;
   Areas floor;     // what it must reach (the floor inset by the side allowance)
   bool through = false;
@@ -733,7 +777,8 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
     ctx.note(*o.retract, ctx.d(*o.retract) + ": the tool leaves " + ctx.d(f) +
                              " along its axis, from inside the machined pocket");
 
-  Planner planner(ctx, tool, o, entry, region.centres, region.source, region.base, margin(ctx));
+  Planner planner(ctx, tool, o, entry, region.centres, region.source, region.sharp, region.rho,
+                  region.base, margin(ctx));
   std::optional<std::vector<Group>> groups;
   if (pattern == Pattern::Rings) {
     groups = planner.rings(step, ccw, walls_only);
@@ -945,7 +990,8 @@ bool general_pocket(Context& ctx, const Instance& boundary, bool through,
                                           ctx.opt.corner_tolerance))
              : std::nullopt;
   if (!centres || !floor) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
-  PocketRegion region{*centres, *pocket, d + margin(ctx), *floor, through, fillet};
+  PocketRegion region{*centres, *pocket, Areas{Area{*ring, {}}}, rho, d + margin(ctx), *floor,
+                      through, fillet};
   return machine_pocket(ctx, *tool, o, region, *depth);
 }
 
@@ -1024,7 +1070,8 @@ bool generate_open_pocket(Context& ctx) {
            : std::nullopt;
   const auto floor = inset ? polygons.intersection(*inset, Areas{Area{*ring, {}}}) : std::nullopt;
   if (!centres || !floor) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
-  PocketRegion region{*centres, *centres, 0, *floor, through, ctx.toleranced(f, "planar_radius")};
+  PocketRegion region{*centres, *centres, *centres, 0,     0,
+                      *floor,   through,  ctx.toleranced(f, "planar_radius")};
   return machine_pocket(ctx, *tool, o, region, *depth);
 }
 

@@ -81,7 +81,53 @@ double segment_distance(P p, P a, P b) {
   return (a + d * t - p).length();
 }
 
+// Douglas-Peucker on a closed ring, with an explicit stack.
+Ring simplify_ring(const Ring& ring, double tolerance) {
+  const std::size_t n = ring.size();
+  if (n < 4) return ring;
+  // Split at the first point and the point farthest from it.
+  std::size_t far = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if ((ring[i] - ring[0]).length() > (ring[far] - ring[0]).length()) far = i;
+  std::vector<bool> keep(n + 1, false);
+  keep[0] = keep[far] = keep[n] = true;
+  const auto at = [&](std::size_t i) { return ring[i % n]; };
+  std::vector<std::pair<std::size_t, std::size_t>> stack{{0, far}, {far, n}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    double worst = -1;
+    std::size_t at_worst = a;
+    for (std::size_t i = a + 1; i < b; ++i) {
+      const double d = segment_distance(at(i), at(a), at(b));
+      if (d > worst) {
+        worst = d;
+        at_worst = i;
+      }
+    }
+    if (worst > tolerance) {
+      keep[at_worst] = true;
+      stack.push_back({a, at_worst});
+      stack.push_back({at_worst, b});
+    }
+  }
+  Ring out;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) out.push_back(ring[i]);
+  return out.size() >= 3 ? out : ring;
+}
+
 }  // namespace
+
+Areas simplified(const Areas& areas, double tolerance) {
+  Areas out;
+  for (const Area& a : areas) {
+    Area s{simplify_ring(a.outer, tolerance), {}};
+    for (const Ring& h : a.holes) s.holes.push_back(simplify_ring(h, tolerance));
+    out.push_back(std::move(s));
+  }
+  return out;
+}
 
 double P::length() const {
   return std::hypot(x, y);

@@ -51,6 +51,10 @@ inline constexpr double kResolution = 1e-4;
 // and encloses a positive area.
 [[nodiscard]] bool simple(const Ring& ring);
 
+// The region with its boundaries simplified (Douglas-Peucker): no point moves more than
+// `tolerance`, either way; far fewer points where arcs were finely split.
+[[nodiscard]] Areas simplified(const Areas& areas, double tolerance);
+
 // All operations return nullopt when Clipper refuses (a coordinate out of range, memory).
 class Polygons {
  public:
