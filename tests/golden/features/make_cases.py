@@ -545,6 +545,8 @@ def general_cases():
         ("SHARP CORNERS", sharp, bs(p, "ROUGH", "R SHARP", t, tech, cp, 5.0, None, 0.5, 0.0)),
         ("ARC TOO TIGHT", narrow, bs(p, "ROUGH", "R NARROW", t, tech, cp, 5.0, None, 0.0, 0.0)),
         ("NECK TOO NARROW", dumbbell, bs(p, "ROUGH", "R NECK", t, tech, cp, 5.0, None, 0.0, 0.0)),
+        # Corners of 6 on sides of 4: the outline is inconsistent (STEPNC-103). A general pocket
+        # whose corners fit the tool and whose sides fit its corners is never too small.
         ("POCKET TOO SMALL", tiny, bs(p, "ROUGH", "R TINY", t, tech, cp, 5.0, None, 0.0, 0.0)),
         ("HELIX TOO WIDE", ell, bs(p, "ROUGH", "R HELIX", t, tech, cp, 5.0, None, 0.0, 0.0, big_helix)),
         ("CONCAVE CORNER OUTSIDE", ell_boss, side_op(p, "FINISH", "S L", t, tech, cp, 5.0, 0.0)),

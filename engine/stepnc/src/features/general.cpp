@@ -184,7 +184,7 @@ class Planner {
           double margin)
       : ctx_(ctx), tool_(tool), approach_(o.approach), entry_(entry), centres_(centres),
         source_(source), sharp_(sharp), rho_(rho), base_(base), margin_(margin),
-        polygons_(ctx.opt.chord_tolerance) {}
+        polygons_(ctx.opt.chord_tolerance), checks_(ctx.opt.corner_tolerance / 5) {}
 
   // A site among sampled points: the helix where there is most room, a ramp along a segment.
   bool site(const std::vector<P>& candidates, const std::vector<std::pair<P, P>>& ramps,
@@ -269,9 +269,9 @@ class Planner {
   // the swept bands (which costs far more).
   bool rings_cover(const std::vector<Areas>& levels, const std::vector<double>& insets);
   // `source` shrunk by `base` + `inset`.
-  std::optional<Areas> shrunk(double inset) {
+  std::optional<Areas> shrunk(double inset, bool for_check = false) {
     const double by = base_ + inset;
-    return polygons_.offset(by >= rho_ ? sharp_ : source_, -by);
+    return (for_check ? checks_ : polygons_).offset(by >= rho_ ? sharp_ : source_, -by);
   }
 
   Context& ctx_;
@@ -285,6 +285,9 @@ class Planner {
   double base_;
   double margin_;
   poly::Polygons polygons_;
+  // For tests that only need to be right within a share of the corner tolerance, whose
+  // round joins need fewer points: both shrinks and grows err towards "not covered".
+  poly::Polygons checks_;
   bool plunge_noted_ = false;
 };
 
@@ -304,14 +307,13 @@ std::optional<double> Planner::inradius() {
     }
     hi = std::max(hi, std::min(mx.x - mn.x, mx.y - mn.y) / 2);
   }
-  const double precision = std::max(1e-3, 1e-4 * tool_.radius);
-  for (int k = 0; k < 64 && hi - lo > precision; ++k) {
+  for (int k = 0; k < 64 && hi - lo > coarse; ++k) {
     const double mid = (lo + hi) / 2;
-    const auto e = polygons_.offset(outline, -mid);
+    const auto e = checks_.offset(outline, -mid);
     if (!e) return std::nullopt;
     (e->empty() ? hi : lo) = mid;
   }
-  return std::max(0.0, lo - coarse);
+  return std::max(0.0, lo - 2 * coarse);
 }
 
 bool Planner::covered(const std::vector<Ring>& rings, const std::vector<Chain>& chains) {
@@ -329,18 +331,20 @@ bool Planner::rings_cover(const std::vector<Areas>& levels, const std::vector<do
   for (std::size_t k = 0; k < levels.size(); ++k) {
     // Further than the tool radius from ring k: the source shrunk that much more, less the
     // islands that ring k does not go round (slivers left out of the plan).
-    const auto deeper = shrunk(insets[k] + tool_.radius);
-    const auto far = deeper ? polygons_.intersection(*deeper, levels[k]) : std::nullopt;
+    const auto deeper = shrunk(insets[k] + tool_.radius, true);
+    const auto far = deeper ? checks_.intersection(*deeper, levels[k]) : std::nullopt;
     if (!far) return false;
     Areas rest = *far;
     if (!rest.empty() && k + 1 < levels.size()) {
-      const auto near = polygons_.offset(levels[k + 1], tool_.radius);
-      const auto left = near ? polygons_.difference(rest, *near) : std::nullopt;
+      // On a simplified copy, grown that much less: still inside the exact grown region.
+      const double e = ctx_.opt.corner_tolerance / 5;
+      const auto near = checks_.offset(poly::simplified(levels[k + 1], e), tool_.radius - e);
+      const auto left = near ? checks_.difference(rest, *near) : std::nullopt;
       if (!left) return false;
       rest = *left;
     }
     if (rest.empty()) continue;
-    const auto significant = polygons_.offset(rest, -ctx_.opt.corner_tolerance / 2);
+    const auto significant = checks_.offset(rest, -ctx_.opt.corner_tolerance / 2);
     if (!significant || !significant->empty()) return false;
   }
   return true;
@@ -712,14 +716,16 @@ struct PocketRegion {
 bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, PocketRegion& region,
                     double depth) {
   const Instance& f = ctx.feature();
-  const poly::Polygons polygons(ctx.opt.chord_tolerance);
+  // Checks only: within a fifth of the corner tolerance, erring towards "not reached".
+  const double e = ctx.opt.corner_tolerance / 5;
+  const poly::Polygons polygons(e);
   if (region.centres.empty())
     return ctx.unfit(*tool.instance, ctx.d(*tool.instance) + " diameter " +
                                          fmt(2 * tool.radius) + " + allowances does not fit " +
                                          ctx.d(f));
   // Everything of the floor within the tool radius of the centre region: nothing narrower
   // than the tool (a neck between two walls) may be left.
-  const auto reach = polygons.offset(region.centres, tool.radius);
+  const auto reach = polygons.offset(poly::simplified(region.centres, e), tool.radius - e);
   const auto missed = reach ? polygons.difference(region.floor, *reach) : std::nullopt;
   const auto missed_much =
       missed ? polygons.offset(*missed, -ctx.opt.chord_tolerance) : std::nullopt;
@@ -900,10 +906,13 @@ bool foot_on(const Element& e, P p, P& foot) {
 // the fillet's chords lie on the pocket side, and the sides' arcs are followed to within the
 // chord tolerance. A fillet that the sides are too short for, or too curved, is taken tangent
 // to the sides' directions at the corner, which keeps more material.
-Areas fillet_material(const Outline& outline, double rho, double d, const FeatureOptions& opt) {
+std::optional<Areas> fillet_material(Context& ctx, const Outline& outline, double rho, double d) {
+  const FeatureOptions& opt = ctx.opt;
   Areas out;
   if (!(rho > 0)) return out;
   const double tol = opt.chord_tolerance;
+  // How much of each straight side the fillets at its two ends take.
+  std::vector<double> taken(outline.elements.size(), 0);
   for (const Corner& c : corners(outline)) {
     if (c.turn <= 0 || d * (1 / std::cos(std::min(c.turn, 3.1) / 2) - 1) <= opt.corner_tolerance)
       continue;
@@ -931,6 +940,17 @@ Areas fillet_material(const Outline& outline, double rho, double d, const Featur
           t2 = f2;
           exact = true;
         }
+      }
+    }
+    for (const auto& [index, tangent] : {std::pair{c.before, t1}, std::pair{c.after, t2}}) {
+      const Element& side = outline.elements[index];
+      if (side.arc) continue;
+      taken[index] += (tangent - c.at).length();
+      if (taken[index] > (side.b - side.a).length() + 1e-6) {
+        ctx.bad(ctx.feature(), ctx.d(ctx.feature()) + " orthogonal_radius " + fmt(rho) +
+                                   " does not fit the side from " + at_text(side.a) + " to " +
+                                   at_text(side.b) + " between its corners");
+        return std::nullopt;
       }
     }
     Ring ring{c.at};
@@ -982,8 +1002,9 @@ bool general_pocket(Context& ctx, const Instance& boundary, bool through,
   if (!ring) return false;
   const poly::Polygons polygons(ctx.opt.chord_tolerance);
   const double d = tool->radius + o.allowance_side;
-  const auto pocket = polygons.difference(Areas{Area{*ring, {}}},
-                                          fillet_material(*outline, rho, d, ctx.opt));
+  const auto fillets = fillet_material(ctx, *outline, rho, d);
+  if (!fillets) return false;
+  const auto pocket = polygons.difference(Areas{Area{*ring, {}}}, *fillets);
   const auto centres = pocket ? polygons.offset(*pocket, -(d + margin(ctx))) : std::nullopt;
   const auto floor =
       pocket ? polygons.offset(*pocket, -(o.allowance_side + 2 * margin(ctx) +
@@ -1058,7 +1079,9 @@ bool generate_open_pocket(Context& ctx) {
   if (!walls_chain) return ctx.bad(*boundary, ctx.d(*boundary) + " needs too many polygon points");
   walls_chain->insert(walls_chain->begin(), b + along * (reach + d + 1));
   walls_chain->push_back(a - along * (reach + d + 1));
-  const Areas fillets = fillet_material(*walls, rho, d, ctx.opt);
+  const auto fillet_areas = fillet_material(ctx, *walls, rho, d);
+  if (!fillet_areas) return false;
+  const Areas& fillets = *fillet_areas;
   const auto united = polygons.unite(Areas{Area{*ring, {}}}, Areas{Area{beyond, {}}});
   const auto open = united ? polygons.difference(*united, fillets) : std::nullopt;
   const auto band = polygons.sweep({}, {*walls_chain}, d + m + ctx.opt.chord_tolerance);
