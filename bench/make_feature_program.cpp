@@ -48,7 +48,10 @@ int main(int argc, char** argv) {
       "ENDSEC;\nDATA;\n";
   // Fixed part: ids below 100.
   std::string elements;
-  for (long i = 0; i < 2 * n; ++i) elements += (i ? ",#" : "#") + std::to_string(1000 + i);
+  for (long i = 0; i < 2 * n; ++i) {
+    elements += i ? ",#" : "#";
+    elements += std::to_string(1000 + i);
+  }
   add("#1=PROJECT('FEATURE BENCH',#2,(#4),$,$,$);");
   out += "#2=WORKPLAN('MAIN',(" + elements + "),$,#8,$);\n";  // longer than `line`
   add("#4=WORKPIECE('PLATE',$,0.01,$,$,$,());");
@@ -105,8 +108,11 @@ int main(int argc, char** argv) {
         const double arm = uniform(26, 34);  // room for two corners of 12
         const double x0 = -length / 2;
         const double y0 = -height / 2;
-        const double corners[6][2] = {{x0, y0},       {x0 + length, y0}, {x0 + length, y0 + arm},
-                                      {x0 + arm, y0 + arm}, {x0 + arm, y0 + height},
+        const double corners[6][2] = {{x0, y0},
+                                      {x0 + length, y0},
+                                      {x0 + length, y0 + arm},
+                                      {x0 + arm, y0 + arm},
+                                      {x0 + arm, y0 + height},
                                       {x0, y0 + height}};
         std::copy(&corners[0][0], &corners[0][0] + 12, &xy[0][0]);
       } else {

@@ -63,14 +63,25 @@ TEST(FeaturePolygons, ShrinkingAnLRoundsItsInnerCornerAndKeepsItsDistance) {
   // than 5 from the inner corner (25, 25) that it goes round.
   EXPECT_NEAR(clearance(*in, ell), 5, kTol + 2 * poly::kResolution);
   double nearest_corner = 1e300;
-  for (const P& p : in->front().outer) nearest_corner = std::min(nearest_corner, (p - P{25, 25}).length());
+  for (const P& p : in->front().outer)
+    nearest_corner = std::min(nearest_corner, (p - P{25, 25}).length());
   EXPECT_NEAR(nearest_corner, 5, 2 * poly::kResolution);
 }
 
 TEST(FeaturePolygons, ANeckSplitsTheShrunkRegionIntoIslands) {
   // Two 40 × 40 lobes joined by a neck 16 wide: at 8 and beyond, two islands.
-  const Areas twin{Area{{{0, 0}, {40, 0}, {40, 12}, {60, 12}, {60, 0}, {100, 0}, {100, 40},
-                         {60, 40}, {60, 28}, {40, 28}, {40, 40}, {0, 40}},
+  const Areas twin{Area{{{0, 0},
+                         {40, 0},
+                         {40, 12},
+                         {60, 12},
+                         {60, 0},
+                         {100, 0},
+                         {100, 40},
+                         {60, 40},
+                         {60, 28},
+                         {40, 28},
+                         {40, 40},
+                         {0, 40}},
                         {}}};
   const poly::Polygons polygons(kTol);
   EXPECT_EQ(polygons.offset(twin, -7.9)->size(), 1u);
@@ -80,20 +91,20 @@ TEST(FeaturePolygons, ANeckSplitsTheShrunkRegionIntoIslands) {
 
 TEST(FeaturePolygons, SimpleRings) {
   EXPECT_TRUE(poly::simple({{0, 0}, {10, 0}, {10, 10}, {0, 10}}));
-  EXPECT_TRUE(poly::simple({{0, 0}, {0, 10}, {10, 10}, {10, 0}}));  // either sense
+  EXPECT_TRUE(poly::simple({{0, 0}, {0, 10}, {10, 10}, {10, 0}}));   // either sense
   EXPECT_FALSE(poly::simple({{0, 0}, {10, 10}, {10, 0}, {0, 10}}));  // a bow tie
   EXPECT_FALSE(poly::simple({{0, 0}, {5, 0}, {10, 0}}));             // no area
   // Touching itself at a vertex: two squares sharing the corner (10, 10).
-  EXPECT_FALSE(poly::simple({{0, 0}, {10, 0}, {10, 10}, {20, 10}, {20, 20}, {10, 20}, {10, 10},
-                             {0, 10}}));
+  EXPECT_FALSE(
+      poly::simple({{0, 0}, {10, 0}, {10, 10}, {20, 10}, {20, 20}, {10, 20}, {10, 10}, {0, 10}}));
   EXPECT_FALSE(poly::simple({{0, 0}, {1, 0}}));
 }
 
 TEST(FeaturePolygons, LinesAreClippedToTheRegion) {
   const poly::Polygons polygons(kTol);
   // A U: the line y = 15 crosses both arms.
-  const Areas u{Area{{{0, 0}, {30, 0}, {30, 20}, {20, 20}, {20, 10}, {10, 10}, {10, 20}, {0, 20}},
-                     {}}};
+  const Areas u{
+      Area{{{0, 0}, {30, 0}, {30, 20}, {20, 20}, {20, 10}, {10, 10}, {10, 20}, {0, 20}}, {}}};
   const auto pieces = polygons.clip({{{-5, 15}, {35, 15}}, {{-5, 5}, {35, 5}}}, u);
   ASSERT_TRUE(pieces);
   ASSERT_EQ(pieces->size(), 3u);
@@ -179,7 +190,8 @@ TEST(FeatureOutlines, CornersTurnLeftWhereConvex) {
   ASSERT_EQ(c.size(), 4u);
   for (const Corner& corner : c) EXPECT_NEAR(corner.turn, std::numbers::pi / 2, 1e-12);
   reverse(square);
-  for (const Corner& corner : corners(square)) EXPECT_NEAR(corner.turn, -std::numbers::pi / 2, 1e-12);
+  for (const Corner& corner : corners(square))
+    EXPECT_NEAR(corner.turn, -std::numbers::pi / 2, 1e-12);
 }
 
 }  // namespace

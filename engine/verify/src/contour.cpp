@@ -157,7 +157,8 @@ bool read_into(const Reader& r, const p21::Instance& curve, const Frame& local, 
     }
     return true;
   }
-  reason = "its profile is a " + r.type(curve) + " (polylines, trimmed lines and circles and "
+  reason = "its profile is a " + r.type(curve) +
+           " (polylines, trimmed lines and circles and "
            "composite curves of them are read)";
   return false;
 }
@@ -171,7 +172,8 @@ void add_piece(Region& region, const Piece2& p) {
   const double a0 = angle(p.a - p.centre);
   region.add_arc(p.centre, p.radius, a0, p.sweep);
   const int n = std::max(2, static_cast<int>(std::ceil(std::abs(p.sweep) / kTwoPi * kPerTurn)));
-  for (int k = 0; k < n; ++k) region.add_polygon_point(on_circle(p.centre, p.radius, a0 + p.sweep * k / n));
+  for (int k = 0; k < n; ++k)
+    region.add_polygon_point(on_circle(p.centre, p.radius, a0 + p.sweep * k / n));
 }
 
 // Where a point `radius` to the left of the piece may lie: a line (point, direction) or a

@@ -1,9 +1,9 @@
 #include "model.hpp"
 
-#include "contour.hpp"
-
 #include <algorithm>
 #include <numbers>
+
+#include "contour.hpp"
 
 namespace ncpost::verify::detail {
 

@@ -691,8 +691,8 @@ void Verifier::feature_piece(const Piece& p) {
     if (tool_.ball && -q.z < radius)
       reach = std::sqrt(std::max(0.0, radius * radius - (radius + q.z) * (radius + q.z)));
     // Distance into where the tool may be: inside a pocket's outline, outside a profile's.
-    const double d = f.outside ? -f.region.signed_distance(q.xy())
-                               : f.region.signed_distance(q.xy());
+    const double d =
+        f.outside ? -f.region.signed_distance(q.xy()) : f.region.signed_distance(q.xy());
     const double d_floor = f.floor_region ? f.floor_region->signed_distance(q.xy()) : d;
     if (f.walls) {
       const double over = reach + side - d;

@@ -227,23 +227,21 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, FeatureGolden,
-                         ::testing::Values("face-unidirectional", "face-bidirectional-right",
-                                           "pocket-rect-helix", "pocket-circle-ramp",
-                                           "pocket-rect-zigzag", "pocket-toolaxis-fillet",
-                                           "pocket-raster", "pocket-side-finish", "outside-profile",
-                                           "holes-cycles", "holes-pointed-bottoms",
-                                           "holes-strategy", "slots", "wrong-tools", "unsupported",
-                                           "hostile", "pocket-polyline-l", "pocket-composite",
-                                           "pocket-star", "pocket-ngon", "open-pocket",
-                                           "outside-general", "wrong-tools-general",
-                                           "hostile-general"),
-                         [](const auto& param_info) {
-                           std::string n = param_info.param;
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Cases, FeatureGolden,
+    ::testing::Values("face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
+                      "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet",
+                      "pocket-raster", "pocket-side-finish", "outside-profile", "holes-cycles",
+                      "holes-pointed-bottoms", "holes-strategy", "slots", "wrong-tools",
+                      "unsupported", "hostile", "pocket-polyline-l", "pocket-composite",
+                      "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
+                      "wrong-tools-general", "hostile-general"),
+    [](const auto& param_info) {
+      std::string n = param_info.param;
+      for (char& c : n)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return n;
+    });
 
 // ---- Numbers checked by hand from the cases' own data ----
 
@@ -385,7 +383,8 @@ Generated run_with_outline(const std::vector<std::string>& points) {
 
 std::size_t cutting_moves(const Generated& g) {
   return static_cast<std::size_t>(std::count_if(g.calls.begin(), g.calls.end(), [](const auto& c) {
-    return std::holds_alternative<canon::StraightFeed>(c) || std::holds_alternative<canon::ArcFeed>(c);
+    return std::holds_alternative<canon::StraightFeed>(c) ||
+           std::holds_alternative<canon::ArcFeed>(c);
   }));
 }
 
@@ -405,8 +404,8 @@ TEST(FeaturesOwn, AMillionVertexOutlineIsRefusedQuickly) {
   EXPECT_EQ(cutting_moves(r), 0u);
   bool named = false;
   for (const auto& d : r.diagnostics)
-    named = named || d.message.find("more than FeatureOptions::max_profile_elements") !=
-                         std::string::npos;
+    named = named ||
+            d.message.find("more than FeatureOptions::max_profile_elements") != std::string::npos;
   EXPECT_TRUE(named);
 }
 

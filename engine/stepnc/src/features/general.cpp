@@ -62,8 +62,9 @@ bool circle_through(P a, P b, P c, P& centre, double& radius) {
 
 // The path through `pts` as lines and arcs: a run of at least four points within `tolerance` of
 // one circle, whose chords' sagittas are at most twice that (round joins are made with chords
-// of sagitta `tolerance`), is one arc: the arc is within 3 × `tolerance` of the polygon. The polygons of round joins and of
-// offset arcs are such runs, so their offsets come out as the arcs they are.
+// of sagitta `tolerance`), is one arc: the arc is within 3 × `tolerance` of the polygon. The
+// polygons of round joins and of offset arcs are such runs, so their offsets come out as the arcs
+// they are.
 std::vector<Span2> fit_arcs(const std::vector<P>& pts, double tolerance) {
   std::vector<Span2> out;
   if (pts.size() < 2) return out;
@@ -150,10 +151,10 @@ std::vector<P> ring_path(const Ring& ring, const Nearest& from, bool ccw) {
 
 struct Site {
   Entry::Kind kind = Entry::Kind::Plunge;
-  P centre;           // of the helix, or where the tool plunges
-  double helix = 0;   // helix radius
+  P centre;          // of the helix, or where the tool plunges
+  double helix = 0;  // helix radius
   P ramp_from, ramp_to;
-  P start;            // where the paths begin after the entry
+  P start;                     // where the paths begin after the entry
   bool straight_down = false;  // re-entry of one-way lines without a named approach
   [[nodiscard]] P entry_point() const {
     if (straight_down) return start;
@@ -182,9 +183,18 @@ class Planner {
   Planner(Context& ctx, const Tool& tool, const OperationData& o, const Entry& entry,
           const Areas& centres, const Areas& source, const Areas& sharp, double rho, double base,
           double margin)
-      : ctx_(ctx), tool_(tool), approach_(o.approach), entry_(entry), centres_(centres),
-        source_(source), sharp_(sharp), rho_(rho), base_(base), margin_(margin),
-        polygons_(ctx.opt.chord_tolerance), checks_(ctx.opt.corner_tolerance / 5) {}
+      : ctx_(ctx),
+        tool_(tool),
+        approach_(o.approach),
+        entry_(entry),
+        centres_(centres),
+        source_(source),
+        sharp_(sharp),
+        rho_(rho),
+        base_(base),
+        margin_(margin),
+        polygons_(ctx.opt.chord_tolerance),
+        checks_(ctx.opt.corner_tolerance / 5) {}
 
   // A site among sampled points: the helix where there is most room, a ramp along a segment.
   bool site(const std::vector<P>& candidates, const std::vector<std::pair<P, P>>& ramps,
@@ -204,9 +214,9 @@ class Planner {
       double length = best;
       if (entry_.width > 0) length = std::min(length, entry_.width);
       if (!(length >= 1e-3))
-        return ctx_.unfit(*approach_,
-                          ctx_.d(*approach_) + ": no room for a ramp of " +
-                              ctx_.d(*tool_.instance) + " in " + ctx_.d(ctx_.feature()));
+        return ctx_.unfit(*approach_, ctx_.d(*approach_) + ": no room for a ramp of " +
+                                          ctx_.d(*tool_.instance) + " in " +
+                                          ctx_.d(ctx_.feature()));
       out.ramp_to = out.ramp_from + (out.ramp_to - out.ramp_from) * (length / best);
       out.centre = out.ramp_from;
       out.start = out.ramp_from;
@@ -227,19 +237,17 @@ class Planner {
     out.helix = entry_.radius;
     if (out.helix > room + kEps) {
       if (entry_.explicit_entry)
-        return ctx_.unfit(*approach_,
-                          ctx_.d(*approach_) + " radius " + fmt(entry_.radius) +
-                              " leaves no room for " + ctx_.d(*tool_.instance) + " in " +
-                              ctx_.d(ctx_.feature()) + " (at most " + fmt(room) + " at " +
-                              at_text(out.centre) + ")");
+        return ctx_.unfit(*approach_, ctx_.d(*approach_) + " radius " + fmt(entry_.radius) +
+                                          " leaves no room for " + ctx_.d(*tool_.instance) +
+                                          " in " + ctx_.d(ctx_.feature()) + " (at most " +
+                                          fmt(room) + " at " + at_text(out.centre) + ")");
       out.helix = room;
     }
     if (out.helix < 1e-3) {
       if (entry_.explicit_entry)
-        return ctx_.unfit(*approach_,
-                          ctx_.d(*approach_) + ": " + ctx_.d(*tool_.instance) +
-                              " fills " + ctx_.d(ctx_.feature()) + " at " + at_text(out.centre) +
-                              ", no room for a helix");
+        return ctx_.unfit(*approach_, ctx_.d(*approach_) + ": " + ctx_.d(*tool_.instance) +
+                                          " fills " + ctx_.d(ctx_.feature()) + " at " +
+                                          at_text(out.centre) + ", no room for a helix");
       out.kind = Entry::Kind::Plunge;
       if (!plunge_noted_)
         ctx_.note(ctx_.feature(), ctx_.d(*tool_.instance) + " fills " + ctx_.d(ctx_.feature()) +
@@ -256,8 +264,8 @@ class Planner {
   std::optional<std::vector<Group>> rings(double step, bool ccw, bool walls_only);
   // Parallel lines along `u`, clipped to the region, then (or first) the ring round each part.
   // `left`: the lines follow each other to the left of `u` (else to the right).
-  std::optional<std::vector<Group>> lines(double step, P u, bool left, bool zigzag,
-                                          bool ring_first, bool ccw);
+  std::optional<std::vector<Group>> lines(double step, P u, bool left, bool zigzag, bool ring_first,
+                                          bool ccw);
 
  private:
   // The largest distance from the region's boundary that a point of it has.
@@ -395,8 +403,7 @@ std::optional<std::vector<Group>> Planner::rings(double step0, bool ccw, bool wa
         }
         nodes.push_back(std::move(node));
         if (nodes.back().parent >= 0)
-          nodes[static_cast<std::size_t>(nodes.back().parent)].children.push_back(nodes.size() -
-                                                                                   1);
+          nodes[static_cast<std::size_t>(nodes.back().parent)].children.push_back(nodes.size() - 1);
       }
       if (points > ctx_.opt.max_moves) {
         ctx_.limit_reached();
@@ -445,7 +452,9 @@ std::optional<std::vector<Group>> Planner::rings(double step0, bool ccw, bool wa
           for (std::size_t e = 0; e < site_ring.size(); ++e)
             edges.emplace_back(site_ring[e], site_ring[(e + 1) % site_ring.size()]);
           Group g;
-          if (!site(site_ring, edges, [](P p) { return p; }, g.site)) return std::nullopt;
+          if (!site(
+                  site_ring, edges, [](P p) { return p; }, g.site))
+            return std::nullopt;
           groups.push_back(std::move(g));
           here = groups.back().site.start;
         }
@@ -484,8 +493,8 @@ std::optional<std::vector<Group>> Planner::lines(double step, P u, bool left, bo
     const auto n = static_cast<std::size_t>(std::ceil((v1 - v0) / step - 1e-9));
     std::vector<Chain> chords;
     for (std::size_t k = 0; k <= n; ++k) {
-      const double vv = n == 0 ? (v0 + v1) / 2
-                               : v0 + (v1 - v0) * static_cast<double>(k) / static_cast<double>(n);
+      const double vv =
+          n == 0 ? (v0 + v1) / 2 : v0 + (v1 - v0) * static_cast<double>(k) / static_cast<double>(n);
       chords.push_back({u * (u0 - 1) + v * vv, u * (u1 + 1) + v * vv});
     }
     auto pieces = polygons_.clip(chords, Areas{area});
@@ -506,7 +515,9 @@ std::optional<std::vector<Group>> Planner::lines(double step, P u, bool left, bo
     if (sorted.empty()) {
       // Too small for a line: the ring alone.
       Group g;
-      if (!site(area.outer, {}, [](P p) { return p; }, g.site)) return std::nullopt;
+      if (!site(
+              area.outer, {}, [](P p) { return p; }, g.site))
+        return std::nullopt;
       const Nearest from = nearest_on(area.outer, g.site.start);
       g.paths.push_back({ring_path(area.outer, from, ccw), true});
       groups.push_back(std::move(g));
@@ -550,7 +561,9 @@ std::optional<std::vector<Group>> Planner::lines(double step, P u, bool left, bo
       std::vector<P> along;
       for (int k = 0; k <= 16; ++k) along.push_back(p.a + (p.b - p.a) * (k / 16.0));
       Group g;
-      if (!site(along, {{p.a, p.b}}, [&](P) { return p.a; }, g.site)) return false;
+      if (!site(
+              along, {{p.a, p.b}}, [&](P) { return p.a; }, g.site))
+        return false;
       g.site.straight_down = straight_down;
       groups.push_back(std::move(g));
       return true;
@@ -675,11 +688,11 @@ double margin(const Context& ctx) {
   return 5 * ctx.opt.chord_tolerance + 4 * poly::kResolution;
 }
 
-bool corner_checks(Context& ctx, const Outline& outline, const Tool& tool,
-                   const OperationData& o, double corner_radius, bool material_outside) {
+bool corner_checks(Context& ctx, const Outline& outline, const Tool& tool, const OperationData& o,
+                   double corner_radius, bool material_outside) {
   const double d = tool.radius + o.allowance_side;
-  const std::string who = ctx.d(*tool.instance) + " radius " + fmt(tool.radius) +
-                          " + allowance " + fmt(o.allowance_side) + " of " + ctx.d(ctx.op());
+  const std::string who = ctx.d(*tool.instance) + " radius " + fmt(tool.radius) + " + allowance " +
+                          fmt(o.allowance_side) + " of " + ctx.d(ctx.op());
   // A corner turning towards the material is one the tool must fit into.
   const double sign = material_outside ? 1 : -1;
   for (const Corner& c : corners(outline)) {
@@ -703,12 +716,12 @@ bool corner_checks(Context& ctx, const Outline& outline, const Tool& tool,
 
 // What a general pocket (closed or open) hands to the common machining.
 struct PocketRegion {
-  Areas centres;   // where the tool centre may go
-  Areas source;    // what `centres` is shrunk from (by `base`)
-  Areas sharp;     // `source` without its corner fillets, of radius `rho`
+  Areas centres;  // where the tool centre may go
+  Areas source;   // what `centres` is shrunk from (by `base`)
+  Areas sharp;    // `source` without its corner fillets, of radius `rho`
   double rho = 0;
   double base = 0;
-  Areas floor;     // what it must reach (the floor inset by the side allowance)
+  Areas floor;  // what it must reach (the floor inset by the side allowance)
   bool through = false;
   std::optional<Toleranced> fillet;
 };
@@ -720,9 +733,8 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
   const double e = ctx.opt.corner_tolerance / 5;
   const poly::Polygons polygons(e);
   if (region.centres.empty())
-    return ctx.unfit(*tool.instance, ctx.d(*tool.instance) + " diameter " +
-                                         fmt(2 * tool.radius) + " + allowances does not fit " +
-                                         ctx.d(f));
+    return ctx.unfit(*tool.instance, ctx.d(*tool.instance) + " diameter " + fmt(2 * tool.radius) +
+                                         " + allowances does not fit " + ctx.d(f));
   // Everything of the floor within the tool radius of the centre region: nothing narrower
   // than the tool (a neck between two walls) may be left.
   const auto reach = polygons.offset(poly::simplified(region.centres, e), tool.radius - e);
@@ -731,12 +743,12 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
       missed ? polygons.offset(*missed, -ctx.opt.chord_tolerance) : std::nullopt;
   if (!missed_much) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
   if (!missed_much->empty())
-    return ctx.unfit(*tool.instance,
-                     ctx.d(*tool.instance) + " diameter " + fmt(2 * tool.radius) +
-                         " + allowance " + fmt(o.allowance_side) + " of " + ctx.d(ctx.op()) +
-                         " does not reach all of " + ctx.d(f) + ": a part near " +
-                         at_text(missed_much->front().outer.front()) +
-                         " is narrower than the tool");
+    return ctx.unfit(*tool.instance, ctx.d(*tool.instance) + " diameter " + fmt(2 * tool.radius) +
+                                         " + allowance " + fmt(o.allowance_side) + " of " +
+                                         ctx.d(ctx.op()) + " does not reach all of " + ctx.d(f) +
+                                         ": a part near " +
+                                         at_text(missed_much->front().outer.front()) +
+                                         " is narrower than the tool");
 
   const bool walls_only = ctx.is(&ctx.op(), "side_milling");
   enum class Pattern { Rings, LinesThenRing, RingThenLines } pattern = Pattern::Rings;
@@ -744,7 +756,8 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
   bool left = true;
   P u{1, 0};
   if (o.strategy != nullptr && !ctx.is(o.strategy, "contour_parallel")) {
-    if (ctx.is(o.strategy, "bidirectional_milling") || ctx.is(o.strategy, "bidirectional_contour")) {
+    if (ctx.is(o.strategy, "bidirectional_milling") ||
+        ctx.is(o.strategy, "bidirectional_contour")) {
       pattern = Pattern::LinesThenRing;
     } else if (ctx.is(o.strategy, "unidirectional_milling")) {
       pattern = Pattern::LinesThenRing;
@@ -793,16 +806,22 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
   }
   if (!groups) return false;
   if (groups->empty()) return ctx.bad(f, ctx.d(f) + ": nothing to machine");
-  Play p{ctx, entry, region.centres, *z_levels, ctx.opt.clearance,
-         o.retract_plane.value_or(ctx.opt.clearance), ccw, ctx.opt.chord_tolerance};
+  Play p{ctx,
+         entry,
+         region.centres,
+         *z_levels,
+         ctx.opt.clearance,
+         o.retract_plane.value_or(ctx.opt.clearance),
+         ccw,
+         ctx.opt.chord_tolerance};
   return play(p, *groups);
 }
 
 // The outline's polygon on the side away from the material, checked simple.
 std::optional<Ring> polygon_of(Context& ctx, const Instance& at, const Outline& outline,
                                bool material_left) {
-  auto ring = tessellate(outline, ctx.opt.chord_tolerance, material_left,
-                         ctx.opt.max_polygon_points);
+  auto ring =
+      tessellate(outline, ctx.opt.chord_tolerance, material_left, ctx.opt.max_polygon_points);
   if (!ring) {
     ctx.bad(at, ctx.d(at) + " needs more than FeatureOptions::max_polygon_points (" +
                     std::to_string(ctx.opt.max_polygon_points) + ") polygon points");
@@ -833,8 +852,8 @@ double angle_of(P v) {
 // Where a point at `rho` to the left of element `e` may be: a line or a circle.
 struct Carrier {
   bool circle = false;
-  P point, dir;   // line
-  P centre;       // circle
+  P point, dir;  // line
+  P centre;      // circle
   double radius = 0;
 };
 
@@ -958,8 +977,8 @@ std::optional<Areas> fillet_material(Context& ctx, const Outline& outline, doubl
     if (exact && ea.arc) {
       const double from = angle_of(c.at - ea.centre);
       double sweep = angle_of(t1 - ea.centre) - from;
-      while (ea.sweep > 0 ? sweep > 0 : sweep < 0) sweep += ea.sweep > 0 ? -2 * std::numbers::pi
-                                                                      : 2 * std::numbers::pi;
+      while (ea.sweep > 0 ? sweep > 0 : sweep < 0)
+        sweep += ea.sweep > 0 ? -2 * std::numbers::pi : 2 * std::numbers::pi;
       append_arc(ring, ea.centre, ea.radius, from, sweep, tol);
     } else {
       ring.push_back(t1);
@@ -973,8 +992,8 @@ std::optional<Areas> fillet_material(Context& ctx, const Outline& outline, doubl
     if (exact && eb.arc) {
       const double from = angle_of(t2 - eb.centre);
       double back = angle_of(c.at - eb.centre) - from;
-      while (eb.sweep > 0 ? back > 0 : back < 0) back += eb.sweep > 0 ? -2 * std::numbers::pi
-                                                                    : 2 * std::numbers::pi;
+      while (eb.sweep > 0 ? back > 0 : back < 0)
+        back += eb.sweep > 0 ? -2 * std::numbers::pi : 2 * std::numbers::pi;
       append_arc(ring, eb.centre, eb.radius, from, back, tol);
       ring.pop_back();  // the corner itself is the first point
     }
@@ -1006,13 +1025,12 @@ bool general_pocket(Context& ctx, const Instance& boundary, bool through,
   if (!fillets) return false;
   const auto pocket = polygons.difference(Areas{Area{*ring, {}}}, *fillets);
   const auto centres = pocket ? polygons.offset(*pocket, -(d + margin(ctx))) : std::nullopt;
-  const auto floor =
-      pocket ? polygons.offset(*pocket, -(o.allowance_side + 2 * margin(ctx) +
-                                          ctx.opt.corner_tolerance))
-             : std::nullopt;
+  const auto floor = pocket ? polygons.offset(*pocket, -(o.allowance_side + 2 * margin(ctx) +
+                                                         ctx.opt.corner_tolerance))
+                            : std::nullopt;
   if (!centres || !floor) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
   PocketRegion region{*centres, *pocket, Areas{Area{*ring, {}}}, rho, d + margin(ctx), *floor,
-                      through, fillet};
+                      through,  fillet};
   return machine_pocket(ctx, *tool, o, region, *depth);
 }
 
@@ -1034,8 +1052,7 @@ bool generate_open_pocket(Context& ctx) {
   if (boundary == nullptr) return ctx.bad(f, ctx.d(f) + " has no open_boundary");
   if (const Instance* wall = ctx.ref(f, "wall_boundary", "open_profile"))
     ctx.note(*wall, ctx.d(*wall) + " is for information only (ISO 14649-10): " + ctx.d(f) +
-                        " is open along the straight line between the ends of " +
-                        ctx.d(*boundary));
+                        " is open along the straight line between the ends of " + ctx.d(*boundary));
   auto walls = read_open_outline(ctx, *boundary);
   if (!walls) return false;
   const auto depth = ctx.depth();
@@ -1058,7 +1075,7 @@ bool generate_open_pocket(Context& ctx) {
   if (!ring) return ctx.bad(*boundary, ctx.d(*boundary) + " needs too many polygon points");
   if (!poly::simple(*ring))
     return ctx.bad(*boundary, ctx.d(*boundary) + " and its open side cross or enclose no area");
-  const P a = walls->elements.back().b;   // the open side runs from a to b
+  const P a = walls->elements.back().b;  // the open side runs from a to b
   const P b = walls->elements.front().a;
   if ((b - a).length() < 1e-3)
     return ctx.bad(*boundary, ctx.d(*boundary) + " is closed: " + ctx.d(f) + " has no open side");
@@ -1093,8 +1110,8 @@ bool generate_open_pocket(Context& ctx) {
            : std::nullopt;
   const auto floor = inset ? polygons.intersection(*inset, Areas{Area{*ring, {}}}) : std::nullopt;
   if (!centres || !floor) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
-  PocketRegion region{*centres, *centres, *centres, 0,     0,
-                      *floor,   through,  ctx.toleranced(f, "planar_radius")};
+  PocketRegion region{*centres, *centres, *centres, 0,
+                      0,        *floor,   through,  ctx.toleranced(f, "planar_radius")};
   return machine_pocket(ctx, *tool, o, region, *depth);
 }
 
@@ -1114,15 +1131,15 @@ bool general_outside_profile(Context& ctx, const Instance& boundary) {
   const auto part = polygon_of(ctx, boundary, *outline, true);
   if (!part) return false;
   const poly::Polygons polygons(ctx.opt.chord_tolerance);
-  const auto grown = polygons.offset(Areas{Area{*part, {}}}, tool->radius + o.allowance_side +
-                                                                 margin(ctx));
+  const auto grown =
+      polygons.offset(Areas{Area{*part, {}}}, tool->radius + o.allowance_side + margin(ctx));
   if (!grown || grown->size() != 1) return ctx.bad(f, ctx.d(f) + ": its outline cannot be offset");
   if (!grown->front().holes.empty())
-    return ctx.unfit(*tool->instance,
-                     ctx.d(*tool->instance) + " diameter " + fmt(2 * tool->radius) +
-                         " + allowance " + fmt(o.allowance_side) + " of " + ctx.d(ctx.op()) +
-                         " does not fit into a bay of " + ctx.d(f) + " near " +
-                         at_text(grown->front().holes.front().front()));
+    return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " diameter " +
+                                          fmt(2 * tool->radius) + " + allowance " +
+                                          fmt(o.allowance_side) + " of " + ctx.d(ctx.op()) +
+                                          " does not fit into a bay of " + ctx.d(f) + " near " +
+                                          at_text(grown->front().holes.front().front()));
   const Ring& ring = grown->front().outer;
   const bool ccw = rings_ccw(ctx, o, false);
   const auto z_levels = depth_levels(ctx, o, *depth);

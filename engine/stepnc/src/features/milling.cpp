@@ -2,12 +2,13 @@
 // each machined by the strategy's pattern; see docs/features.md for every decision and the
 // comparison with NIST's explicit toolpaths for the same part.
 
+#include "milling.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "context.hpp"
-#include "milling.hpp"
 #include "shapes.hpp"
 
 namespace ncpost::stepnc::features {
@@ -288,7 +289,8 @@ bool read_entry(Context& ctx, const OperationData& o, const Tool& tool, Entry& e
     entry.angle = radians(ctx.number(*o.approach, "angle").value_or(0));
     entry.width = ctx.number(*o.approach, "width").value_or(0);
   } else {
-    return ctx.not_implemented(ctx.d(*o.approach) + " as the approach into " + ctx.d(ctx.feature()));
+    return ctx.not_implemented(ctx.d(*o.approach) + " as the approach into " +
+                               ctx.d(ctx.feature()));
   }
   if ((entry.kind != Entry::Kind::Plunge) && !(entry.angle > 0 && entry.angle < radians(90)))
     return ctx.bad(*o.approach, ctx.d(*o.approach) + " angle must be between 0 and 90 degrees");

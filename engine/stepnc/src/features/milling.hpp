@@ -19,18 +19,16 @@ bool check_overlap(Context& ctx, const OperationData& o, double overlap);
 // The cutting edge must take the deepest level step.
 bool check_edge(Context& ctx, const Tool& tool, const std::vector<double>& z);
 // The tool's corner radius makes a pocket's floor fillet (planar_radius), within its tolerance.
-bool check_fillet(Context& ctx, const Tool& tool, const OperationData& o,
-                  const Toleranced& fillet);
+bool check_fillet(Context& ctx, const Tool& tool, const OperationData& o, const Toleranced& fillet);
 // Axial levels; allow_multiple_passes .F. asks for the whole depth at once.
-std::optional<std::vector<double>> depth_levels(Context& ctx, const OperationData& o,
-                                                double depth);
+std::optional<std::vector<double>> depth_levels(Context& ctx, const OperationData& o, double depth);
 
 // How the tool gets from `from_z` down to `to_z` at the pattern's start point p0.
 struct Entry {
   enum class Kind { Plunge, Ramp, Helix } kind = Kind::Helix;
-  double radius = 0;  // helix
-  double angle = 0;   // ramp/helix/zigzag descent, radians
-  double width = 0;   // zigzag leg
+  double radius = 0;            // helix
+  double angle = 0;             // ramp/helix/zigzag descent, radians
+  double width = 0;             // zigzag leg
   bool explicit_entry = false;  // named by the operation (else the default helix)
 };
 // The operation's approach (PLUNGE_TOOLAXIS, _HELIX, _RAMP, _ZIGZAG), else a helix of

@@ -41,7 +41,7 @@ std::optional<Outline> read_curve(Context& ctx, const Instance& profile, const I
   // A list longer than the limit is refused before any of it is read.
   const char* list = ctx.is(&curve, "polyline")          ? "points"
                      : ctx.is(&curve, "composite_curve") ? "segments"
-                                                          : nullptr;
+                                                         : nullptr;
   if (list != nullptr) {
     const auto items = ctx.g.get(curve, list);
     if (items && items->is_list() && items->count() > ctx.opt.max_profile_elements + 1) {
@@ -130,17 +130,17 @@ std::optional<Outline> ngon(Context& ctx, const Instance& profile) {
   const auto circumscribed = ctx.boolean(profile, "circumscribed_or_across_flats");
   if (!d || !n || !(d->size > 0) || *n < 3 || *n != std::floor(*n) ||
       *n > static_cast<double>(ctx.opt.max_profile_elements)) {
-    ctx.bad(profile, ctx.d(profile) + " needs a positive diameter and a whole number of sides "
-                                      "from 3 to " +
+    ctx.bad(profile, ctx.d(profile) +
+                         " needs a positive diameter and a whole number of sides "
+                         "from 3 to " +
                          std::to_string(ctx.opt.max_profile_elements));
     return std::nullopt;
   }
   const int sides = static_cast<int>(*n);
   // TRUE: the diameter is the circle through the vertices; FALSE: across the flats. The first
   // vertex lies on the profile's x axis.
-  const double vertex = circumscribed.value_or(true)
-                            ? d->size / 2
-                            : d->size / 2 / std::cos(std::numbers::pi / sides);
+  const double vertex =
+      circumscribed.value_or(true) ? d->size / 2 : d->size / 2 / std::cos(std::numbers::pi / sides);
   if (vertex > poly::kMaxCoordinate) {
     ctx.bad(profile, ctx.d(profile) + " is larger than " + fmt(poly::kMaxCoordinate) + " mm");
     return std::nullopt;
@@ -213,8 +213,8 @@ int pieces(const Element& e, double tolerance) {
 }
 }  // namespace
 
-std::optional<poly::Chain> tessellate(const Outline& outline, double tolerance,
-                                      bool material_left, std::size_t max_points) {
+std::optional<poly::Chain> tessellate(const Outline& outline, double tolerance, bool material_left,
+                                      std::size_t max_points) {
   double count = 0;
   for (const Element& e : outline.elements) count += e.arc ? pieces(e, tolerance) + 1 : 1;
   if (count > static_cast<double>(max_points)) return std::nullopt;

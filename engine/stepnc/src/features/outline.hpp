@@ -14,11 +14,11 @@
 namespace ncpost::stepnc::features {
 
 struct Element {
-  poly::P a, b;        // from, to
-  bool arc = false;    // else a line
-  poly::P centre{};    // arcs
-  double radius = 0;   // arcs
-  double sweep = 0;    // arcs: signed angle from a to b about the centre (positive CCW)
+  poly::P a, b;       // from, to
+  bool arc = false;   // else a line
+  poly::P centre{};   // arcs
+  double radius = 0;  // arcs
+  double sweep = 0;   // arcs: signed angle from a to b about the centre (positive CCW)
   [[nodiscard]] poly::P tangent_at_start() const;
   [[nodiscard]] poly::P tangent_at_end() const;
 };
@@ -33,7 +33,7 @@ struct Outline {
 struct Corner {
   poly::P at;
   double turn = 0;
-  poly::P in, out;  // unit tangents arriving and leaving
+  poly::P in, out;                    // unit tangents arriving and leaving
   std::size_t before = 0, after = 0;  // the elements that meet there
 };
 
@@ -52,7 +52,7 @@ std::vector<Corner> corners(const Outline& outline);
 // The outline as a polygon whose chords or tangent polylines deviate at most `tolerance` from
 // each arc, always on the side away from the material: `material_left` says which side of the
 // direction of travel the material is on. nullopt when it would have more than `max_points`.
-std::optional<poly::Chain> tessellate(const Outline& outline, double tolerance,
-                                      bool material_left, std::size_t max_points);
+std::optional<poly::Chain> tessellate(const Outline& outline, double tolerance, bool material_left,
+                                      std::size_t max_points);
 
 }  // namespace ncpost::stepnc::features

@@ -1,10 +1,9 @@
 #include "polygons.hpp"
 
-#include <polyclipping/clipper.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <polyclipping/clipper.hpp>
 
 namespace ncpost::stepnc::features::poly {
 namespace {
