@@ -235,7 +235,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "holes-pointed-bottoms", "holes-strategy", "slots", "wrong-tools",
                       "unsupported", "hostile", "pocket-polyline-l", "pocket-composite",
                       "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
-                      "wrong-tools-general", "hostile-general"),
+                      "pocket-radiused-bottom", "wrong-tools-general", "hostile-general"),
     [](const auto& param_info) {
       std::string n = param_info.param;
       for (char& c : n)

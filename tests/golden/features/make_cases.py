@@ -525,6 +525,18 @@ def general_cases():
              ("BOSS FINISH", boss, side_op(p, "FINISH", "BOSS F", t, tech, climb, 8.0, 0.0)),
              ("PENTAGON FINISH", penta, side_op(p, "FINISH", "PENTA F", t, tech, conv, 2.5, 0.0))])
 
+    p = program("pocket-radiused-bottom", "a round pocket whose floor is the half ball of its radius (RADIUSED_POCKET_BOTTOM_CONDITION), made by a ball of that radius down its axis")
+    ball = p.tool("BALL 20", "BALL_ENDMILL", 20, edge_length=30.0, edge_radius=10.0)
+    tech = p.tech(0.02, -30.0)
+    bottom = f"RADIUSED_POCKET_BOTTOM_CONDITION({p.point(0, 0, -5)},{p.length(10, 0.02)})"
+    prof = p.add(f"CIRCULAR_CLOSED_PROFILE($,{p.length(20, 0.02)})")
+    b = p.add(bottom)
+    f = p.add(f"CLOSED_POCKET('BALL POCKET',#4,(),{p.placement(20, 20, 0)},"
+              f"{p.plane('POCKET DEPTH', -15)},(),$,{b},$,$,{prof})")
+    ax = p.add("PLUNGE_TOOLAXIS($)")
+    cp = p.add("CONTOUR_PARALLEL($,.T.,$,.CLIMB.)")
+    p.write([("BALL POCKET", f, bs(p, "FINISH", "BALL", ball, tech, cp, 5.0, None, None, None, ax))])
+
     # ---- wrong tools for general profiles (STEPNC-102 naming the tool, operation and feature) ----
     p = program("wrong-tools-general", "tools that cannot make general profiles")
     t, tech = mill(p, 10, 20), p.tech(0.03, -30.0)
@@ -541,6 +553,13 @@ def general_cases():
     ell = general_pocket(p, "L POCKET", 0, 300, polyline(p, [(0, 0), (60, 0), (60, 25), (25, 25), (25, 50), (0, 50)]), 5, corner=6)
     big_helix = p.add("PLUNGE_HELIX($,20.0,5.0)")
     ell_boss = outside(p, "L BOSS", 0, 200, polyline_profile(p, [(0, 0), (40, 0), (40, 15), (15, 15), (15, 40), (0, 40)]), 5)
+    half_ball = p.add(f"RADIUSED_POCKET_BOTTOM_CONDITION({p.point(0, 0, -5)},{p.length(10, 0.02)})")
+    round_prof = p.add(f"CIRCULAR_CLOSED_PROFILE($,{p.length(20, 0.02)})")
+    ball_pocket = p.add(f"CLOSED_POCKET('BALL POCKET',#4,(),{p.placement(300, 0, 0)},"
+                        f"{p.plane('POCKET DEPTH', -15)},(),$,{half_ball},$,$,{round_prof})")
+    dish = p.add(f"RADIUSED_POCKET_BOTTOM_CONDITION({p.point(0, 0, 40)},{p.length(50)})")
+    dish_pocket = p.add(f"CLOSED_POCKET('DISH',#4,(),{p.placement(300, 100, 0)},"
+                        f"{p.plane('POCKET DEPTH', -10)},(),$,{dish},$,$,{round_prof})")
     p.write([
         ("SHARP CORNERS", sharp, bs(p, "ROUGH", "R SHARP", t, tech, cp, 5.0, None, 0.5, 0.0)),
         ("ARC TOO TIGHT", narrow, bs(p, "ROUGH", "R NARROW", t, tech, cp, 5.0, None, 0.0, 0.0)),
@@ -550,6 +569,10 @@ def general_cases():
         ("POCKET TOO SMALL", tiny, bs(p, "ROUGH", "R TINY", t, tech, cp, 5.0, None, 0.0, 0.0)),
         ("HELIX TOO WIDE", ell, bs(p, "ROUGH", "R HELIX", t, tech, cp, 5.0, None, 0.0, 0.0, big_helix)),
         ("CONCAVE CORNER OUTSIDE", ell_boss, side_op(p, "FINISH", "S L", t, tech, cp, 5.0, 0.0)),
+        # A flat end mill in a pocket whose floor is a half ball: STEPNC-102 naming both.
+        ("FLAT TOOL IN BALL POCKET", ball_pocket, bs(p, "FINISH", "F BALL", mill(p, 20, 30), tech, cp, 5.0, None, None, None)),
+        # A shallow spherical dish: 3D surface finishing, STEPNC-101.
+        ("SPHERICAL DISH", dish_pocket, bs(p, "FINISH", "F DISH", t, tech, cp, 5.0, None, None, None)),
     ])
 
     # ---- hostile general profiles: each a clean STEPNC-103 (or STEPNC-011), never a crash ----

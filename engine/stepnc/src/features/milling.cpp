@@ -375,6 +375,70 @@ bool read_closed_profile(Context& ctx, const Instance& f, const Instance& bounda
   return true;
 }
 
+// A RADIUSED_POCKET_BOTTOM_CONDITION is a portion of a sphere over the whole floor (ISO
+// 14649-10). A 2.5D path makes exactly one such pocket: a round pocket whose floor is the lower
+// half of a ball of the pocket's own radius, centred on its axis, which a ball end mill of that
+// radius makes going straight down the axis. Any other sphere needs 3D surface finishing
+// (STEPNC-101); a tool that is not that ball is STEPNC-102.
+bool radiused_pocket(Context& ctx, const Instance& bottom, const Instance& boundary) {
+  const Instance& f = ctx.feature();
+  if (!ctx.is(&boundary, "circular_closed_profile"))
+    return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(bottom) + " bounded by " +
+                               ctx.d(boundary) +
+                               " (a round pocket whose floor is the half ball of its radius is)");
+  Shape shape;
+  if (!read_closed_profile(ctx, f, boundary, 0, "pocket's", shape)) return false;
+  const auto radius = ctx.toleranced(bottom, "floor_radius");
+  const auto centre = ctx.g.point(ctx.g.get(bottom, "floor_radius_center"));
+  if (!radius || !centre || !(radius->size > 0))
+    return ctx.bad(bottom, ctx.d(bottom) + " needs a floor_radius_center and a positive radius");
+  const auto depth = ctx.depth();
+  const auto tool = ctx.tool();
+  if (!depth || !tool) return false;
+  const OperationData o = ctx.operation();
+  constexpr double kSame = 1e-3;
+  const Vec3 axis = shape.frame.origin;
+  if (std::hypot(centre->x - axis.x, centre->y - axis.y) > kSame ||
+      std::abs(radius->size - shape.a) > kSame)
+    return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(bottom) + ", a sphere of radius " +
+                               fmt(radius->size) + " about (" + fmt(centre->x) + ", " +
+                               fmt(centre->y) + ", " + fmt(centre->z) +
+                               ") that is not the half ball of the pocket's radius " +
+                               fmt(shape.a) + " on its axis (3D surface finishing)");
+  if (std::abs(centre->z - radius->size + *depth) > kSame)
+    return ctx.bad(bottom, ctx.d(bottom) + " puts the lowest point of the floor at z " +
+                               fmt(centre->z - radius->size) + ", but the depth plane of " +
+                               ctx.d(f) + " is at z " + fmt(-*depth));
+  const bool ball =
+      ctx.is(tool->body, "ball_endmill") || std::abs(tool->corner_radius - tool->radius) <= kEps;
+  if (!ball || tool->radius > radius->size + radius->upper + kEps ||
+      tool->radius + radius->lower + kEps < radius->size)
+    return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " (radius " + fmt(tool->radius) +
+                                          (ball ? ", a ball end" : ", not a ball end") +
+                                          ") cannot make " + ctx.d(bottom) + " of " + ctx.d(f) +
+                                          ": that needs a ball end mill of radius " +
+                                          fmt(radius->size));
+  if (o.allowance_side > kEps)
+    return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " fills " + ctx.d(f) + ", so " +
+                                          ctx.d(ctx.op()) + " cannot leave its allowance_side " +
+                                          fmt(o.allowance_side));
+  if (o.approach != nullptr && !ctx.is(o.approach, "plunge_toolaxis"))
+    return ctx.unfit(*o.approach, ctx.d(*o.approach) + ": " + ctx.d(*tool->instance) + " fills " +
+                                      ctx.d(f) + ", no room to enter but along the axis");
+  const double finish = *depth - o.allowance_bottom;
+  if (!(finish > 0))
+    return ctx.bad(ctx.op(), ctx.d(ctx.op()) + " leaves the whole depth of " + ctx.d(f));
+  const auto z_levels = depth_levels(ctx, o, finish);
+  if (!z_levels || !check_edge(ctx, *tool, *z_levels)) return false;
+  const double clear = ctx.opt.clearance;
+  const double retract = o.retract_plane.value_or(clear);
+  ctx.rapid({axis.x, axis.y, std::max(retract, clear)});
+  if (retract > clear) ctx.rapid({axis.x, axis.y, clear});
+  for (const double z : *z_levels) ctx.feed({axis.x, axis.y, z});
+  ctx.rapid({axis.x, axis.y, std::max(retract, clear)});
+  return true;
+}
+
 }  // namespace
 
 bool generate_pocket(Context& ctx) {
@@ -389,10 +453,12 @@ bool generate_pocket(Context& ctx) {
   const Instance* bottom = ctx.ref(f, "bottom_condition", "pocket_bottom_condition");
   if (bottom == nullptr) return ctx.bad(f, ctx.d(f) + " has no bottom_condition");
   const bool through = ctx.is(bottom, "through_pocket_bottom_condition");
-  if (!through && !ctx.is(bottom, "planar_pocket_bottom_condition"))
+  const bool radiused = ctx.is(bottom, "radiused_pocket_bottom_condition");
+  if (!through && !radiused && !ctx.is(bottom, "planar_pocket_bottom_condition"))
     return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(*bottom));
   const Instance* boundary = ctx.ref(f, "feature_boundary", "closed_profile");
   if (boundary == nullptr) return ctx.bad(f, ctx.d(f) + " has no feature_boundary");
+  if (radiused) return radiused_pocket(ctx, *bottom, *boundary);
   if (ctx.is(boundary, "general_closed_profile") || ctx.is(boundary, "ngon_closed_profile"))
     return general_pocket(ctx, *boundary, through, ctx.toleranced(f, "planar_radius"));
 
