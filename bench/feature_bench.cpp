@@ -94,6 +94,11 @@ int main(int argc, char** argv) {
             << " pocket_median_ms=" << median(sink.pockets) << " pocket_max_ms="
             << (sink.pockets.empty() ? 0
                                      : *std::max_element(sink.pockets.begin(), sink.pockets.end()))
+            << " pocket_mean_ms="
+            << (sink.pockets.empty()
+                    ? 0
+                    : std::accumulate(sink.pockets.begin(), sink.pockets.end(), 0.0) /
+                          static_cast<double>(sink.pockets.size()))
             << " pocket_sum_ms=" << std::accumulate(sink.pockets.begin(), sink.pockets.end(), 0.0)
             << " pockets=" << sink.pockets.size() << " hole_median_ms=" << median(sink.holes)
             << " hole_sum_ms=" << std::accumulate(sink.holes.begin(), sink.holes.end(), 0.0)

@@ -1,9 +1,13 @@
 // A feature-based (conformance class 3) ISO 14649 program of N rectangular pockets and N round
 // holes for feature_bench: no toolpaths, so every motion is generated. Sizes vary
-// deterministically (a fixed linear congruential sequence), so runs are comparable.
+// deterministically (a fixed linear congruential sequence), so runs are comparable. With
+// --general the pockets are GENERAL_CLOSED_PROFILE polylines instead (offset by the polygon
+// offsetter): L shapes and irregular hexagons, in turn, with orthogonal_radius 6..12.
 //
-//   make_feature_program N > program.stp
+//   make_feature_program N [--general] > program.stp
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
@@ -20,10 +24,11 @@ double uniform(double lo, double hi) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: make_feature_program N > program.stp\n";
+  if (argc < 2 || (argc > 2 && std::string(argv[2]) != "--general")) {
+    std::cerr << "usage: make_feature_program N [--general] > program.stp\n";
     return 2;
   }
+  const bool general = argc > 2;
   const long n = std::stol(argv[1]);
   if (n < 1 || n > 1000000) {
     std::cerr << "N must be between 1 and 1000000\n";
@@ -43,7 +48,10 @@ int main(int argc, char** argv) {
       "ENDSEC;\nDATA;\n";
   // Fixed part: ids below 100.
   std::string elements;
-  for (long i = 0; i < 2 * n; ++i) elements += (i ? ",#" : "#") + std::to_string(1000 + i);
+  for (long i = 0; i < 2 * n; ++i) {
+    elements += i ? ",#" : "#";
+    elements += std::to_string(1000 + i);
+  }
   add("#1=PROJECT('FEATURE BENCH',#2,(#4),$,$,$);");
   out += "#2=WORKPLAN('MAIN',(" + elements + "),$,#8,$);\n";  // longer than `line`
   add("#4=WORKPIECE('PLATE',$,0.01,$,$,$,());");
@@ -89,7 +97,40 @@ int main(int argc, char** argv) {
     add("#%ld=TOLERANCED_LENGTH_MEASURE(%.3f,#31);", w, uniform(30, 60));
     add("#%ld=TOLERANCED_LENGTH_MEASURE(%.3f,#31);", l, uniform(40, 80));
     add("#%ld=TOLERANCED_LENGTH_MEASURE(%.3f,#31);", c, uniform(6, 12));
-    add("#%ld=RECTANGULAR_CLOSED_PROFILE($,#%ld,#%ld);", prof, w, l);
+    if (!general) {
+      add("#%ld=RECTANGULAR_CLOSED_PROFILE($,#%ld,#%ld);", prof, w, l);
+    } else {
+      // The outline about the pocket's placement: an L, or a hexagon with jittered corners.
+      double xy[6][2];
+      if (i % 2 == 0) {
+        const double length = uniform(60, 80);
+        const double height = uniform(50, 70);
+        const double arm = uniform(26, 34);  // room for two corners of 12
+        const double x0 = -length / 2;
+        const double y0 = -height / 2;
+        const double corners[6][2] = {{x0, y0},
+                                      {x0 + length, y0},
+                                      {x0 + length, y0 + arm},
+                                      {x0 + arm, y0 + arm},
+                                      {x0 + arm, y0 + height},
+                                      {x0, y0 + height}};
+        std::copy(&corners[0][0], &corners[0][0] + 12, &xy[0][0]);
+      } else {
+        for (int k = 0; k < 6; ++k) {
+          const double t = (60.0 * k + uniform(-10, 10)) * 3.14159265358979 / 180;
+          const double r = uniform(28, 38);
+          xy[k][0] = r * std::cos(t);
+          xy[k][1] = r * std::sin(t);
+        }
+      }
+      const long first = id;
+      id += 7;
+      for (int k = 0; k < 6; ++k)
+        add("#%ld=CARTESIAN_POINT('',(%.3f,%.3f,0.));", first + k, xy[k][0], xy[k][1]);
+      add("#%ld=POLYLINE('',(#%ld,#%ld,#%ld,#%ld,#%ld,#%ld,#%ld));", first + 6, first, first + 1,
+          first + 2, first + 3, first + 4, first + 5, first);
+      add("#%ld=GENERAL_CLOSED_PROFILE($,#%ld);", prof, first + 6);
+    }
     add("#%ld=CLOSED_POCKET('POCKET %ld',#4,(),#%ld,#%ld,(),$,#54,$,#%ld,#%ld);", feat, i, a, dp, c,
         prof);
     add("#%ld=MACHINING_WORKINGSTEP('POCKET %ld',#30,#%ld,#56,$);", 1000 + i, i, feat);

@@ -9,6 +9,7 @@ build_packages=(
   libboost-dev libboost-system-dev            # Asio + Beast 1.74 (header-only, system for errors)
   libxml2-dev libxslt1-dev                    # libxml2, libxslt and libexslt
   nlohmann-json3-dev libspdlog-dev libfmt-dev
+  libpolyclipping-dev                         # Clipper 1: offsets of general feature profiles
 )
 test_packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev

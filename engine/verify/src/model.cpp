@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numbers>
 
+#include "contour.hpp"
+
 namespace ncpost::verify::detail {
 
 const p21::Instance* Reader::ref(const p21::Instance& i, std::string_view name) const {
@@ -192,12 +194,13 @@ bool closed_profile(const Reader& r, const p21::Instance& profile, Feature& f,
     f.region = Region::circle(origin, *d / 2);
     return true;
   }
+  std::vector<Piece2> chain;
   if (r.is_a(profile, "ngon_closed_profile")) {
     const auto d = r.length(profile, "diameter");
     const auto n = r.number(profile, "number_of_sides");
     const auto circumscribed = r.get(profile, "circumscribed_or_across_flats");
-    if (!d || !n || *n < 3) {
-      f.reason = "its n-gon has no diameter or fewer than 3 sides";
+    if (!d || !n || *n < 3 || *n > 100000) {
+      f.reason = "its n-gon has no diameter or fewer than 3 (or more than 100000) sides";
       return false;
     }
     const int sides = static_cast<int>(*n);
@@ -205,52 +208,72 @@ bool closed_profile(const Reader& r, const p21::Instance& profile, Feature& f,
                               *r.model().as_logical(*circumscribed) == p21::Logical::False;
     const double vertex = across_flats ? *d / 2 / std::cos(std::numbers::pi / sides) : *d / 2;
     const double base = std::atan2(x_axis.y, x_axis.x);
-    Region region;
-    Vec2 first{};
-    Vec2 previous{};
-    for (int k = 0; k <= sides; ++k) {
-      const double a = base + kTwoPi * k / sides;
-      const Vec2 p = origin + Vec2{std::cos(a), std::sin(a)} * vertex;
-      if (k == 0) first = p;
-      if (k > 0) region.add_line(previous, k == sides ? first : p);
-      if (k < sides) region.add_polygon_point(p);
-      previous = p;
-    }
-    f.region = region;
-    return true;
-  }
-  if (r.is_a(profile, "general_closed_profile")) {
+    const auto at = [&](int k) {
+      const double a = base + kTwoPi * (k % sides) / sides;
+      return origin + Vec2{std::cos(a), std::sin(a)} * vertex;
+    };
+    for (int k = 0; k < sides; ++k) chain.push_back({false, at(k), at(k + 1), {}, 0, 0});
+  } else if (r.is_a(profile, "general_closed_profile")) {
     const p21::Instance* curve = r.ref(profile, "closed_profile_shape");
-    // A polyline (the common case in the corpus); other curves are named, not guessed.
-    if (curve == nullptr || !r.is_a(*curve, "polyline")) {
-      f.reason = "its general closed profile is not a POLYLINE";
+    if (curve == nullptr) {
+      f.reason = "its general closed profile has no curve";
       return false;
     }
-    const auto list = r.get(*curve, "points");
-    if (!list || !list->is_list() || list->count() < 3) {
-      f.reason = "its polyline has fewer than 3 points";
+    auto read = read_curve(r, *curve, local, f.reason);
+    if (!read) return false;
+    chain = std::move(*read);
+    if ((chain.back().b - chain.front().a).length() > 1e-3) {
+      f.reason = "its general closed profile is not closed";
       return false;
     }
-    std::vector<Vec2> points;
-    for (p21::Value v : r.model().items(*list)) {
-      const auto p = v.is_reference() ? r.point(r.model().find(v.id())) : std::nullopt;
-      if (!p) {
-        f.reason = "a point of its polyline cannot be read";
-        return false;
-      }
-      points.push_back(local.point(*p).xy());
-    }
-    if ((points.front() - points.back()).length() > 1e-9) points.push_back(points.front());
-    Region region;
-    for (std::size_t k = 0; k + 1 < points.size(); ++k) {
-      region.add_line(points[k], points[k + 1]);
-      region.add_polygon_point(points[k]);
-    }
-    f.region = region;
+    chain.back().b = chain.front().a;
+  }
+  if (!chain.empty()) {
+    make_counter_clockwise(chain);
+    f.region = region_of(with_fillets(chain, corner_radius, true));
     return true;
   }
   f.reason = "its profile " + r.type(profile) + " is not supported";
   return false;
+}
+
+// An OPEN_POCKET: its open_boundary (a GENERAL_PROFILE) is the walls; the pocket is open along
+// the straight line between the walls' ends (wall_boundary is for information only, ISO
+// 14649-10). Beyond that line is air; the line's continuation past the walls' ends is the part's
+// face, which the tool must not cut either.
+bool open_pocket_walls(const Reader& r, const p21::Instance& feature, Feature& f,
+                       double corner_radius) {
+  const p21::Instance* boundary = r.ref(feature, "open_boundary");
+  if (boundary == nullptr || !r.is_a(*boundary, "general_profile")) {
+    f.reason = "its open_boundary is not a GENERAL_PROFILE";
+    return false;
+  }
+  Frame local;
+  if (const p21::Instance* p = r.ref(*boundary, "placement")) {
+    const auto frame = r.placement(p);
+    if (!frame) {
+      f.reason = "its profile placement cannot be read";
+      return false;
+    }
+    local = *frame;
+  }
+  const p21::Instance* curve = r.ref(*boundary, "its_profile");
+  if (curve == nullptr) {
+    f.reason = "its open profile has no curve";
+    return false;
+  }
+  auto walls = read_curve(r, *curve, local, f.reason);
+  if (!walls) return false;
+  if ((walls->back().b - walls->front().a).length() < 1e-3) {
+    f.reason = "its open profile is closed";
+    return false;
+  }
+  make_counter_clockwise(*walls);
+  const auto rounded = with_fillets(*walls, corner_radius, false);
+  constexpr double kFar = 1000;
+  f.region = open_walls_region(rounded, kFar);
+  f.floor_region = region_of(rounded);
+  return true;
 }
 
 double depth_of(const Reader& r, const p21::Instance& feature, bool& ok) {
@@ -392,9 +415,11 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
   if (placement) f.frame = workpiece_frame.then(*placement);
   const bool face = r.is_a(feature, "planar_face");
   const bool closed_pocket = r.is_a(feature, "closed_pocket");
+  const bool open_pocket = r.is_a(feature, "open_pocket");
+  const bool outside = r.is_a(feature, "general_outside_profile");
   const bool hole = r.is_a(feature, "round_hole");
   const bool slot = r.is_a(feature, "slot");
-  if (!face && !closed_pocket && !hole && !slot) {
+  if (!face && !closed_pocket && !open_pocket && !outside && !hole && !slot) {
     f.reason = "feature kind " + f.type + " is not checked";
     return f;
   }
@@ -441,11 +466,22 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
   } else if (slot) {
     f.kind = Feature::Kind::Slot;
     if (!straight_slot(r, feature, f)) return f;
-  } else if (closed_pocket) {
+  } else if (outside) {
+    f.kind = Feature::Kind::Outside;
+    f.outside = true;
+    const p21::Instance* boundary = r.ref(feature, "feature_boundary");
+    if (boundary == nullptr || !r.is_a(*boundary, "closed_profile") ||
+        !closed_profile(r, *boundary, f, 0)) {
+      if (f.reason.empty()) f.reason = "its feature_boundary is not a closed profile";
+      return f;
+    }
+  } else if (closed_pocket || open_pocket) {
     f.kind = Feature::Kind::Pocket;
     const auto corner = r.length(feature, "orthogonal_radius");
-    const p21::Instance* boundary = r.ref(feature, "feature_boundary");
-    if (boundary == nullptr || !closed_profile(r, *boundary, f, corner.value_or(0))) {
+    if (open_pocket) {
+      if (!open_pocket_walls(r, feature, f, corner.value_or(0))) return f;
+    } else if (const p21::Instance* boundary = r.ref(feature, "feature_boundary");
+               boundary == nullptr || !closed_profile(r, *boundary, f, corner.value_or(0))) {
       if (f.reason.empty()) f.reason = "its feature_boundary cannot be read";
       return f;
     }

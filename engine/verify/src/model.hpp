@@ -119,7 +119,7 @@ struct Feature {
   std::string type;
   bool checked = false;
   std::string reason;  // why not, when not
-  enum class Kind { Face, Pocket, Hole, Slot } kind = Kind::Pocket;
+  enum class Kind { Face, Pocket, Hole, Slot, Outside } kind = Kind::Pocket;
   Frame frame;    // machine ← feature
   Region region;  // what the walls bound (an open slot end lies far beyond the slot)
   // The floor, when it is not `region` (a slot with an open end: the floor stops at the end).
@@ -128,6 +128,9 @@ struct Feature {
     return floor_region ? *floor_region : region;
   }
   bool walls = true;  // a face has none: the tool may overhang its outline
+  // An outside profile: the material is inside `region` and the tool outside; the floor is a
+  // band round the region, as wide as the smallest tool radius (the stock beyond is unknown).
+  bool outside = false;
   double floor = 0;
   bool through = false;
   double hole_radius = 0;

@@ -690,7 +690,9 @@ void Verifier::feature_piece(const Piece& p) {
     double reach = radius;
     if (tool_.ball && -q.z < radius)
       reach = std::sqrt(std::max(0.0, radius * radius - (radius + q.z) * (radius + q.z)));
-    const double d = f.region.signed_distance(q.xy());
+    // Distance into where the tool may be: inside a pocket's outline, outside a profile's.
+    const double d =
+        f.outside ? -f.region.signed_distance(q.xy()) : f.region.signed_distance(q.xy());
     const double d_floor = f.floor_region ? f.floor_region->signed_distance(q.xy()) : d;
     if (f.walls) {
       const double over = reach + side - d;
@@ -700,7 +702,9 @@ void Verifier::feature_piece(const Piece& p) {
                    r_.describe(*f.instance) + " by " + fmt(over) + " mm (side allowance " +
                    fmt(side) + ")");
     }
-    const bool overlaps = d_floor > -radius;
+    // An outside profile's floor is a band round it at most a tool radius wide (the smallest
+    // tool's): this tool overlaps it within its own diameter of the allowance.
+    const bool overlaps = f.outside ? d < side + 2 * radius + tol_ : d_floor > -radius;
     if (!f.through && overlaps && q.z < bottom_limit - tol_)
       record(diag::Code::VerifyBelowFloor, bottom_limit - q.z, f.frame.point(q),
              "the tool goes " + fmt(bottom_limit - q.z) + " mm below the floor of " +
@@ -763,8 +767,11 @@ void Verifier::coverage(FeatureState& s, FeatureReport& report) {
       report.through ? f.floor : f.floor + (std::isfinite(s.min_bottom) ? s.min_bottom : 0);
   Grid g;
   g.step = options_.grid.value_or(std::clamp(radius / 20, 0.05, 1.0));
-  const Vec2 lo = f.floor_outline().min();
-  const Vec2 hi = f.floor_outline().max();
+  // An outside profile's floor band lies round its outline.
+  const double band = f.outside ? radius : 0;
+  const double around = f.outside ? side + band + 2 * radius : 0;
+  const Vec2 lo = f.floor_outline().min() - Vec2{around, around};
+  const Vec2 hi = f.floor_outline().max() + Vec2{around, around};
   const auto fit = [&] {
     g.nx = static_cast<int>(std::ceil((hi.x - lo.x) / g.step)) + 2;
     g.ny = static_cast<int>(std::ceil((hi.y - lo.y) / g.step)) + 2;
@@ -792,7 +799,8 @@ void Verifier::coverage(FeatureState& s, FeatureReport& report) {
   std::vector<unsigned char> centre_ok(g.cells(), 0);
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
-      const double d = f.region.signed_distance(g.centre(i, j));
+      const double d = f.outside ? -f.region.signed_distance(g.centre(i, j))
+                                 : f.region.signed_distance(g.centre(i, j));
       distance[g.index(i, j)] =
           static_cast<float>(f.floor_region ? f.floor_region->signed_distance(g.centre(i, j)) : d);
       centre_ok[g.index(i, j)] = !f.walls || d >= radius + side - slack;
@@ -836,7 +844,7 @@ void Verifier::coverage(FeatureState& s, FeatureReport& report) {
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
       const std::size_t c = g.index(i, j);
-      if (distance[c] < side) continue;  // not floor
+      if (distance[c] < side || (f.outside && distance[c] > side + band)) continue;  // not floor
       if (static_cast<double>(to_centre[c]) * g.step > radius) {
         ++unreachable;
         continue;
@@ -863,7 +871,8 @@ void Verifier::coverage(FeatureState& s, FeatureReport& report) {
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
       const std::size_t c = g.index(i, j);
-      if (distance[c] < side || covered[c] || static_cast<double>(to_centre[c]) * g.step > radius)
+      if (distance[c] < side || (f.outside && distance[c] > side + band) || covered[c] ||
+          static_cast<double>(to_centre[c]) * g.step > radius)
         continue;
       const double d = (g.centre(i, j) - centroid).length();
       if (d < best_d) {

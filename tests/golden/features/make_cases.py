@@ -288,7 +288,7 @@ def main():
     poly = p.add(f"POLYLINE('',({p.point(0, 0, 0)},{p.point(30, 0, 0)},{p.point(0, 20, 0)},{p.point(0, 0, 0)}))")
     gcp = p.add(f"GENERAL_CLOSED_PROFILE($,{poly})")
     b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
-    tri = p.add(f"CLOSED_POCKET('TRIANGLE',#4,(),{p.placement(50, 0, 0)},{p.plane('D', -3)},(),$,{b},$,$,{gcp})")
+    tri = p.add(f"CLOSED_POCKET('TRIANGLE',#4,(),{p.placement(50, 0, 0)},{p.plane('D', -3)},(),5.0,{b},$,$,{gcp})")
     step_path = p.add(f"LINEAR_PATH($,{p.length(40)},{p.direction(0, 1, 0)})")
     step = p.add(f"STEP('STEP',#4,(),{p.placement(100, 0, 0)},{p.plane('D', -5)},{step_path},$,())")
     rect = rect_pocket(p, 0, 60, 40, 30, 5, 6)
@@ -298,7 +298,7 @@ def main():
     bi = p.add(f"BIDIRECTIONAL_MILLING($,.T.,{p.direction(1, 0, 0)},$,$)")
     side = p.add(f"SIDE_ROUGH_MILLING($,$,'SIDE',5.000,$,{mill10},{tech},{p.functions()},$,$,$,{bi},5.0,2.0,0.5)")
     p.write([("VEE SLOT", vslot, bs(p, "ROUGH", "VEE", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
-             ("GENERAL PROFILE POCKET", tri, bs(p, "ROUGH", "TRI", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("SLOPED GENERAL POCKET", tri, bs(p, "ROUGH", "TRI", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
              ("STEP", step, bs(p, "ROUGH", "STEP", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
              ("SPIRAL", rect, bs(p, "ROUGH", "SPIRAL", mill10, tech, spiral, 1.0, None, 0.0, 0.0)),
              ("AIR APPROACH", rect, bs(p, "ROUGH", "AIR", mill10, tech, cp, 1.0, None, 0.0, 0.0, air)),
@@ -380,5 +380,223 @@ def main():
     ])
 
 
+# ---- general profiles (polylines, composite curves of trimmed lines and circles, n-gons) ----
+def polyline(p, pts, close=True):
+    ids = [p.point(x, y, 0) for x, y in pts]
+    if close:
+        ids.append(ids[0])
+    return p.add(f"POLYLINE('',({','.join(ids)}))")
+
+
+def trimmed_line(p, a, b):
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    length = (dx * dx + dy * dy) ** 0.5
+    vec = p.add(f"VECTOR('',{p.direction(dx / length, dy / length, 0)},{length:.3f})")
+    line = p.add(f"LINE('',{p.point(a[0], a[1], 0)},{vec})")
+    return p.add(f"TRIMMED_CURVE('',{line},({p.point(a[0], a[1], 0)}),({p.point(b[0], b[1], 0)}),"
+                 ".T.,.CARTESIAN.)")
+
+
+def trimmed_arc(p, centre, radius, a, b, ccw):
+    circle = p.add(f"CIRCLE('',{p.placement(centre[0], centre[1], 0)},{radius:.6f})")
+    sense = ".T." if ccw else ".F."
+    return p.add(f"TRIMMED_CURVE('',{circle},({p.point(a[0], a[1], 0)}),({p.point(b[0], b[1], 0)}),"
+                 f"{sense},.CARTESIAN.)")
+
+
+def composite(p, segments):
+    ids = [p.add(f"COMPOSITE_CURVE_SEGMENT(.CONTINUOUS.,.T.,{s})") for s in segments]
+    return p.add(f"COMPOSITE_CURVE('',({','.join(ids)}),.F.)")
+
+
+def general_pocket(p, name, x, y, curve, depth, corner=None, floor="$",
+                   bottom="PLANAR_POCKET_BOTTOM_CONDITION()", profile=None):
+    prof = profile or p.add(f"GENERAL_CLOSED_PROFILE($,{curve})")
+    b = p.add(bottom)
+    c = p.length(corner) if corner is not None else "$"
+    return p.add(f"CLOSED_POCKET('{name}',#4,(),{p.placement(x, y, 0)},"
+                 f"{p.plane('POCKET DEPTH', -depth)},(),$,{b},{floor},{c},{prof})")
+
+
+def ngon(p, diameter, sides, circumscribed=True):
+    flag = ".T." if circumscribed else ".F."
+    return p.add(f"NGON_CLOSED_PROFILE($,{p.length(diameter)},{sides},{flag})")
+
+
+def open_pocket(p, name, x, y, walls, depth, corner=None, wall_boundary="$"):
+    prof = p.add(f"GENERAL_PROFILE($,{walls})")
+    b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
+    c = p.length(corner) if corner is not None else "$"
+    return p.add(f"OPEN_POCKET('{name}',#4,(),{p.placement(x, y, 0)},"
+                 f"{p.plane('POCKET DEPTH', -depth)},(),$,{b},$,{c},{prof},{wall_boundary})")
+
+
+def outside(p, name, x, y, boundary, depth):
+    path = p.add(f"LINEAR_PATH($,{p.length(depth)},{p.direction(0, 0, -1)})")
+    return p.add(f"GENERAL_OUTSIDE_PROFILE('{name}',#4,(),{p.placement(x, y, 0)},"
+                 f"{p.plane('PROFILE DEPTH', -depth)},{path},{boundary})")
+
+
+def side_op(p, kind, name, tool, tech, strategy, axial, allowance, approach="$"):
+    return p.add(f"SIDE_{kind}_MILLING($,$,'{name}',5.000,$,{tool},{tech},{p.functions()},$,"
+                 f"{approach},$,{strategy},{axial:.3f},$,{allowance:.3f})")
+
+
+def star(outer, inner, points=5):
+    import math
+    pts = []
+    for k in range(2 * points):
+        r = outer if k % 2 == 0 else inner
+        t = math.pi / 2 + math.pi * k / points
+        pts.append((round(r * math.cos(t), 3), round(r * math.sin(t), 3)))
+    return pts
+
+
+def general_cases():
+    p = program("pocket-polyline-l", "L-shaped polyline pocket (orthogonal_radius 6): rings, bidirectional floor, side finish")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    ell = polyline(p, [(0, 0), (60, 0), (60, 25), (25, 25), (25, 50), (0, 50)])
+    f = general_pocket(p, "L POCKET", 10, 10, ell, 8, corner=6)
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    bi = p.add(f"BIDIRECTIONAL_MILLING(0.3,.T.,{p.direction(1, 0, 0)},.LEFT.,$)")
+    p.write([("L ROUGH", f, bs(p, "ROUGH", "L R", t, tech, cp, 4.0, None, 0.5, 0.3)),
+             ("L FLOOR", f, bs(p, "FINISH", "L F", t, tech, bi, 8.0, None, 0.5, None)),
+             ("L WALLS", f, side_op(p, "FINISH", "L W", t, tech, cp, 8.0, 0.0))])
+
+    p = program("pocket-composite", "pocket bounded by a composite curve: lines, a convex and a concave arc; ramp entry, then bidirectional-contour")
+    t, tech = mill(p, 8, 20), p.tech(0.03, -40.0)
+    d_shape = composite(p, [
+        trimmed_line(p, (0, 0), (40, 0)),
+        trimmed_arc(p, (40, 20), 20, (40, 0), (40, 40), True),
+        trimmed_line(p, (40, 40), (0, 40)),
+        trimmed_arc(p, (-21, 20), 29, (0, 40), (0, 0), False)])
+    f = general_pocket(p, "D POCKET", 0, 0, d_shape, 6, corner=5)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    ramp = p.add("PLUNGE_RAMP($,5.0)")
+    bc = p.add(f"BIDIRECTIONAL_CONTOUR(0.3,.T.,{p.direction(0, 1, 0)},.RIGHT.,.CCW.,$)")
+    p.write([("D ROUGH", f, bs(p, "ROUGH", "D R", t, tech, cp, 3.0, None, 0.5, 0.2, ramp)),
+             ("D FINISH", f, bs(p, "FINISH", "D F", t, tech, bc, 6.0, None, None, None))])
+
+    p = program("pocket-star", "a concave star, and twin lobes joined by a neck: their offsets split into one island per lobe, each machined from its own innermost ring")
+    t, tech = mill(p, 10, 25), p.tech(0.03, -40.0)
+    f = general_pocket(p, "STAR", 0, 0, polyline(p, star(45, 20)), 5, corner=6)
+    twin = general_pocket(p, "TWIN LOBES", 0, 100, polyline(p, [(0, 0), (40, 0), (40, 12), (60, 12), (60, 0), (100, 0), (100, 40), (60, 40), (60, 28), (40, 28), (40, 40), (0, 40)]), 6, corner=6)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,$,.CONVENTIONAL.)")
+    p.write([("STAR ROUGH", f, bs(p, "ROUGH", "STAR R", t, tech, cp, 5.0, None, 0.0, 0.0)),
+             ("TWIN ROUGH", twin, bs(p, "ROUGH", "TWIN R", t, tech, cp, 3.0, None, 0.0, 0.0))])
+
+    p = program("pocket-ngon", "hexagonal pocket (across flats): one-way lines along y, then contour-bidirectional")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    f = general_pocket(p, "HEXAGON", 0, 0, None, 4, corner=6, profile=ngon(p, 50, 6, False))
+    uni = p.add(f"UNIDIRECTIONAL_MILLING(0.3,.T.,{p.direction(0, 1, 0)},.CLIMB.)")
+    cb = p.add(f"CONTOUR_BIDIRECTIONAL(0.3,.T.,{p.direction(1, 0, 0)},$,.CW.,$)")
+    p.write([("HEX UNIDIRECTIONAL", f, bs(p, "ROUGH", "HEX U", t, tech, uni, 2.0, None, 0.3, 0.2)),
+             ("HEX CONTOUR BIDIRECTIONAL", f, bs(p, "FINISH", "HEX CB", t, tech, cb, 4.0, None, None, None))])
+
+    p = program("open-pocket", "open pockets: U-shaped walls open on one side (rings run out past it), and walls with an arc (lines run out past it)")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    walls = polyline(p, [(50, -20), (0, -20), (0, 20), (50, 20)], close=False)
+    info = p.add(f"GENERAL_PROFILE($,{polyline(p, [(50, 20), (50, -20)], close=False)})")
+    f1 = open_pocket(p, "OPEN U", 0, 0, walls, 6, corner=6, wall_boundary=info)
+    bay = composite(p, [
+        trimmed_line(p, (130, 0), (100, 0)),
+        trimmed_arc(p, (100, 20), 20, (100, 0), (100, 40), False),
+        trimmed_line(p, (100, 40), (130, 40))])
+    f2 = open_pocket(p, "OPEN ARC", 0, 0, bay, 4)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,$,.CLIMB.)")
+    bi = p.add(f"BIDIRECTIONAL_MILLING(0.3,.T.,{p.direction(1, 0, 0)},.LEFT.,$)")
+    p.write([("OPEN U ROUGH", f1, bs(p, "ROUGH", "OU", t, tech, cp, 3.0, None, 0.0, 0.0)),
+             ("OPEN ARC LINES", f2, bs(p, "ROUGH", "OA", t, tech, bi, 4.0, None, 0.0, 0.0))])
+
+    p = program("outside-general", "general outside profiles: a composite boss with a concave arc, a polyline pentagon")
+    t, tech = mill(p, 12, 25), p.tech(0.03, -40.0)
+    notch = composite(p, [
+        trimmed_line(p, (0, 0), (40, 0)),
+        trimmed_line(p, (40, 0), (40, 30)),
+        trimmed_line(p, (40, 30), (30, 30)),
+        trimmed_arc(p, (20, 40), 200 ** 0.5, (30, 30), (10, 30), False),
+        trimmed_line(p, (10, 30), (0, 30)),
+        trimmed_line(p, (0, 30), (0, 0))])
+    boss = outside(p, "NOTCHED BOSS", 0, 0, p.add(f"GENERAL_CLOSED_PROFILE($,{notch})"), 8)
+    penta = outside(p, "PENTAGON", 100, 0, polyline_profile(p, [(20, 0), (6.18, 19.021), (-16.18, 11.756), (-16.18, -11.756), (6.18, -19.021)]), 5)
+    climb = p.add("CONTOUR_PARALLEL($,.T.,$,.CLIMB.)")
+    conv = p.add("CONTOUR_PARALLEL($,.T.,$,.CONVENTIONAL.)")
+    p.write([("BOSS ROUGH", boss, side_op(p, "ROUGH", "BOSS R", t, tech, climb, 4.0, 0.5)),
+             ("BOSS FINISH", boss, side_op(p, "FINISH", "BOSS F", t, tech, climb, 8.0, 0.0)),
+             ("PENTAGON FINISH", penta, side_op(p, "FINISH", "PENTA F", t, tech, conv, 2.5, 0.0))])
+
+    p = program("pocket-radiused-bottom", "a round pocket whose floor is the half ball of its radius (RADIUSED_POCKET_BOTTOM_CONDITION), made by a ball of that radius down its axis")
+    ball = p.tool("BALL 20", "BALL_ENDMILL", 20, edge_length=30.0, edge_radius=10.0)
+    tech = p.tech(0.02, -30.0)
+    bottom = f"RADIUSED_POCKET_BOTTOM_CONDITION({p.point(0, 0, -5)},{p.length(10, 0.02)})"
+    prof = p.add(f"CIRCULAR_CLOSED_PROFILE($,{p.length(20, 0.02)})")
+    b = p.add(bottom)
+    f = p.add(f"CLOSED_POCKET('BALL POCKET',#4,(),{p.placement(20, 20, 0)},"
+              f"{p.plane('POCKET DEPTH', -15)},(),$,{b},$,$,{prof})")
+    ax = p.add("PLUNGE_TOOLAXIS($)")
+    cp = p.add("CONTOUR_PARALLEL($,.T.,$,.CLIMB.)")
+    p.write([("BALL POCKET", f, bs(p, "FINISH", "BALL", ball, tech, cp, 5.0, None, None, None, ax))])
+
+    # ---- wrong tools for general profiles (STEPNC-102 naming the tool, operation and feature) ----
+    p = program("wrong-tools-general", "tools that cannot make general profiles")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -30.0)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    sharp = general_pocket(p, "SHARP L", 0, 0, polyline(p, [(0, 0), (60, 0), (60, 25), (25, 25), (25, 50), (0, 50)]), 5)
+    small_arc = composite(p, [
+        trimmed_line(p, (0, 0), (40, 0)),
+        trimmed_arc(p, (40, 3), 3, (40, 0), (40, 6), True),
+        trimmed_line(p, (40, 6), (0, 6)),
+        trimmed_arc(p, (0, 3), 3, (0, 6), (0, 0), True)])
+    narrow = general_pocket(p, "NARROW ENDS", 100, 0, small_arc, 5)
+    dumbbell = general_pocket(p, "DUMBBELL", 0, 100, polyline(p, [(0, 0), (30, 0), (30, 12), (60, 12), (60, 0), (90, 0), (90, 30), (60, 30), (60, 18), (30, 18), (30, 30), (0, 30)]), 5, corner=6)
+    tiny = general_pocket(p, "TINY HEXAGON", 200, 0, None, 5, corner=6, profile=ngon(p, 8, 6))
+    ell = general_pocket(p, "L POCKET", 0, 300, polyline(p, [(0, 0), (60, 0), (60, 25), (25, 25), (25, 50), (0, 50)]), 5, corner=6)
+    big_helix = p.add("PLUNGE_HELIX($,20.0,5.0)")
+    ell_boss = outside(p, "L BOSS", 0, 200, polyline_profile(p, [(0, 0), (40, 0), (40, 15), (15, 15), (15, 40), (0, 40)]), 5)
+    half_ball = p.add(f"RADIUSED_POCKET_BOTTOM_CONDITION({p.point(0, 0, -5)},{p.length(10, 0.02)})")
+    round_prof = p.add(f"CIRCULAR_CLOSED_PROFILE($,{p.length(20, 0.02)})")
+    ball_pocket = p.add(f"CLOSED_POCKET('BALL POCKET',#4,(),{p.placement(300, 0, 0)},"
+                        f"{p.plane('POCKET DEPTH', -15)},(),$,{half_ball},$,$,{round_prof})")
+    dish = p.add(f"RADIUSED_POCKET_BOTTOM_CONDITION({p.point(0, 0, 40)},{p.length(50)})")
+    dish_pocket = p.add(f"CLOSED_POCKET('DISH',#4,(),{p.placement(300, 100, 0)},"
+                        f"{p.plane('POCKET DEPTH', -10)},(),$,{dish},$,$,{round_prof})")
+    p.write([
+        ("SHARP CORNERS", sharp, bs(p, "ROUGH", "R SHARP", t, tech, cp, 5.0, None, 0.5, 0.0)),
+        ("ARC TOO TIGHT", narrow, bs(p, "ROUGH", "R NARROW", t, tech, cp, 5.0, None, 0.0, 0.0)),
+        ("NECK TOO NARROW", dumbbell, bs(p, "ROUGH", "R NECK", t, tech, cp, 5.0, None, 0.0, 0.0)),
+        # Corners of 6 on sides of 4: the outline is inconsistent (STEPNC-103). A general pocket
+        # whose corners fit the tool and whose sides fit its corners is never too small.
+        ("POCKET TOO SMALL", tiny, bs(p, "ROUGH", "R TINY", t, tech, cp, 5.0, None, 0.0, 0.0)),
+        ("HELIX TOO WIDE", ell, bs(p, "ROUGH", "R HELIX", t, tech, cp, 5.0, None, 0.0, 0.0, big_helix)),
+        ("CONCAVE CORNER OUTSIDE", ell_boss, side_op(p, "FINISH", "S L", t, tech, cp, 5.0, 0.0)),
+        # A flat end mill in a pocket whose floor is a half ball: STEPNC-102 naming both.
+        ("FLAT TOOL IN BALL POCKET", ball_pocket, bs(p, "FINISH", "F BALL", mill(p, 20, 30), tech, cp, 5.0, None, None, None)),
+        # A shallow spherical dish: 3D surface finishing, STEPNC-101.
+        ("SPHERICAL DISH", dish_pocket, bs(p, "FINISH", "F DISH", t, tech, cp, 5.0, None, None, None)),
+    ])
+
+    # ---- hostile general profiles: each a clean STEPNC-103 (or STEPNC-011), never a crash ----
+    p = program("hostile-general", "self-intersecting, zero-area, open, far away and gapped profiles; an n-gon of a billion sides")
+    t, tech = mill(p, 6, 20), p.tech(0.03, -30.0)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    bowtie = general_pocket(p, "BOW TIE", 0, 0, polyline(p, [(0, 0), (40, 30), (40, 0), (0, 30)]), 3, corner=4)
+    flat = general_pocket(p, "ZERO AREA", 0, 0, polyline(p, [(0, 0), (20, 0), (40, 0)]), 3, corner=4)
+    unclosed = general_pocket(p, "NOT CLOSED", 0, 0, polyline(p, [(0, 0), (40, 0), (40, 30), (0, 30)], close=False), 3, corner=4)
+    far = general_pocket(p, "FAR AWAY", 0, 0, polyline(p, [(0, 0), (1e9, 0), (1e9, 30), (0, 30)]), 3, corner=4)
+    gap = composite(p, [trimmed_line(p, (0, 0), (40, 0)), trimmed_line(p, (40, 1), (40, 30)),
+                        trimmed_line(p, (40, 30), (0, 30)), trimmed_line(p, (0, 30), (0, 0))])
+    gapped = general_pocket(p, "GAPPED", 0, 0, gap, 3, corner=4)
+    billion = general_pocket(p, "BILLION SIDES", 0, 0, None, 3, profile=ngon(p, 50, 1000000000))
+    steps = [(n, f, bs(p, "ROUGH", n, t, tech, cp, 3.0, None, 0.0, 0.0))
+             for n, f in [("BOW TIE", bowtie), ("ZERO AREA", flat), ("NOT CLOSED", unclosed),
+                          ("FAR AWAY", far), ("GAPPED", gapped), ("BILLION SIDES", billion)]]
+    p.write(steps)
+
+
+def polyline_profile(p, pts):
+    return p.add(f"GENERAL_CLOSED_PROFILE($,{polyline(p, pts)})")
+
+
 if __name__ == "__main__":
     main()
+    general_cases()

@@ -240,7 +240,171 @@ def main():
     program("slot-flat-ends", "the pocket's outline as a slot with flat ends", slot=True)
     # POCKET1 declared as a STEP: not checked (a note), everything else still is.
     program("step-not-checked", "a feature kind the verifier does not check", step=True)
+    general_cases()
     return 0
+
+
+# ---- general outlines (issue 5): an L-shaped polyline pocket, an open pocket, an outside
+# profile, each with a right path and a path broken at a known place ----
+
+def quarter(cx, cy, r, a0, n=16):
+    return [(cx + r * math.cos(math.radians(a0 + 90.0 * k / n)),
+             cy + r * math.sin(math.radians(a0 + 90.0 * k / n))) for k in range(n + 1)]
+
+
+def general(name, description, feature, path, side=False):
+    """One feature and one workingstep with an explicit path, in a 100 x 80 x 20 block whose top
+    is z 0. `feature` gives the feature's P21 lines (ids 21 and 950..989) in the feature's frame,
+    placed at (20, 15, 0); the end mill is D10 (r 5), no approach strategy."""
+    f = P21()
+    f.add("PROJECT('%s',#2,(#900),$,$,$)" % name.upper(), 1)
+    f.add("WORKPLAN('MAIN',(#11),$,#8,$)", 2)
+    f.add("SETUP('SETUP1',#923,#910,(#9))", 8)
+    f.add("WORKPIECE_SETUP(#900,#923,$,$,())", 9)
+    f.add("MACHINING_WORKINGSTEP('WS PATH',#910,#21,#31,$)", 11)
+    for line in feature:
+        f.lines.append(line)
+    if side:
+        f.add("SIDE_FINISH_MILLING(#310,$,'SIDE OP',10.,$,#71,#81,#90,$,$,$,#64,6.,$,0.)", 31)
+    else:
+        f.add("BOTTOM_AND_SIDE_FINISH_MILLING(#310,$,'POCKET OP',10.,$,#71,#81,#90,$,$,$,#64,"
+              "6.,4.,0.,0.)", 31)
+    f.add("CONTOUR_PARALLEL($,.T.,.CCW.,.CLIMB.)", 64)
+    f.add("MILLING_CUTTING_TOOL('END MILL 10',#710,(#79),70.,$,$)", 71)
+    f.add("ENDMILL(#711,3,.RIGHT.,.F.,$)", 710)
+    f.add("MILLING_TOOL_DIMENSION(10.,$,$,25.,0.,$,$)", 711)
+    f.add("CUTTING_COMPONENT(70.,$,$,$,$)", 79)
+    f.add("MILLING_TECHNOLOGY(0.01,.TCP.,$,-50.,$,.F.,.F.,.F.,$)", 81)
+    f.add("MILLING_MACHINE_FUNCTIONS(.T.,$,$,.F.,$,(),.F.,$,$,())", 90)
+    f.add("WORKPIECE('PART',$,$,$,$,#901,())", 900)
+    f.add("BLOCK('STOCK',#902,100.,80.,20.)", 901)
+    f.add("AXIS2_PLACEMENT_3D('STOCK CORNER',#903,#921,#922)", 902)
+    f.add("CARTESIAN_POINT('',(0.,0.,-20.))", 903)
+    f.add("PLANE('SECURITY PLANE',#911)", 910)
+    f.add("AXIS2_PLACEMENT_3D('SECURITY',#912,#921,#922)", 911)
+    f.add("CARTESIAN_POINT('',(0.,0.,20.))", 912)
+    f.add("CARTESIAN_POINT('ORIGIN',(0.,0.,0.))", 920)
+    f.add("DIRECTION('Z',(0.,0.,1.))", 921)
+    f.add("DIRECTION('X',(1.,0.,0.))", 922)
+    f.add("AXIS2_PLACEMENT_3D('IDENTITY',#920,#921,#922)", 923)
+    f.add("PLUS_MINUS_VALUE(0.05,0.05,2)", 925)
+    f.add("AXIS2_PLACEMENT_3D('FEATURE',#955,#921,#922)", 950)
+    f.add("PLANE('DEPTH',#956)", 951)
+    f.add("CARTESIAN_POINT('',(20.,15.,0.))", 955)
+    f.add("AXIS2_PLACEMENT_3D('DEPTH',#957,#921,#922)", 956)
+    f.add("CARTESIAN_POINT('',(0.,0.,-6.))", 957)
+    f.next = 2000
+    f.add("TOOLPATH_LIST((%s))" % f.polyline("PATH", path), 310)
+
+    def key(line):
+        return int(line[1:line.index("=")])
+
+    text = ["ISO-10303-21;", "HEADER;",
+            "FILE_DESCRIPTION(('ncpost verify case: %s'),'2;1');" % description.replace("'", "''"),
+            "FILE_NAME('%s.stp','2026-11-25T00:00:00',('ncpost'),('ncpost project'),'',"
+            "'tests/golden/verify/make_cases.py','');" % name,
+            "FILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'));", "ENDSEC;", "DATA;"]
+    text += sorted(f.lines, key=key)
+    text += ["ENDSEC;", "END-ISO-10303-21;", ""]
+    with open(os.path.join(HERE, "cases", name + ".stp"), "w") as out:
+        out.write("\n".join(text))
+
+
+def polyline_lines(points, first_id, closed=True):
+    """POLYLINE of 2D points from #first_id on: the points, then the curve (the last id)."""
+    lines = []
+    ids = []
+    for k, (x, y) in enumerate(points):
+        lines.append("#%d=CARTESIAN_POINT('',(%.4f,%.4f,0.));" % (first_id + k, x, y))
+        ids.append("#%d" % (first_id + k))
+    if closed:
+        ids.append(ids[0])
+    curve = first_id + len(points)
+    lines.append("#%d=POLYLINE('',(%s));" % (curve, ",".join(ids)))
+    return lines, "#%d" % curve
+
+
+def l_pocket(name, description, middle=True, shift=0.0):
+    """L-shaped pocket (0,0) (60,0) (60,25) (25,25) (25,50) (0,50), orthogonal_radius 5 (= the
+    tool radius, so the centre path may go into each convex corner at 5 from both sides), floor
+    z -6. The long arm: a line along y 12.5 and its boundary at 5 from the walls; the short arm:
+    its boundary at x 5, y 45 and x 20 (moved by `shift` towards the wall at x 25), then a line
+    along y at x 12.5 (unless not `middle`), then y 20 back to the long arm."""
+    lines, curve = polyline_lines([(0, 0), (60, 0), (60, 25), (25, 25), (25, 50), (0, 50)], 960)
+    feature = lines + [
+        "#21=CLOSED_POCKET('L POCKET',#900,(#31),#950,#951,(),$,#952,$,#953,#954);",
+        "#952=PLANAR_POCKET_BOTTOM_CONDITION();",
+        "#953=TOLERANCED_LENGTH_MEASURE(5.,#925);",
+        "#954=GENERAL_CLOSED_PROFILE($,%s);" % curve]
+    x = 20.0 + shift
+    xy = [(5, 12.5), (55, 12.5), (55, 5), (5, 5), (5, 45), (x, 45), (x, 20)]
+    xy += [(12.5, 20), (12.5, 45), (12.5, 20)] if middle else []
+    xy += [(55, 20), (55, 12.5)]
+    z = -6.0
+    path = [(5, 12.5, 2)] + [(px, py, z) for px, py in xy] + [(55, 12.5, 2)]
+    general(name, description, feature, path)
+
+
+def open_pocket(name, description, exit_point=None):
+    """Walls (50,-20) (0,-20) (0,20) (50,20), open along x 50 (the part's face goes on beyond
+    y +-20), orthogonal_radius 5, floor z -6. Zigzag lines along x at y 15..-15 from x 60 (the
+    tool radius + 5 past the open side), then along the wall at x 5 and back out along y 15;
+    `exit_point` is a last feed at the floor from there."""
+    lines, curve = polyline_lines([(50, -20), (0, -20), (0, 20), (50, 20)], 960, closed=False)
+    feature = lines + [
+        "#21=OPEN_POCKET('OPEN U',#900,(#31),#950,#951,(),$,#952,$,#953,#954,$);",
+        "#952=PLANAR_POCKET_BOTTOM_CONDITION();",
+        "#953=TOLERANCED_LENGTH_MEASURE(5.,#925);",
+        "#954=GENERAL_PROFILE($,%s);" % curve]
+    z = -6.0
+    path = [(60, 15, 2), (60, 15, z)]
+    for k, y in enumerate([15, 7.5, 0, -7.5, -15]):
+        a, b = (60, 5) if k % 2 == 0 else (5, 60)
+        if k:
+            path.append((a, y, z))
+        path.append((b, y, z))
+    path += [(5, 15, z), (60, 15, z)]
+    if exit_point:
+        path.append((exit_point[0], exit_point[1], z))
+    path.append((path[-1][0], path[-1][1], 2))
+    general(name, description, feature, path)
+
+
+def outside_box(name, description, cut_corner=False):
+    """The part: a 40 x 30 polyline outline from (0, 0); the tool goes round it clockwise at 5.01
+    (corners arcs of 16 chords), from a lead-in point at (60, 15); `cut_corner` goes straight
+    across the (40, 30) corner instead."""
+    lines, curve = polyline_lines([(0, 0), (40, 0), (40, 30), (0, 30)], 960)
+    feature = lines + [
+        "#21=GENERAL_OUTSIDE_PROFILE('BOX',#900,(#31),#950,#951,#958,#954);",
+        "#958=LINEAR_PATH($,#959,#921);",
+        "#959=TOLERANCED_LENGTH_MEASURE(6.,#925);",
+        "#954=GENERAL_CLOSED_PROFILE($,%s);" % curve]
+    z = -6.0
+    r = 5.01
+    ring = [(40 + r, 15)]
+    ring += [(40 + r, 30)] if not cut_corner else []
+    corner = quarter(40, 30, r, 0)
+    ring += corner if not cut_corner else [corner[0], corner[-1]]
+    ring += quarter(0, 30, r, 90) + quarter(0, 0, r, 180) + quarter(40, 0, r, 270)
+    ring += [(40 + r, 15)]
+    ring = list(reversed(ring))  # clockwise: climb with the clockwise spindle
+    path = [(60, 15, 2), (60, 15, z)] + [(p[0], p[1], z) for p in ring] + [(60, 15, z), (60, 15, 2)]
+    general(name, description, feature, path, side=True)
+
+
+def general_cases():
+    l_pocket("l-pocket", "an L-shaped polyline pocket (orthogonal_radius 5), machined right")
+    l_pocket("l-pocket-gouge", "an L-shaped pocket: a line of the short arm 0.8 mm into its wall",
+             shift=0.8)
+    l_pocket("l-pocket-uncovered", "an L-shaped pocket: the middle line of the short arm left out",
+             middle=False)
+    open_pocket("open-pocket", "an open pocket, lines running out past its open side")
+    open_pocket("open-pocket-face", "an open pocket: a last feed into the part's face beside the "
+                "open side", exit_point=(53.0, 24.0))
+    outside_box("outside-box", "a general outside profile (polyline), the ring 5.01 outside it")
+    outside_box("outside-box-corner", "a general outside profile: the ring cuts across a corner",
+                cut_corner=True)
 
 
 if __name__ == "__main__":

@@ -109,7 +109,23 @@ INSTANTIATE_TEST_SUITE_P(
         // The pocket's outline and path as a SLOT with flat, 6 mm-cornered ends: passes.
         Expected{"slot-flat-ends", {}},
         // A STEP is not checked: a VERIFY-010 note, no error (the golden file holds the note).
-        Expected{"step-not-checked", {}}),
+        Expected{"step-not-checked", {}},
+        // General outlines. An L-shaped polyline pocket with orthogonal_radius 5 = the tool
+        // radius: its boundary at 5 from the walls and lines between pass.
+        Expected{"l-pocket", {}},
+        // The short arm's line at x 20.8 (pocket at (20, 15)): 0.8 mm into its wall at x 25
+        // and the fillet about (20, 45), first at the arm's top.
+        Expected{"l-pocket-gouge", {Code::VerifyGouge}, Position{40.8, 60, -6}},
+        // Without the short arm's middle line a strip x 10..15 of it is never swept.
+        Expected{"l-pocket-uncovered", {Code::VerifyCoverage}, Position{32.625, 43.625, -6}},
+        // An open pocket whose lines run 10 mm out past the open side: passes.
+        Expected{"open-pocket", {}},
+        // A last feed to (53, 24) beside the open side: 2 mm into the part's face x 50, y > 20.
+        Expected{"open-pocket-face", {Code::VerifyGouge}, Position{73, 39, -6}},
+        // A general outside profile with the ring 5.01 outside it: passes.
+        Expected{"outside-box", {}},
+        // Across the (40, 30) corner from (45.01, 30) to (40, 35.01): 1.457 into it.
+        Expected{"outside-box-corner", {Code::VerifyGouge}, Position{62.47, 47.54, -6}}),
     [](const testing::TestParamInfo<Expected>& param) {
       std::string n = param.param.name;
       std::replace(n.begin(), n.end(), '-', '_');

@@ -135,6 +135,7 @@ std::vector<double> levels(double depth, std::optional<double> step);
 
 bool generate_face(Context& ctx);
 bool generate_pocket(Context& ctx);
+bool generate_open_pocket(Context& ctx);
 bool generate_slot(Context& ctx);
 bool generate_outside_profile(Context& ctx);
 bool generate_hole(Context& ctx);

@@ -145,6 +145,8 @@ Path generate(detail::GeometryReader& geometry, const Request& request,
     ok = generate_face(ctx);
   } else if (geometry.is_a(*request.feature, "closed_pocket")) {
     ok = generate_pocket(ctx);
+  } else if (geometry.is_a(*request.feature, "open_pocket")) {
+    ok = generate_open_pocket(ctx);
   } else if (geometry.is_a(*request.feature, "general_outside_profile")) {
     ok = generate_outside_profile(ctx);
   } else if (geometry.is_a(*request.feature, "slot")) {

@@ -2,6 +2,8 @@
 // each machined by the strategy's pattern; see docs/features.md for every decision and the
 // comparison with NIST's explicit toolpaths for the same part.
 
+#include "milling.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -15,13 +17,11 @@ namespace {
 constexpr double kEps = 1e-9;
 // With no overlap in the strategy: half the diameter between neighbouring passes.
 constexpr double kDefaultOverlap = 0.5;
-// Rings with sharp corners leave a cusp at each corner unless the step between them is at most
-// (2 - √2)⁻¹ · R ≈ 1.707 R; a little less keeps the cusp inside the tool.
-constexpr double kSharpCornerStep = 1.7;
-
 double radians(double degrees) {
   return degrees * std::numbers::pi / 180.0;
 }
+
+}  // namespace
 
 // Stepover from the strategy's overlap (ISO 14649-11: the share of the tool diameter that
 // neighbouring passes have in common) and the operation's radial depth, whichever is smaller.
@@ -72,8 +72,6 @@ std::optional<std::vector<double>> depth_levels(Context& ctx, const OperationDat
   }
   return levels(depth, multiple ? o.axial : std::nullopt);
 }
-
-}  // namespace
 
 // ---- PLANAR_FACE ------------------------------------------------------------------------------
 
@@ -221,17 +219,6 @@ bool generate_face(Context& ctx) {
 // ---- CLOSED_POCKET
 // -------------------------------------------------------------------------------
 
-namespace {
-
-// How the tool gets from `from_z` down to `to_z` at the pattern's start point p0.
-struct Entry {
-  enum class Kind { Plunge, Ramp, Helix } kind = Kind::Helix;
-  double radius = 0;  // helix
-  double angle = 0;   // ramp/helix/zigzag descent, radians
-  double width = 0;   // zigzag leg
-};
-
-// `x` is the profile's x axis: the helix starts at p0 + radius · x, where the caller put the tool.
 void enter(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double ramp_length,
            bool ccw, double from_z, double to_z) {
   switch (e.kind) {
@@ -269,7 +256,73 @@ void enter(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double 
   }
 }
 
-}  // namespace
+bool check_fillet(Context& ctx, const Tool& tool, const OperationData& o,
+                  const Toleranced& fillet) {
+  const Instance& f = ctx.feature();
+  // The floor fillet is the tool's corner radius.
+  if (tool.corner_radius > fillet.size + fillet.upper + o.allowance_bottom + kEps)
+    return ctx.unfit(*tool.instance, ctx.d(*tool.instance) + " edge radius " +
+                                         fmt(tool.corner_radius) + " > planar (floor) radius " +
+                                         fmt(fillet.size) + " + allowance " +
+                                         fmt(o.allowance_bottom) + " of " + ctx.d(f));
+  if (tool.corner_radius + fillet.lower + kEps < fillet.size)
+    return ctx.unfit(*tool.instance, ctx.d(*tool.instance) + " edge radius " +
+                                         fmt(tool.corner_radius) + " < planar (floor) radius " +
+                                         fmt(fillet.size) + " of " + ctx.d(f) +
+                                         ": the tool would cut the fillet away");
+  return true;
+}
+
+bool read_entry(Context& ctx, const OperationData& o, const Tool& tool, Entry& entry) {
+  entry = Entry{};
+  entry.radius = ctx.opt.default_helix_radius * tool.radius;
+  entry.angle = radians(ctx.opt.default_helix_angle);
+  if (o.approach == nullptr) return true;
+  entry.explicit_entry = true;
+  if (ctx.is(o.approach, "plunge_toolaxis")) {
+    entry.kind = Entry::Kind::Plunge;
+  } else if (ctx.is(o.approach, "plunge_helix")) {
+    entry.radius = ctx.number(*o.approach, "radius").value_or(entry.radius);
+    entry.angle = radians(ctx.number(*o.approach, "angle").value_or(ctx.opt.default_helix_angle));
+  } else if (ctx.is(o.approach, "plunge_ramp") || ctx.is(o.approach, "plunge_zigzag")) {
+    entry.kind = Entry::Kind::Ramp;
+    entry.angle = radians(ctx.number(*o.approach, "angle").value_or(0));
+    entry.width = ctx.number(*o.approach, "width").value_or(0);
+  } else {
+    return ctx.not_implemented(ctx.d(*o.approach) + " as the approach into " +
+                               ctx.d(ctx.feature()));
+  }
+  if ((entry.kind != Entry::Kind::Plunge) && !(entry.angle > 0 && entry.angle < radians(90)))
+    return ctx.bad(*o.approach, ctx.d(*o.approach) + " angle must be between 0 and 90 degrees");
+  return true;
+}
+
+bool entry_too_long(Context& ctx, const Entry& e, double ramp_length, double drop) {
+  const auto limit = static_cast<double>(ctx.opt.max_moves);
+  if (e.kind == Entry::Kind::Helix)
+    return drop / (2 * std::numbers::pi * e.radius * std::tan(e.angle)) > limit;
+  if (e.kind == Entry::Kind::Ramp) return drop / (ramp_length * std::tan(e.angle)) > limit;
+  return false;
+}
+
+bool rings_ccw(Context& ctx, const OperationData& o, bool wall_outside) {
+  const bool spindle_cw = !ctx.req.spindle || *ctx.req.spindle <= 0;  // NIST: negative = CW
+  // A pocket's wall is outside the path: going counter-clockwise it is on the tool's right,
+  // which with a clockwise spindle is climb milling. Round a part it is the other way.
+  const bool climb_ccw = wall_outside ? spindle_cw : !spindle_cw;
+  const std::string_view cutmode =
+      o.strategy ? ctx.enumeration(*o.strategy, "cutmode") : std::string_view();
+  const std::string_view rotation =
+      o.strategy ? ctx.enumeration(*o.strategy, "rotation_direction") : std::string_view();
+  if (rotation.empty()) return cutmode == "CONVENTIONAL" ? !climb_ccw : climb_ccw;
+  const bool ccw = rotation == "CCW";
+  if (!cutmode.empty() && (cutmode == "CLIMB") != (ccw == climb_ccw))
+    ctx.note(*o.strategy, ctx.d(*o.strategy) + ": rotation_direction ." + std::string(rotation) +
+                              ". is followed; with this spindle it mills " +
+                              (ccw == climb_ccw ? "climb" : "conventional") + ", not ." +
+                              std::string(cutmode) + ".");
+  return ccw;
+}
 
 namespace {
 
@@ -322,6 +375,70 @@ bool read_closed_profile(Context& ctx, const Instance& f, const Instance& bounda
   return true;
 }
 
+// A RADIUSED_POCKET_BOTTOM_CONDITION is a portion of a sphere over the whole floor (ISO
+// 14649-10). A 2.5D path makes exactly one such pocket: a round pocket whose floor is the lower
+// half of a ball of the pocket's own radius, centred on its axis, which a ball end mill of that
+// radius makes going straight down the axis. Any other sphere needs 3D surface finishing
+// (STEPNC-101); a tool that is not that ball is STEPNC-102.
+bool radiused_pocket(Context& ctx, const Instance& bottom, const Instance& boundary) {
+  const Instance& f = ctx.feature();
+  if (!ctx.is(&boundary, "circular_closed_profile"))
+    return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(bottom) + " bounded by " +
+                               ctx.d(boundary) +
+                               " (a round pocket whose floor is the half ball of its radius is)");
+  Shape shape;
+  if (!read_closed_profile(ctx, f, boundary, 0, "pocket's", shape)) return false;
+  const auto radius = ctx.toleranced(bottom, "floor_radius");
+  const auto centre = ctx.g.point(ctx.g.get(bottom, "floor_radius_center"));
+  if (!radius || !centre || !(radius->size > 0))
+    return ctx.bad(bottom, ctx.d(bottom) + " needs a floor_radius_center and a positive radius");
+  const auto depth = ctx.depth();
+  const auto tool = ctx.tool();
+  if (!depth || !tool) return false;
+  const OperationData o = ctx.operation();
+  constexpr double kSame = 1e-3;
+  const Vec3 axis = shape.frame.origin;
+  if (std::hypot(centre->x - axis.x, centre->y - axis.y) > kSame ||
+      std::abs(radius->size - shape.a) > kSame)
+    return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(bottom) + ", a sphere of radius " +
+                               fmt(radius->size) + " about (" + fmt(centre->x) + ", " +
+                               fmt(centre->y) + ", " + fmt(centre->z) +
+                               ") that is not the half ball of the pocket's radius " +
+                               fmt(shape.a) + " on its axis (3D surface finishing)");
+  if (std::abs(centre->z - radius->size + *depth) > kSame)
+    return ctx.bad(bottom, ctx.d(bottom) + " puts the lowest point of the floor at z " +
+                               fmt(centre->z - radius->size) + ", but the depth plane of " +
+                               ctx.d(f) + " is at z " + fmt(-*depth));
+  const bool ball =
+      ctx.is(tool->body, "ball_endmill") || std::abs(tool->corner_radius - tool->radius) <= kEps;
+  if (!ball || tool->radius > radius->size + radius->upper + kEps ||
+      tool->radius + radius->lower + kEps < radius->size)
+    return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " (radius " + fmt(tool->radius) +
+                                          (ball ? ", a ball end" : ", not a ball end") +
+                                          ") cannot make " + ctx.d(bottom) + " of " + ctx.d(f) +
+                                          ": that needs a ball end mill of radius " +
+                                          fmt(radius->size));
+  if (o.allowance_side > kEps)
+    return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " fills " + ctx.d(f) + ", so " +
+                                          ctx.d(ctx.op()) + " cannot leave its allowance_side " +
+                                          fmt(o.allowance_side));
+  if (o.approach != nullptr && !ctx.is(o.approach, "plunge_toolaxis"))
+    return ctx.unfit(*o.approach, ctx.d(*o.approach) + ": " + ctx.d(*tool->instance) + " fills " +
+                                      ctx.d(f) + ", no room to enter but along the axis");
+  const double finish = *depth - o.allowance_bottom;
+  if (!(finish > 0))
+    return ctx.bad(ctx.op(), ctx.d(ctx.op()) + " leaves the whole depth of " + ctx.d(f));
+  const auto z_levels = depth_levels(ctx, o, finish);
+  if (!z_levels || !check_edge(ctx, *tool, *z_levels)) return false;
+  const double clear = ctx.opt.clearance;
+  const double retract = o.retract_plane.value_or(clear);
+  ctx.rapid({axis.x, axis.y, std::max(retract, clear)});
+  if (retract > clear) ctx.rapid({axis.x, axis.y, clear});
+  for (const double z : *z_levels) ctx.feed({axis.x, axis.y, z});
+  ctx.rapid({axis.x, axis.y, std::max(retract, clear)});
+  return true;
+}
+
 }  // namespace
 
 bool generate_pocket(Context& ctx) {
@@ -336,10 +453,14 @@ bool generate_pocket(Context& ctx) {
   const Instance* bottom = ctx.ref(f, "bottom_condition", "pocket_bottom_condition");
   if (bottom == nullptr) return ctx.bad(f, ctx.d(f) + " has no bottom_condition");
   const bool through = ctx.is(bottom, "through_pocket_bottom_condition");
-  if (!through && !ctx.is(bottom, "planar_pocket_bottom_condition"))
+  const bool radiused = ctx.is(bottom, "radiused_pocket_bottom_condition");
+  if (!through && !radiused && !ctx.is(bottom, "planar_pocket_bottom_condition"))
     return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(*bottom));
   const Instance* boundary = ctx.ref(f, "feature_boundary", "closed_profile");
   if (boundary == nullptr) return ctx.bad(f, ctx.d(f) + " has no feature_boundary");
+  if (radiused) return radiused_pocket(ctx, *bottom, *boundary);
+  if (ctx.is(boundary, "general_closed_profile") || ctx.is(boundary, "ngon_closed_profile"))
+    return general_pocket(ctx, *boundary, through, ctx.toleranced(f, "planar_radius"));
 
   // The profile, in the pocket's coordinates.
   Shape shape;
@@ -364,19 +485,7 @@ bool clear_region(Context& ctx, const Region& region) {
   const auto tool = ctx.tool();
   if (!depth || !tool) return false;
   const OperationData o = ctx.operation();
-  // Bottom fillet: the tool's corner radius makes it.
-  if (const auto& fillet = region.fillet) {
-    if (tool->corner_radius > fillet->size + fillet->upper + o.allowance_bottom + kEps)
-      return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " edge radius " +
-                                            fmt(tool->corner_radius) + " > planar (floor) radius " +
-                                            fmt(fillet->size) + " + allowance " +
-                                            fmt(o.allowance_bottom) + " of " + ctx.d(f));
-    if (tool->corner_radius + fillet->lower + kEps < fillet->size)
-      return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " edge radius " +
-                                            fmt(tool->corner_radius) + " < planar (floor) radius " +
-                                            fmt(fillet->size) + " of " + ctx.d(f) +
-                                            ": the tool would cut the fillet away");
-  }
+  if (region.fillet && !check_fillet(ctx, *tool, o, *region.fillet)) return false;
 
   const double inset = tool->radius + o.allowance_side;
   if (region.corners_in_material && shape.kind == Shape::Kind::Rectangle &&
@@ -398,7 +507,6 @@ bool clear_region(Context& ctx, const Region& region) {
 
   // Strategy: contour-parallel (the default for pockets).
   bool ccw = false;
-  const bool spindle_cw = !ctx.req.spindle || *ctx.req.spindle <= 0;  // NIST: negative = CW
   // Pattern: contour-parallel rings (the default), or parallel lines, with a contour ring
   // before or after them for the combined strategies.
   enum class Pattern { Rings, Lines, LinesThenRing, RingThenLines } pattern = Pattern::Rings;
@@ -439,27 +547,7 @@ bool clear_region(Context& ctx, const Region& region) {
     }
     if (ctx.enumeration(*o.strategy, "stepover_direction") == "RIGHT") lines_up = !lines_up;
   }
-  {
-    // A pocket's wall is outside the path: going counter-clockwise it is on the tool's right,
-    // which with a clockwise spindle is climb milling.
-    const std::string_view cutmode =
-        o.strategy ? ctx.enumeration(*o.strategy, "cutmode") : std::string_view();
-    const std::string_view rotation =
-        o.strategy ? ctx.enumeration(*o.strategy, "rotation_direction") : std::string_view();
-    const bool climb_ccw = spindle_cw;
-    if (!rotation.empty()) {
-      ccw = rotation == "CCW";
-      if (!cutmode.empty() && (cutmode == "CLIMB") != (ccw == climb_ccw))
-        ctx.note(*o.strategy, ctx.d(*o.strategy) + ": rotation_direction ." +
-                                  std::string(rotation) +
-                                  ". is followed; with this spindle it "
-                                  "mills " +
-                                  (ccw == climb_ccw ? "climb" : "conventional") + ", not ." +
-                                  std::string(cutmode) + ".");
-    } else {
-      ccw = cutmode == "CONVENTIONAL" ? !climb_ccw : climb_ccw;
-    }
-  }
+  ccw = rings_ccw(ctx, o, true);
   double overlap = 0;
   double step = stepover(ctx, *tool, o, overlap);
   if (!check_overlap(ctx, o, overlap)) return false;
@@ -506,26 +594,8 @@ bool clear_region(Context& ctx, const Region& region) {
 
   // Entry: the operation's approach, else a helix as NIST's ex1E.
   Entry entry;
-  entry.radius = ctx.opt.default_helix_radius * tool->radius;
-  entry.angle = radians(ctx.opt.default_helix_angle);
-  bool explicit_entry = false;
-  if (o.approach != nullptr) {
-    explicit_entry = true;
-    if (ctx.is(o.approach, "plunge_toolaxis")) {
-      entry.kind = Entry::Kind::Plunge;
-    } else if (ctx.is(o.approach, "plunge_helix")) {
-      entry.radius = ctx.number(*o.approach, "radius").value_or(entry.radius);
-      entry.angle = radians(ctx.number(*o.approach, "angle").value_or(ctx.opt.default_helix_angle));
-    } else if (ctx.is(o.approach, "plunge_ramp") || ctx.is(o.approach, "plunge_zigzag")) {
-      entry.kind = Entry::Kind::Ramp;
-      entry.angle = radians(ctx.number(*o.approach, "angle").value_or(0));
-      entry.width = ctx.number(*o.approach, "width").value_or(0);
-    } else {
-      return ctx.not_implemented(ctx.d(*o.approach) + " as the approach into " + ctx.d(f));
-    }
-    if ((entry.kind != Entry::Kind::Plunge) && !(entry.angle > 0 && entry.angle < radians(90)))
-      return ctx.bad(*o.approach, ctx.d(*o.approach) + " angle must be between 0 and 90 degrees");
-  }
+  if (!read_entry(ctx, o, *tool, entry)) return false;
+  const bool explicit_entry = entry.explicit_entry;
   if (o.retract != nullptr && !ctx.is(o.retract, "plunge_toolaxis"))
     ctx.note(*o.retract, ctx.d(*o.retract) + ": the tool leaves " + ctx.d(f) +
                              " along its axis, from inside the machined pocket");
@@ -557,13 +627,7 @@ bool clear_region(Context& ctx, const Region& region) {
 
   const double clear = ctx.opt.clearance;
   const double retract = o.retract_plane.value_or(clear);
-  if (entry.kind == Entry::Kind::Helix &&
-      (clear + finish) / (2 * std::numbers::pi * entry.radius * std::tan(entry.angle)) >
-          static_cast<double>(ctx.opt.max_moves))
-    return ctx.limit_reached();
-  if (entry.kind == Entry::Kind::Ramp && (clear + finish) / (ramp_length * std::tan(entry.angle)) >
-                                             static_cast<double>(ctx.opt.max_moves))
-    return ctx.limit_reached();
+  if (entry_too_long(ctx, entry, ramp_length, clear + finish)) return ctx.limit_reached();
   const Vec3 p0f = shape.frame.point(p0);
   const Vec3 x_axis = shape.frame.x;
   const Vec3 entry_start = entry.kind == Entry::Kind::Helix ? p0f + x_axis * entry.radius : p0f;
@@ -618,6 +682,8 @@ bool generate_outside_profile(Context& ctx) {
                                " (an outside profile takes side rough or finish milling)");
   const Instance* boundary = ctx.ref(f, "feature_boundary", "profile");
   if (boundary == nullptr) return ctx.bad(f, ctx.d(f) + " has no feature_boundary");
+  if (ctx.is(boundary, "general_closed_profile") || ctx.is(boundary, "ngon_closed_profile"))
+    return general_outside_profile(ctx, *boundary);
   Shape shape;
   if (!read_closed_profile(ctx, f, *boundary, 0, "profile's", shape)) return false;
   const auto depth = ctx.depth();

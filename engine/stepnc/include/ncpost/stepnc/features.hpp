@@ -24,6 +24,16 @@ struct FeatureOptions {
   // A workingstep whose generated path would need more motions than this is refused
   // (STEPNC-103): a hostile stepover or depth must not exhaust memory.
   std::size_t max_moves = 1'000'000;
+  // General profiles (polylines, composite curves, n-gons): at most this many elements, and at
+  // most this many points in the polygon that approximates them for offsetting.
+  std::size_t max_profile_elements = 100'000;
+  std::size_t max_polygon_points = 1'000'000;
+  // mm. How far the polygons of general profiles and their offsets may deviate from the exact
+  // curves; always towards the inside of the region the tool may use (never into material).
+  double chord_tolerance = 0.001;
+  // mm. Material that a path may leave at a sharp corner (the tool's rounding of a slightly bent
+  // polyline vertex) or unswept on a floor before that is a STEPNC-102 or a denser path.
+  double corner_tolerance = 0.01;
 };
 
 }  // namespace ncpost::stepnc

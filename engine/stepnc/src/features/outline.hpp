@@ -1,0 +1,58 @@
+#pragma once
+// General profiles (GENERAL_CLOSED_PROFILE, NGON_CLOSED_PROFILE, GENERAL_PROFILE) as exact
+// lines and circular arcs in the feature's xy plane, their corners, and their polygons for
+// offsetting, tessellated on the material side so that an offset of the polygon never comes
+// closer to the material than the same offset of the exact outline (docs/features.md).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "context.hpp"
+#include "polygons.hpp"
+
+namespace ncpost::stepnc::features {
+
+struct Element {
+  poly::P a, b;       // from, to
+  bool arc = false;   // else a line
+  poly::P centre{};   // arcs
+  double radius = 0;  // arcs
+  double sweep = 0;   // arcs: signed angle from a to b about the centre (positive CCW)
+  [[nodiscard]] poly::P tangent_at_start() const;
+  [[nodiscard]] poly::P tangent_at_end() const;
+};
+
+struct Outline {
+  std::vector<Element> elements;  // each starting where the previous ends
+  bool closed = true;             // the last ends where the first starts
+};
+
+// A corner of an outline where the tangent turns (a polyline vertex, a line meeting an arc at
+// an angle): `turn` is the signed turning angle in radians (positive: to the left).
+struct Corner {
+  poly::P at;
+  double turn = 0;
+  poly::P in, out;                    // unit tangents arriving and leaving
+  std::size_t before = 0, after = 0;  // the elements that meet there
+};
+
+// Reads a closed profile of a pocket or outside profile (GENERAL_CLOSED_PROFILE with a POLYLINE,
+// TRIMMED_CURVE or COMPOSITE_CURVE of lines and circular arcs; NGON_CLOSED_PROFILE) in the
+// feature's coordinates, counter-clockwise. nullopt after reporting why (STEPNC-101/103).
+std::optional<Outline> read_closed_outline(Context& ctx, const Instance& boundary);
+// The walls of an OPEN_POCKET: a GENERAL_PROFILE's curve, in its own sense.
+std::optional<Outline> read_open_outline(Context& ctx, const Instance& boundary);
+
+// Reverses the sense of travel.
+void reverse(Outline& outline);
+// Where consecutive elements meet at an angle (closed outlines: the closing vertex too).
+std::vector<Corner> corners(const Outline& outline);
+
+// The outline as a polygon whose chords or tangent polylines deviate at most `tolerance` from
+// each arc, always on the side away from the material: `material_left` says which side of the
+// direction of travel the material is on. nullopt when it would have more than `max_points`.
+std::optional<poly::Chain> tessellate(const Outline& outline, double tolerance, bool material_left,
+                                      std::size_t max_points);
+
+}  // namespace ncpost::stepnc::features
