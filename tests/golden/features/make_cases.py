@@ -547,7 +547,19 @@ def main():
     cp = p.add("CONTOUR_PARALLEL($,.T.,.CW.,$)")
     bi = p.add(f"BIDIRECTIONAL_MILLING($,.T.,{p.direction(1, 0, 0)},$,$)")
     side = p.add(f"SIDE_ROUGH_MILLING($,$,'SIDE',5.000,$,{mill10},{tech},{p.functions()},$,$,$,{bi},5.0,2.0,0.5)")
+    tee = p.add(f"TEE_PROFILE($,90.0,90.0,{p.length(20)},{p.length(4)},{p.length(0)},{p.length(8)},"
+                f"{p.length(6)},{p.length(6)})")
+    tslot = slot_feature(p, "TEE SLOT", 0, 120, line_path(p, 40), tee,
+                         [p.add("OPEN_SLOT_END_TYPE()"), p.add("OPEN_SLOT_END_TYPE()")], 10)
+    ball8 = p.tool("BALL 8", "BALL_ENDMILL", 8, edge_length=16.0, edge_radius=4.0)
+    w20 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(20)})")
+    keyway = slot_feature(p, "KEYWAY", 0, 150, line_path(p, 30),
+                          p.add(f"ROUNDED_U_PROFILE($,{p.length(8)})"), [w20, w20], 5)
+    steep = p.add("PLUNGE_RAMP($,10.0)")
     p.write([("VEE SLOT", vslot, bs(p, "ROUGH", "VEE", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("TEE SLOT", tslot, bs(p, "ROUGH", "TEE", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("WOODRUFF END WITH A RAMP", keyway, bs(p, "FINISH", "KEY", ball8, tech, "$", None, None,
+                                                     None, None, steep)),
              ("GENERAL PROFILE POCKET", tri, bs(p, "ROUGH", "TRI", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
              ("SLOPED STEP WALL", step, bs(p, "ROUGH", "STEP", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
              ("SPIRAL", rect, bs(p, "ROUGH", "SPIRAL", mill10, tech, spiral, 1.0, None, 0.0, 0.0)),

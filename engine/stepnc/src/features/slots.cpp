@@ -558,6 +558,27 @@ bool generate_slot(Context& ctx) {
                                     : std::string("with a woodruff end")) +
                                " (stepped passes are generated along straight slots with "
                                "radiused or open ends)");
+  // Into a woodruff end the tool comes down along its arc, which is as steep as the end is at
+  // the top of the slot: a ramp or zigzag approach must allow that.
+  if (o.approach != nullptr &&
+      (ctx.is(o.approach, "plunge_ramp") || ctx.is(o.approach, "plunge_zigzag"))) {
+    const double allowed = ctx.number(*o.approach, "angle").value_or(0);
+    for (const SlotEnd& e : end) {
+      if (e.kind != SlotEnd::Kind::Woodruff) continue;
+      const double r = plan.ball_radius;
+      const double allowance = *depth - plan.passes.front().depth;
+      const double rho = e.woodruff.size - r - allowance;
+      const double axis = -*depth + e.woodruff.size;
+      // The ball leaves the material where its tip reaches the top; the arc's slope there.
+      const double steepest =
+          rho > 1e-9 ? degrees(std::acos(std::clamp((axis - r) / rho, -1.0, 1.0))) : 90;
+      if (std::min(steepest, 90.0) > allowed + 1e-9)
+        return ctx.not_implemented(ctx.d(*o.approach) + " at " + fmt(allowed) + " degrees into " +
+                                   ctx.d(f) + ", whose woodruff end " + ctx.d(e.instance) +
+                                   " the tool follows down at up to " +
+                                   fmt(std::min(steepest, 90.0)) + " degrees");
+    }
+  }
   return slot_passes(ctx, *tool, o, plan, *depth);
 }
 
