@@ -603,21 +603,20 @@ CavityCoverage cover(const Cavity& cavity, const std::vector<SweptShape>& swept,
   const double margin = r + 1;
   const Vec2 lo = cavity.min() - Vec2{margin, margin};
   const Vec2 hi = cavity.max() + Vec2{margin, margin};
-  const auto fit = [&] {
-    g.nx = static_cast<int>(std::ceil((hi.x - lo.x) / g.step)) + 1;
-    g.ny = static_cast<int>(std::ceil((hi.y - lo.y) / g.step)) + 1;
-  };
-  const auto kernel_cells = [&] {
+  // Two passes of the tool's disc over every cell: bounded work (counted in doubles, so that
+  // no size overflows an int before the grid is coarse enough).
+  const auto work = [&] {
     const double k = r / g.step + 1;
-    return 3.2 * k * k;
+    return (std::ceil((hi.x - lo.x) / g.step) + 1) * (std::ceil((hi.y - lo.y) / g.step) + 1) * 3.2 *
+           k * k;
   };
-  fit();
-  // Two passes of the tool's disc over every cell: bounded work.
-  while (static_cast<double>(g.cells()) * kernel_cells() > max_work) {
+  while (!(work() <= max_work)) {
     g.step *= 1.25;
-    fit();
     out.coarsened = true;
+    if (!std::isfinite(g.step)) return out;
   }
+  g.nx = static_cast<int>(std::ceil((hi.x - lo.x) / g.step)) + 1;
+  g.ny = static_cast<int>(std::ceil((hi.y - lo.y) / g.step)) + 1;
   g.origin = lo;
   out.grid = g.step;
   const std::size_t cells = g.cells();

@@ -326,7 +326,7 @@ TEST(FeaturesOwn, HostileNumbersAreRefusedNotAllocated) {
 // woodruff keyseat cutter), and nothing moves.
 TEST(FeaturesOwn, WrongToolsForShapesNameToolAndFeature) {
   const Generated r = run(cases() / "wrong-tools-shapes.stp");
-  EXPECT_EQ(r.count("STEPNC-102"), 10u) << r.text("wrong-tools-shapes");
+  EXPECT_EQ(r.count("STEPNC-102"), 11u) << r.text("wrong-tools-shapes");
   EXPECT_EQ(r.count("STEPNC-101"), 1u) << r.text("wrong-tools-shapes");
   for (const auto& d : r.diagnostics) {
     if (d.code_id() != "STEPNC-102") continue;

@@ -451,6 +451,10 @@ def main():
     w12 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(12)})")
     key = slot_feature(p, "KEYWAY 12", 0, 60, line_path(p, 30), square, [w12, w12], 6)
     st = step_feature(p, "STEP R1", 100, 0, 60, (0, 1, 0), (25, 0, -8), 8, radius=1.0)
+    w4 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(4)})")
+    shallow_key = slot_feature(p, "SHALLOW KEYWAY 12", 0, 90, line_path(p, 30),
+                               p.add(f"ROUNDED_U_PROFILE($,{p.length(12)})"), [w4, w4], 3)
+    ball12 = p.tool("BALL 12", "BALL_ENDMILL", 12, edge_length=20.0, edge_radius=6.0)
     h = hole(p, 100, 100, 14, 20)
     th = thread_feature(p, "M16X2", 100, 100, h, 16, 0.5, "1/MM", "RIGHT", 20)
     centre = p.add("CENTER_MILLING($,.T.)")
@@ -464,6 +468,7 @@ def main():
              ("ROUND BALL TOO BIG", pc, bs(p, "FINISH", "ROUND 16", ball16, tech, centre, None, None, None, None)),
              ("WOODRUFF END MILL", key, bs(p, "FINISH", "KEY FLAT", flat10, tech, centre, None, None, None, None)),
              ("WOODRUFF KEYSEAT CUTTER", key, bs(p, "FINISH", "KEY CUTTER", keyseat, tech, centre, None, None, None, None)),
+             ("WOODRUFF SMALLER THAN THE BALL", shallow_key, bs(p, "FINISH", "KEY 12", ball12, tech, centre, None, None, None, None)),
              ("STEP CORNER TOO BIG", st, bs(p, "FINISH", "STEP R2", bull2, tech, "$", None, None, None, None)),
              ("STEP CORNER TOO SMALL", st, bs(p, "FINISH", "STEP FLAT", flat10, tech, "$", None, None, None, None)),
              ("THREAD WITH A DRILL", th, thread_op("DRILL ONLY", drill)),

@@ -558,6 +558,18 @@ bool generate_slot(Context& ctx) {
                                     : std::string("with a woodruff end")) +
                                " (stepped passes are generated along straight slots with "
                                "radiused or open ends)");
+  // A woodruff end turns the profile about its axis: a ball larger than its radius (less the
+  // allowance) does not fit in it.
+  for (const SlotEnd& e : end) {
+    if (e.kind != SlotEnd::Kind::Woodruff || path.kind == SlotPath::Kind::Circle) continue;
+    const double allowance = *depth - plan.passes.front().depth;
+    if (plan.ball_radius + allowance > e.woodruff.size + e.woodruff.upper + kEps)
+      return ctx.unfit(*tool->instance, ctx.d(*tool->instance) + " radius " +
+                                            fmt(plan.ball_radius) + " + allowance " +
+                                            fmt(allowance) + " > the radius " +
+                                            fmt(e.woodruff.size) + " of the woodruff end " +
+                                            ctx.d(e.instance) + " of " + ctx.d(f));
+  }
   // Into a woodruff end the tool comes down along its arc, which is as steep as the end is at
   // the top of the slot: a ramp or zigzag approach must allow that.
   if (o.approach != nullptr &&
