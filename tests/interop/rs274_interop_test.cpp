@@ -152,6 +152,21 @@ TEST(Rs274Interop, LinuxcncProfile) {
   check_ex1e(corpus, "linuxcnc");
 }
 
+// Programs whose paths the feature generator makes (tests/golden/features/cases): thread
+// drilling's multi-turn helices (G2/G3 with P), helical ramps round a ring groove, helical
+// retracts out of a pocket.
+TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "features" / "cases";
+  for (const char* name : {"thread-drilling", "slot-circular", "pocket-retract"}) {
+    SCOPED_TRACE(name);
+    const auto o = compare_with_rs274(cases / (std::string(name) + ".stp"), name, "linuxcnc");
+    EXPECT_GT(o.compared, 0u);
+    std::printf("[ rs274    ] linuxcnc %s: %zu motions compared, max deviation %.6f\n", name,
+                o.compared, o.max_deviation);
+  }
+}
+
 // FANUC and LinuxCNC share the syntax of these programs (N words, R arcs, leading-zero-less
 // numbers, M30) except the O line.
 TEST(Rs274Interop, FanucProfile) {

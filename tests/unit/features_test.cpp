@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "features/shapes.hpp"
@@ -85,6 +86,34 @@ TEST(FeatureRings, CircleAndSquareStartAtTheCentre) {
   const Rings s = contour_rings(Shape::rectangle(20, 20, 6), 6, 7);
   EXPECT_EQ(s.line_length, 0);
   EXPECT_EQ(s.loops.size(), 2u);
+}
+
+// A slot whose ends differ: a radiused end (corners = half width 8) on -x, a flat end on +x
+// with corner_radius2 8 on the left (+y) and corner_radius1 5.5 on the right. Inset 5: the ring
+// keeps each corner's own radius less the inset (the larger fillet must not be cut into).
+TEST(FeatureRings, EachCornerItsOwnRadius) {
+  Shape slot = Shape::rectangle(30, 8, 5.5);
+  slot.corners = std::array<double, 4>{8, 8, 8, 5.5};
+  const Rings r = contour_rings(slot, 5, 10);
+  ASSERT_FALSE(r.loops.empty());
+  const Loop& outer = r.loops.back();
+  std::vector<std::pair<Vec3, double>> arcs;  // centre, radius
+  for (const Span& sp : outer.spans)
+    if (sp.arc) arcs.push_back({sp.centre, (sp.to - sp.centre).length()});
+  ASSERT_EQ(arcs.size(), 4u);
+  // Counter-clockwise from (+a, +b): radii 3, 3, 3 and 0.5 about (25 - 3, ...), ...
+  EXPECT_NEAR(arcs[0].second, 3, 1e-12);
+  EXPECT_NEAR(arcs[0].first.x, 22, 1e-12);
+  EXPECT_NEAR(arcs[3].second, 0.5, 1e-12);
+  EXPECT_NEAR(arcs[3].first.x, 24.5, 1e-12);
+  EXPECT_NEAR(arcs[3].first.y, -2.5, 1e-12);
+  // Raster lines end on each corner's own arc: the lines at |v| 3 touch the arcs at their
+  // lowest (highest) point, x 22 under the radius-3 corner and 24.5 under the radius-0.5 one.
+  const auto lines = raster(slot, 5, 10, true);
+  ASSERT_GE(lines.size(), 2u);
+  EXPECT_NEAR(lines.back().second.x, 22, 1e-12);     // v = +3
+  EXPECT_NEAR(lines.front().second.x, 24.5, 1e-12);  // v = -3
+  EXPECT_NEAR(lines.front().first.x, -22, 1e-12);    // the radiused end
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numbers>
 
+#include "cavity.hpp"
 #include "contour.hpp"
 
 namespace ncpost::verify::detail {
@@ -118,9 +119,17 @@ Tool read_tool(const Reader& r, const p21::Instance* tool,
         t.known = true;
       }
       // A bull-nose whose edge radius is the whole radius is a ball.
-      if (const auto e = r.number(*dim, "edge_radius"); e && t.known && *e >= t.radius - 1e-9)
-        t.ball = true;
+      const auto e = r.number(*dim, "edge_radius");
+      if (e && t.known && *e >= t.radius - 1e-9) t.ball = true;
+      if (e && *e > 0) t.shape.corner = *e;
+      // A point: tool_tip_half_angle as NIST reads it (below 90 degrees the angle between the
+      // cutting edge and the plane normal to the axis, from 90 on the whole point angle).
+      if (const auto a = r.number(*dim, "tool_tip_half_angle"); a && *a > 0 && *a < 180 && !t.ball)
+        t.shape.cone = (*a < 90 ? 90 - *a : *a / 2) * std::numbers::pi / 180;
     }
+    t.shape.radius = t.radius;
+    if (t.ball) t.shape.corner = t.radius;
+    t.shape.corner = std::min(t.shape.corner, t.radius);
   }
   if (!t.known && options.tools) {
     if (const auto* entry = options.tools->find(r.name(*tool)); entry && entry->diameter > 0) {
@@ -404,6 +413,26 @@ bool straight_slot(const Reader& r, const p21::Instance& feature, Feature& f) {
   return true;
 }
 
+// A straight slot with vertical walls meeting a flat floor in sharp corners and radiused, flat
+// or open ends: the outline model above. Every other slot is a profiled one (cavity.hpp).
+bool plain_slot(const Reader& r, const p21::Instance& feature) {
+  const p21::Instance* travel = r.ref(feature, "course_of_travel");
+  const p21::Instance* shape = r.ref(feature, "swept_shape");
+  if (travel == nullptr || shape == nullptr || !r.is_a(*travel, "linear_path") ||
+      !r.is_a(*shape, "square_u_profile"))
+    return false;
+  for (const char* radius : {"first_radius", "second_radius"})
+    if (r.length(*shape, radius).value_or(0) > 0) return false;
+  const auto list = r.get(feature, "end_conditions");
+  if (!list || !list->is_list()) return true;
+  for (p21::Value v : r.model().items(*list)) {
+    const p21::Instance* e = v.is_reference() ? r.model().find(v.id()) : nullptr;
+    if (e != nullptr && (r.is_a(*e, "woodruff_slot_end_type") || r.is_a(*e, "loop_slot_end_type")))
+      return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame& workpiece_frame) {
@@ -419,7 +448,9 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
   const bool outside = r.is_a(feature, "general_outside_profile");
   const bool hole = r.is_a(feature, "round_hole");
   const bool slot = r.is_a(feature, "slot");
-  if (!face && !closed_pocket && !open_pocket && !outside && !hole && !slot) {
+  const bool step = r.is_a(feature, "step");
+  const bool thread = r.is_a(feature, "thread");
+  if (!face && !closed_pocket && !open_pocket && !outside && !hole && !slot && !step && !thread) {
     f.reason = "feature kind " + f.type + " is not checked";
     return f;
   }
@@ -463,7 +494,7 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
       const double l = across.length();
       f.region = Region::parallelogram({0, 0}, along * *distance, across * (*width / l));
     }
-  } else if (slot) {
+  } else if (slot && plain_slot(r, feature)) {
     f.kind = Feature::Kind::Slot;
     if (!straight_slot(r, feature, f)) return f;
   } else if (outside) {
@@ -475,6 +506,14 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
       if (f.reason.empty()) f.reason = "its feature_boundary is not a closed profile";
       return f;
     }
+  } else if (slot || step || thread) {
+    f.kind = Feature::Kind::Profiled;
+    if (slot   ? !read_profiled_slot(r, feature, f)
+        : step ? !read_step(r, feature, f)
+               : !read_thread(r, feature, f))
+      return f;
+    f.checked = true;
+    return f;
   } else if (closed_pocket || open_pocket) {
     f.kind = Feature::Kind::Pocket;
     const auto corner = r.length(feature, "orthogonal_radius");
@@ -527,8 +566,8 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
 
 Extent feature_extent(const Feature& f) {
   Extent e;
-  const Vec2 lo = f.floor_outline().min();
-  const Vec2 hi = f.floor_outline().max();
+  const Vec2 lo = f.cavity ? f.cavity->min() : f.floor_outline().min();
+  const Vec2 hi = f.cavity ? f.cavity->max() : f.floor_outline().max();
   for (const Vec2 c : {lo, Vec2{hi.x, lo.y}, hi, Vec2{lo.x, hi.y}})
     e.add(f.frame.point({c.x, c.y, 0}));
   e.top = f.frame.origin.z;

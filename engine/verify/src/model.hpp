@@ -4,6 +4,7 @@
 // and the generator's, so a misreading there is not repeated here.
 
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -16,6 +17,8 @@
 #include "region.hpp"
 
 namespace ncpost::verify::detail {
+
+class Cavity;
 
 struct Vec3 {
   double x = 0;
@@ -87,10 +90,26 @@ class Reader {
   p21::LineIndex lines_;
 };
 
+// A tool as a solid of revolution with its tip (the canonical position) at the origin: flat,
+// bull-nose, ball, or a cone with a rounded tip (countersinks, pointed cutters, drills).
+struct ToolShape {
+  double radius = 0;
+  double corner = 0;  // edge radius (a ball: the radius)
+  double cone = 0;    // angle between the flank and the axis (radians); 0: no cone
+  // Height of the tool's lower surface above its tip at distance rho from its axis.
+  [[nodiscard]] double lower(double rho) const;
+  // Its outline in (rho, h): along the lower surface from the tip out to the radius, then up
+  // the side to `height` above the tip.
+  [[nodiscard]] std::vector<Vec2> outline(double spacing, double height) const;
+};
+
 struct Tool {
   bool known = false;  // a diameter was found
   double radius = 0;
   bool ball = false;
+  // Its whole shape, for the features whose walls are not vertical (cavity.hpp); the checks of
+  // the others take it as a flat or ball end of `radius`.
+  ToolShape shape;
   bool hole_making = false;    // drill, reamer, tap, boring tool, ...: plunging is what it does
   bool centre_cutting = true;  // false for face, side, T-slot, woodruff, dovetail, thread mills
   std::string body;            // entity of the tool body, e.g. "TAPERED_ENDMILL"
@@ -119,7 +138,7 @@ struct Feature {
   std::string type;
   bool checked = false;
   std::string reason;  // why not, when not
-  enum class Kind { Face, Pocket, Hole, Slot, Outside } kind = Kind::Pocket;
+  enum class Kind { Face, Pocket, Hole, Slot, Outside, Profiled } kind = Kind::Pocket;
   Frame frame;    // machine ← feature
   Region region;  // what the walls bound (an open slot end lies far beyond the slot)
   // The floor, when it is not `region` (a slot with an open end: the floor stops at the end).
@@ -138,7 +157,17 @@ struct Feature {
   // the depth plane ends the cylinder, and a pointed tool may go into the cone.
   double cone_depth = 0;
   std::vector<std::string> notes;  // what of the shape is simplified (bottom radius, taper, ...)
+  // Profiled: slots of any profile, steps, threads (cavity.hpp), instead of `region`.
+  std::shared_ptr<const Cavity> cavity;
+  bool coverage = true;  // false: the feature has no floor of its own to cover (a thread)
+  [[nodiscard]] bool has_outline() const { return cavity != nullptr || !region.empty(); }
 };
+// Readers of the profiled features (cavity_features.cpp): false, with f.reason, when the
+// feature cannot be modelled.
+bool read_profiled_slot(const Reader& r, const p21::Instance& feature, Feature& f);
+bool read_step(const Reader& r, const p21::Instance& feature, Feature& f);
+bool read_thread(const Reader& r, const p21::Instance& feature, Feature& f);
+
 // `workpiece_frame` is machine ← the feature's workpiece.
 Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame& workpiece_frame);
 

@@ -98,9 +98,14 @@ bool Region::inside(Vec2 p) const {
   return in;
 }
 
-double Region::signed_distance(Vec2 p) const {
+double Region::distance(Vec2 p) const {
   double d = std::numeric_limits<double>::infinity();
   for (const Element& e : boundary_) d = std::min(d, e.distance(p));
+  return d;
+}
+
+double Region::signed_distance(Vec2 p) const {
+  const double d = distance(p);
   return inside(p) ? d : -d;
 }
 

@@ -18,7 +18,8 @@ struct Vec2 {
   friend Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
   [[nodiscard]] double dot(Vec2 b) const { return x * b.x + y * b.y; }
   [[nodiscard]] double cross(Vec2 b) const { return x * b.y - y * b.x; }
-  [[nodiscard]] double length() const { return std::hypot(x, y); }
+  // sqrt, not hypot: no overflow at these sizes, and several times faster.
+  [[nodiscard]] double length() const { return std::sqrt(x * x + y * y); }
 };
 
 inline constexpr double kTwoPi = 2 * std::numbers::pi;
@@ -45,6 +46,8 @@ class Region {
 
   // Positive inside, negative outside: the distance to the nearest boundary element.
   [[nodiscard]] double signed_distance(Vec2 p) const;
+  // The distance to the nearest boundary element, unsigned.
+  [[nodiscard]] double distance(Vec2 p) const;
   [[nodiscard]] bool inside(Vec2 p) const;
   [[nodiscard]] bool empty() const { return boundary_.empty(); }
   // Bounding box of the boundary.

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <unordered_map>
 
+#include "cavity.hpp"
 #include "model.hpp"
 #include "ncpost/canon/sink.hpp"
 #include "region.hpp"
@@ -40,6 +41,11 @@ constexpr std::size_t kMaxSamplesPerMove = 20000;
 constexpr double kNonCentreCuttingMaxAngle = 45;
 // Approach angles are compared with this slack (degrees): linearised helices are a little steep.
 constexpr double kAngleSlack = 0.5;
+// The tool's outline is checked against a profiled feature's section at this spacing (mm).
+constexpr double kOutlineSpacing = 0.05;
+// A profiled feature's coverage raster: cells times the tool's disc in cells, at most (the
+// work of its two passes); coarsened beyond, with VERIFY-012.
+constexpr double kMaxCavityCoverageWork = 5e7;
 
 std::string fmt(double v, int decimals = 4) {
   char buffer[64];
@@ -129,6 +135,7 @@ Sweep sweep_stock(Stock& stock, const Piece& p, double radius, bool cut, double 
 struct Swept {
   Vec3 a, b;
   double radius = 0;
+  detail::ToolShape tool;
 };
 
 // Per feature: what was read, and what the motions of its workingsteps did.
@@ -139,6 +146,8 @@ struct FeatureState {
   double min_bottom = kInf;
   double min_side = kInf;
   double min_radius = kInf;
+  detail::ToolShape smallest;         // the shape of the tool of min_radius
+  double min_gouge_allowance = kInf;  // profiled features: min over operations of min(a_s, a_b)
   bool any_operation = false;
   // Deepest feed position of the tool tip (feature frame z), in machine coordinates.
   double deepest_local = kInf;
@@ -191,6 +200,7 @@ class Verifier final : public canon::Sink {
            std::uint64_t feature, std::optional<Position> pos, std::size_t motion, std::size_t line,
            std::string message);
   void coverage(FeatureState& s, FeatureReport& report);
+  void profiled_coverage(FeatureState& s, FeatureReport& report);
 
   Reader r_;
   const VerifyOptions& options_;
@@ -216,7 +226,8 @@ class Verifier final : public canon::Sink {
   std::string ws_name_;
   FeatureState* feature_ = nullptr;
   Operation operation_;
-  Tool tool_;  // stays loaded across rapid movements, as on the machine
+  Tool tool_;                  // stays loaded across rapid movements, as on the machine
+  std::vector<Vec2> outline_;  // its outline (ToolShape::outline), for a profiled feature
   std::optional<double> secplane_;
   std::map<diag::Code, Worst> worst_;
 
@@ -376,7 +387,18 @@ void Verifier::begin_workingstep(const canon::Entity& e) {
       if (operation_.has_bottom_allowance || !operation_.hole_making)
         s.min_bottom = std::min(s.min_bottom, operation_.bottom_allowance);
     }
-    if (tool_.known) s.min_radius = std::min(s.min_radius, tool_.radius);
+    if (tool_.known && tool_.radius < s.min_radius) {
+      s.min_radius = tool_.radius;
+      s.smallest = tool_.shape;
+    }
+    if (op != nullptr)
+      s.min_gouge_allowance = std::min(
+          s.min_gouge_allowance, std::min(operation_.side_allowance, operation_.bottom_allowance));
+    // The tool's outline for the profiled features' gouge check, down to well below the floor.
+    outline_.clear();
+    if (s.feature.cavity && tool_.known)
+      outline_ = tool_.shape.outline(kOutlineSpacing, 2 * -s.feature.floor + 2);
+    if (s.feature.cavity) s.feature.cavity->forget();
   }
 }
 
@@ -429,7 +451,7 @@ void Verifier::build_stock() {
       const auto w = r_.get(i, "its_workpiece");
       if (!w || !w->is_reference() || w->id() != wp->id) continue;
       const Feature f = detail::read_feature(r_, i, frame);
-      if (f.region.empty()) continue;
+      if (!f.has_outline()) continue;
       const Extent e = detail::feature_extent(f);
       extent.add({e.min.x, e.min.y, 0});
       extent.add({e.max.x, e.max.y, 0});
@@ -664,8 +686,10 @@ void Verifier::feature_piece(const Piece& p) {
   const Vec3 lb = f.frame.local(p.b);
   // Only pieces that can reach the final depth matter for coverage: that depth is at most this
   // operation's own (floor + its bottom allowance), so anything higher is not kept.
-  const double keep_below = f.floor + (f.through ? 0 : operation_.bottom_allowance) + tol_;
-  if (!p.rapid && std::min(la.z, lb.z) <= keep_below) fs.swept.push_back({la, lb, radius});
+  const double keep_below =
+      f.cavity ? 0 : f.floor + (f.through ? 0 : operation_.bottom_allowance) + tol_;
+  if (!p.rapid && std::min(la.z, lb.z) <= keep_below)
+    fs.swept.push_back({la, lb, radius, tool_.shape});
   // Drilling cycles in a hole are checked as cycles (check_cycle), not sample by sample.
   if (p.cycle && f.kind == Feature::Kind::Hole) {
     if (!p.rapid && lb.z < fs.deepest_local) {
@@ -690,11 +714,24 @@ void Verifier::feature_piece(const Piece& p) {
     double reach = radius;
     if (tool_.ball && -q.z < radius)
       reach = std::sqrt(std::max(0.0, radius * radius - (radius + q.z) * (radius + q.z)));
+    if (f.cavity) {
+      // The tool's whole shape against the cavity's walls and floor (cavity.hpp).
+      const double allowance = std::min(side, operation_.bottom_allowance);
+      Vec3 where{};
+      const double over = f.cavity->violation(q, tool_.shape, outline_, allowance, &where);
+      if (over > tol_)
+        record(diag::Code::VerifyGouge, over, f.frame.point(q),
+               "the tool (" + tool_.body + ", radius " + fmt(radius) + ") cuts " + fmt(over) +
+                   " mm into " + r_.describe(*f.instance) + " (allowance " + fmt(allowance) +
+                   ", deepest at z " + fmt(f.frame.point(where).z) + ")");
+    }
     // Distance into where the tool may be: inside a pocket's outline, outside a profile's.
-    const double d =
-        f.outside ? -f.region.signed_distance(q.xy()) : f.region.signed_distance(q.xy());
-    const double d_floor = f.floor_region ? f.floor_region->signed_distance(q.xy()) : d;
-    if (f.walls) {
+    const double d = f.cavity    ? f.cavity->floor_distance(q.xy())
+                     : f.outside ? -f.region.signed_distance(q.xy())
+                                 : f.region.signed_distance(q.xy());
+    const double d_floor =
+        f.floor_region && !f.cavity ? f.floor_region->signed_distance(q.xy()) : d;
+    if (f.walls && !f.cavity) {
       const double over = reach + side - d;
       if (over > tol_)
         record(diag::Code::VerifyGouge, over, f.frame.point(q),
@@ -762,6 +799,10 @@ void Verifier::coverage(FeatureState& s, FeatureReport& report) {
   const Feature& f = s.feature;
   const double radius = s.min_radius;
   if (!std::isfinite(radius) || radius <= 0) return;
+  if (f.cavity) {
+    profiled_coverage(s, report);
+    return;
+  }
   const double side = std::isfinite(s.min_side) ? s.min_side : 0;
   const double target =
       report.through ? f.floor : f.floor + (std::isfinite(s.min_bottom) ? s.min_bottom : 0);
@@ -889,6 +930,40 @@ void Verifier::coverage(FeatureState& s, FeatureReport& report) {
           fmt(report.reachable_area, 1) + " mm2) is not swept at z " + fmt(report.target_z) +
           " (grid " + fmt(g.step) + " mm, tolerance " + fmt(tol_) + " mm), e.g. at " + fmt(sample) +
           " (last workingstep #" + std::to_string(s.last_ws) + " '" + s.last_ws_name + "')");
+}
+
+void Verifier::profiled_coverage(FeatureState& s, FeatureReport& report) {
+  const Feature& f = s.feature;
+  if (!f.coverage) return;
+  std::vector<detail::SweptShape> swept;
+  swept.reserve(s.swept.size());
+  for (const Swept& w : s.swept) swept.push_back({w.a, w.b, w.tool});
+  const double allowance = std::isfinite(s.min_gouge_allowance) ? s.min_gouge_allowance : 0;
+  const detail::CavityCoverage c = detail::cover(*f.cavity, swept, s.smallest, allowance, tol_,
+                                                 options_.grid, kMaxCavityCoverageWork);
+  if (c.coarsened && s.last_ws_instance != nullptr)
+    add(diag::Code::VerifyGridCoarsened, f.instance, 0, {}, f.instance->id, std::nullopt, 0, 0,
+        r_.describe(*f.instance) + ": the coverage grid was coarsened to " + fmt(c.grid) +
+            " mm to bound the work of its surface coverage");
+  report.coverage_checked = true;
+  report.grid = c.grid;
+  report.tool_radius = s.min_radius;
+  report.reachable_area = c.reachable_area;
+  report.unreachable_area = c.unreachable_area;
+  report.uncovered_fraction = c.uncovered_fraction;
+  if (c.uncovered == 0) return;
+  const Vec3 sample = f.frame.point(c.sample);
+  report.uncovered_sample = position(sample);
+  add(diag::Code::VerifyCoverage, s.last_ws_instance, s.last_ws, s.last_ws_name, f.instance->id,
+      position(sample), 0, 0,
+      r_.describe(*f.instance) + ": " + fmt(100 * report.uncovered_fraction, 2) +
+          "% of the surface that a tool of radius " + fmt(s.min_radius) + " reaches (" +
+          fmt(report.reachable_area, 1) +
+          " mm2 in plan) is left more than the tolerance above "
+          "it (grid " +
+          fmt(c.grid) + " mm, tolerance " + fmt(tol_) + " mm along the surface), e.g. at " +
+          fmt(sample) + " (last workingstep #" + std::to_string(s.last_ws) + " '" + s.last_ws_name +
+          "')");
 }
 
 void Verifier::finish() {

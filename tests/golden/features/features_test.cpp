@@ -220,7 +220,8 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
   EXPECT_EQ(text, test::read_file(golden)) << "differs from " << golden;
   // These are wrong on purpose; the others must interpret without an error.
   if (GetParam() != "wrong-tools" && GetParam() != "unsupported" && GetParam() != "hostile" &&
-      GetParam() != "wrong-tools-general" && GetParam() != "hostile-general") {
+      GetParam() != "wrong-tools-general" && GetParam() != "hostile-general" &&
+      GetParam() != "wrong-tools-shapes" && GetParam() != "hostile-shapes") {
     for (const auto& d : r.diagnostics)
       EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, GetParam());
     expect_verified(cases() / (GetParam() + ".stp"), r.calls);
@@ -235,7 +236,10 @@ INSTANTIATE_TEST_SUITE_P(
                       "holes-pointed-bottoms", "holes-strategy", "slots", "wrong-tools",
                       "unsupported", "hostile", "pocket-polyline-l", "pocket-composite",
                       "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
-                      "pocket-radiused-bottom", "wrong-tools-general", "hostile-general"),
+                      "pocket-radiused-bottom", "wrong-tools-general", "hostile-general",
+                      "slot-vee", "slot-partial-circular", "slot-ends-mixed", "slot-woodruff",
+                      "slot-circular", "step", "thread-drilling", "pocket-retract",
+                      "wrong-tools-shapes", "hostile-shapes"),
     [](const auto& param_info) {
       std::string n = param_info.param;
       for (char& c : n)
@@ -304,7 +308,7 @@ TEST(FeaturesOwn, HoleCycles) {
 
 TEST(FeaturesOwn, UnsupportedIsNamedNotGuessed) {
   const Generated r = run(cases() / "unsupported.stp");
-  EXPECT_EQ(r.count("STEPNC-101"), 6u) << r.text("unsupported");
+  EXPECT_EQ(r.count("STEPNC-101"), 8u) << r.text("unsupported");
   for (const auto& d : r.diagnostics) {
     if (d.code_id() == "STEPNC-101") {
       EXPECT_NE(d.message.find("MACHINING_WORKINGSTEP)"), std::string::npos);
@@ -320,6 +324,39 @@ TEST(FeaturesOwn, HostileNumbersAreRefusedNotAllocated) {
   const Generated r = run(cases() / "hostile.stp");
   EXPECT_EQ(r.count("STEPNC-103"), 3u) << r.text("hostile");
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
+// Every wrong tool for the new shapes is refused with one diagnostic that names the tool and
+// the feature (STEPNC-102), or says that the combination is not implemented (STEPNC-101, the
+// woodruff keyseat cutter), and nothing moves.
+TEST(FeaturesOwn, WrongToolsForShapesNameToolAndFeature) {
+  const Generated r = run(cases() / "wrong-tools-shapes.stp");
+  EXPECT_EQ(r.count("STEPNC-102"), 11u) << r.text("wrong-tools-shapes");
+  EXPECT_EQ(r.count("STEPNC-101"), 1u) << r.text("wrong-tools-shapes");
+  for (const auto& d : r.diagnostics) {
+    if (d.code_id() != "STEPNC-102") continue;
+    EXPECT_NE(d.message.find("(MILLING_CUTTING_TOOL)"), std::string::npos) << d.message;
+    const bool names_feature = d.message.find("(SLOT)") != std::string::npos ||
+                               d.message.find("(STEP)") != std::string::npos ||
+                               d.message.find("(DEFINED_THREAD)") != std::string::npos;
+    EXPECT_TRUE(names_feature) << d.message;
+  }
+  for (const auto& c : r.calls)
+    EXPECT_FALSE(std::holds_alternative<canon::StraightFeed>(c) ||
+                 std::holds_alternative<canon::ArcFeed>(c));
+}
+
+// Zero, negative and huge sizes, angles of 180 degrees and more, a tool of radius 0: each a
+// clean STEPNC-101/103 for its workingstep, quickly, with no motion.
+TEST(FeaturesOwn, HostileShapesAreRefusedCleanly) {
+  const auto start = std::chrono::steady_clock::now();
+  const Generated r = run(cases() / "hostile-shapes.stp");
+  EXPECT_EQ(r.count("STEPNC-103"), 14u) << r.text("hostile-shapes");
+  EXPECT_EQ(r.count("STEPNC-101"), 1u) << r.text("hostile-shapes");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  for (const auto& c : r.calls)
+    EXPECT_FALSE(std::holds_alternative<canon::StraightFeed>(c) ||
+                 std::holds_alternative<canon::ArcFeed>(c));
 }
 
 TEST(FeaturesOwn, OutsideProfileRing) {

@@ -51,7 +51,10 @@ class P21:
             return x if isinstance(x, str) else f"{x:.3f}"
         dim = self.add(f"MILLING_TOOL_DIMENSION({diameter:.3f},{v(tip)},$,{v(edge_length)},"
                        f"{v(edge_radius)},$,$)")
-        extra = ",.F." if body == "BORING_TOOL" else ""  # retract_movement_forbidden
+        # Attributes of the body's own entity after the common ones.
+        extra = {"BORING_TOOL": ",.F.",  # retract_movement_forbidden
+                 "COUNTERSINK": ",$", "TAPERED_ENDMILL": ",$", "WOODRUFF_KEYSEAT_MILL": ",$",
+                 "T_SLOT_MILL": ",$", "SIDE_MILL": ",$", "DOVETAIL_MILL": ",$"}.get(body, "")
         b = self.add(f"{body}({dim},2,{hand},.F.,${extra})")
         comp = self.add(f"CUTTING_COMPONENT({assembly:.3f},$,$,$,$)")
         return self.add(f"MILLING_CUTTING_TOOL('{name}',{b},({comp}),{assembly:.3f},$,$)")
@@ -128,12 +131,55 @@ def hole(p, x, y, diameter, depth, bottom="THROUGH_BOTTOM_CONDITION()"):
 
 
 def bs(p, kind, name, tool, tech, strategy, axial, radial, side, bottom, approach="$",
-       retract_plane=5.0):
+       retract_plane=5.0, retract="$"):
     def v(x):
         return "$" if x is None else f"{x:.3f}" if x >= 0.001 else f"{x:.3E}"
     return p.add(f"BOTTOM_AND_SIDE_{kind}_MILLING($,$,'{name}',{retract_plane:.3f},$,{tool},{tech},"
-                 f"{p.functions()},$,{approach},$,{strategy},{v(axial)},{v(radial)},{v(side)},"
+                 f"{p.functions()},$,{approach},{retract},{strategy},{v(axial)},{v(radial)},{v(side)},"
                  f"{v(bottom)})")
+
+
+def side_op(p, kind, name, tool, tech, strategy, axial, allowance, approach="$"):
+    return p.add(f"SIDE_{kind}_MILLING($,$,'{name}',5.000,$,{tool},{tech},{p.functions()},$,"
+                 f"{approach},$,{strategy},{axial:.3f},$,{allowance:.3f})")
+
+
+def slot_feature(p, name, x, y, path, profile, ends, depth):
+    return p.add(f"SLOT('{name}',#4,(),{p.placement(x, y, 0)},{p.plane('SLOT DEPTH', -depth)},"
+                 f"{path},{profile},({','.join(ends)}))")
+
+
+def line_path(p, length, direction=(1, 0, 0)):
+    return p.add(f"LINEAR_PATH($,{p.length(length)},{p.direction(*direction)})")
+
+
+def vee_profile(p, angle, radius=0.0, tilt=None):
+    tilt = 90 - angle / 2 if tilt is None else tilt
+    return p.add(f"VEE_PROFILE($,{p.length(radius)},{angle:.3f},{tilt:.3f})")
+
+
+def step_feature(p, name, x, y, length, direction, foot, depth, angle=90.0, radius=0.0, tilt=0.0):
+    """A step whose open boundary starts at (x, y) along `direction`; `foot` is the foot of its
+    wall (the vee's vertex) in the feature's coordinates, or None for a step without a wall."""
+    path = line_path(p, length, direction)
+    if foot is None:
+        wall = "$"
+    else:
+        wall = p.add(f"VEE_PROFILE({p.placement(*foot)},{p.length(radius, 0.05)},{angle:.3f},"
+                     f"{tilt:.3f})")
+    return p.add(f"STEP('{name}',#4,(),{p.placement(x, y, 0)},{p.plane('STEP DEPTH', -depth)},"
+                 f"{path},{wall},())")
+
+
+def thread_feature(p, name, x, y, hole_feature, major, threads, unit, hand, depth):
+    count = p.add(f"NUMERIC_PARAMETER('THREADS',{threads:.6f},'{unit}')")
+    hand = p.add(f"DESCRIPTIVE_PARAMETER('HAND','{hand}')")
+    fit = p.add("DESCRIPTIVE_PARAMETER('FIT','6H')")
+    form = p.add("DESCRIPTIVE_PARAMETER('FORM','ISO METRIC')")
+    area = p.add(f"PARTIAL_AREA_DEFINITION({depth:.3f},{p.placement(0, 0, 0)},$)")
+    return p.add(f"DEFINED_THREAD('{name}',#4,(),{p.placement(x, y, 0)},"
+                 f"{p.plane('THREAD DEPTH', -depth)},{area},({hole_feature}),.T.,$,{fit},{form},"
+                 f"{major:.3f},{count},{hand},{major - 0.6495 * 25.4 / 13:.3f},$,$)")
 
 
 def plane_op(p, kind, name, tool, tech, strategy, axial, bottom=None, approach="$"):
@@ -269,6 +315,216 @@ def main():
              ("SLOT OPEN ENDS", s3, bs(p, "FINISH", "SLOT 3", mill10, tech, cp, 2.0, None, None, None)),
              ("SLOT CENTRE", s4, bs(p, "FINISH", "SLOT 4", ball8, tech, centre, 2.0, None, None, None, ramp))])
 
+
+    # ---- slots: profiles, end types and paths made by form tools ----
+    p = program("slot-vee", "vee slots: a 90-degree countersink along the centre (radiused ends, two levels), a 60-degree pointed cutter with a tip radius (open ends)")
+    sink = p.tool("COUNTERSINK 16 X 90", "COUNTERSINK", 16, edge_length=12.0, tip=45.0)
+    engraver = p.tool("ENGRAVER 10 X 60 R1", "ENDMILL", 10, edge_length=15.0, tip=60.0, edge_radius=1.0)
+    tech = p.tech(0.02, -40.0)
+    radiused, opened = p.add("RADIUSED_SLOT_END_TYPE()"), p.add("OPEN_SLOT_END_TYPE()")
+    v90 = slot_feature(p, "VEE 90", 0, 0, line_path(p, 40), vee_profile(p, 90), [radiused, radiused], 5)
+    v60 = slot_feature(p, "VEE 60 R1", 0, 30, line_path(p, 50, (0.6, 0.8, 0)), vee_profile(p, 60, 1.0, 60.0),
+                       [opened, opened], 6)
+    centre = p.add("CENTER_MILLING($,.T.)")
+    ramp = p.add("PLUNGE_RAMP($,10.0)")
+    p.write([("VEE 90 RADIUSED", v90, bs(p, "FINISH", "VEE 1", sink, tech, centre, 2.5, None, None, None, ramp)),
+             ("VEE 60 OPEN", v60, bs(p, "FINISH", "VEE 2", engraver, tech, centre, None, None, None, None))])
+
+    p = program("slot-partial-circular", "partial-circular slots: a ball of the profile radius along the centre, and a smaller ball stepped across it (rings about radiused ends, lines out of open ends)")
+    ball12 = p.tool("BALL 12", "BALL_ENDMILL", 12, edge_length=20.0, edge_radius=6.0)
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    tech = p.tech(0.02, -50.0)
+    radiused, opened = p.add("RADIUSED_SLOT_END_TYPE()"), p.add("OPEN_SLOT_END_TYPE()")
+    arc120 = p.add(f"PARTIAL_CIRCULAR_PROFILE($,{p.length(6)},120.0)")
+    s1 = slot_feature(p, "ROUND 12 FULL", 0, 0, line_path(p, 40), arc120, [radiused, radiused], 3)
+    s2 = slot_feature(p, "ROUND 12 STEPPED", 0, 30, line_path(p, 40), arc120, [radiused, opened], 3)
+    s3 = slot_feature(p, "ROUND 12 OPEN", 0, 60, line_path(p, 30, (0, 1, 0)), arc120, [opened, opened], 3)
+    cp = p.add("CONTOUR_PARALLEL($,.T.,$,.CLIMB.)")
+    p.write([("ROUND FULL", s1, bs(p, "FINISH", "ROUND 1", ball12, tech, cp, None, None, None, None)),
+             ("ROUND STEPPED", s2, bs(p, "FINISH", "ROUND 2", ball6, tech, cp, 1.5, None, None, None)),
+             ("ROUND STEPPED OPEN", s3, bs(p, "FINISH", "ROUND 3", ball6, tech, "$", None, None, None, None))])
+
+    p = program("slot-ends-mixed", "square-U slots with mixed ends (radiused and flat, open and flat) and flat ends with two different corner radii")
+    mill10, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    square = p.add(f"SQUARE_U_PROFILE($,{p.length(16)},{p.length(0)},90.0,{p.length(0)},90.0)")
+    radiused, opened = p.add("RADIUSED_SLOT_END_TYPE()"), p.add("OPEN_SLOT_END_TYPE()")
+    flat6 = p.add(f"FLAT_SLOT_END_TYPE({p.length(6)},{p.length(6)})")
+    flat_unequal = p.add(f"FLAT_SLOT_END_TYPE({p.length(5.5)},{p.length(8)})")
+    s1 = slot_feature(p, "RADIUSED AND FLAT", 0, 0, line_path(p, 40), square, [radiused, flat6], 5)
+    s2 = slot_feature(p, "OPEN AND FLAT", -10, 40, line_path(p, 50), square, [opened, flat_unequal], 4)
+    s3 = slot_feature(p, "FLAT 5.5 AND 8", 0, 80, line_path(p, 30, (0, 1, 0)), square, [flat_unequal, flat_unequal], 4)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    bi = p.add(f"BIDIRECTIONAL_MILLING(0.3,.T.,{p.direction(1, 0, 0)},.LEFT.,$)")
+    p.write([("RADIUSED + FLAT", s1, bs(p, "ROUGH", "MIXED 1", mill10, tech, cp, 2.5, None, 0.0, 0.0)),
+             ("OPEN + FLAT", s2, bs(p, "ROUGH", "MIXED 2", mill10, tech, bi, 4.0, None, 0.0, 0.0)),
+             ("FLAT UNEQUAL", s3, bs(p, "FINISH", "MIXED 3", mill10, tech, cp, 2.0, None, None, None))])
+
+    p = program("slot-woodruff", "woodruff ends: a rounded-U slot with two, a partial-circular slot with one woodruff and one radiused end, each a ball along the centre rising along the arc of the end")
+    ball8 = p.tool("BALL 8", "BALL_ENDMILL", 8, edge_length=16.0, edge_radius=4.0)
+    ball12 = p.tool("BALL 12", "BALL_ENDMILL", 12, edge_length=20.0, edge_radius=6.0)
+    tech = p.tech(0.02, -50.0)
+    rounded = p.add(f"ROUNDED_U_PROFILE($,{p.length(8)})")
+    arc120 = p.add(f"PARTIAL_CIRCULAR_PROFILE($,{p.length(6)},120.0)")
+    w20 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(20)})")
+    w15 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(15)})")
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    s1 = slot_feature(p, "KEYWAY 8", 0, 0, line_path(p, 30), rounded, [w20, w20], 5)
+    s2 = slot_feature(p, "ROUND WOODRUFF", 0, 40, line_path(p, 30, (0, 1, 0)), arc120, [w15, radiused], 3)
+    centre = p.add("CENTER_MILLING($,.T.)")
+    p.write([("KEYWAY WOODRUFF", s1, bs(p, "FINISH", "KEY", ball8, tech, centre, 2.0, None, None, None)),
+             ("ROUND WOODRUFF", s2, bs(p, "FINISH", "ROUND", ball12, tech, centre, None, None, None, None))])
+
+    p = program("slot-circular", "slots along circles: a ring groove (loop end, helical ramp), a vee along an arc with radiused ends, a square-U along a clockwise arc cut by an end mill of its width")
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    sink = p.tool("COUNTERSINK 16 X 90", "COUNTERSINK", 16, edge_length=12.0, tip=45.0)
+    mill10, tech = mill(p, 10, 20), p.tech(0.02, -40.0)
+    loop = p.add("LOOP_SLOT_END_TYPE()")
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    ring = p.add(f"COMPLETE_CIRCULAR_PATH($,{p.length(30)})")
+    arc = p.add(f"PARTIAL_CIRCULAR_PATH($,{p.length(25)},90.0)")
+    back = p.add(f"PARTIAL_CIRCULAR_PATH($,{p.length(40)},-120.0)")
+    g1 = slot_feature(p, "O-RING GROOVE", 0, 0, ring, p.add(f"ROUNDED_U_PROFILE($,{p.length(6)})"), [loop], 3)
+    g2 = slot_feature(p, "VEE ARC", 100, 0, arc, vee_profile(p, 90), [radiused, radiused], 4)
+    g3 = slot_feature(p, "SQUARE ARC", 0, 100, back,
+                      p.add(f"SQUARE_U_PROFILE($,{p.length(10)},{p.length(0)},90.0,{p.length(0)},90.0)"),
+                      [radiused, radiused], 3)
+    centre = p.add("CENTER_MILLING($,.T.)")
+    ramp5 = p.add("PLUNGE_RAMP($,5.0)")
+    p.write([("RING GROOVE", g1, bs(p, "FINISH", "GROOVE", ball6, tech, centre, 1.5, None, None, None, ramp5, retract=ramp5)),
+             ("VEE ALONG ARC", g2, bs(p, "FINISH", "VEE ARC", sink, tech, centre, None, None, None, None)),
+             ("SQUARE ALONG ARC", g3, bs(p, "FINISH", "SQUARE ARC", mill10, tech, centre, 1.5, None, None, None, ramp5))])
+
+    # ---- steps ----
+    p = program("step", "steps: open boundary and a wall located by the placement of its vee; bidirectional with a bull nose making the wall radius, one-way and side finishing of a wall on the other side")
+    bull = p.tool("BULLNOSE 10 R1", "BULLNOSE_ENDMILL", 10, edge_length=20.0, edge_radius=1.0)
+    mill12, tech = mill(p, 12, 25), p.tech(0.03, -40.0)
+    st1 = step_feature(p, "STEP R1", 0, 0, 60, (0, 1, 0), (25, 0, -8), 8, radius=1.0)
+    st2 = step_feature(p, "STEP LEFT", 100, 0, 50, (1, 0, 0), (0, -18, 0), 6)
+    bi = p.add(f"BIDIRECTIONAL_MILLING(0.2,.T.,{p.direction(0, 1, 0)},$,$)")
+    uni = p.add(f"UNIDIRECTIONAL_MILLING(0.3,.T.,$,.CLIMB.)")
+    cp = p.add("CONTOUR_PARALLEL($,.T.,$,.CLIMB.)")
+    p.write([("STEP BIDIRECTIONAL", st1, bs(p, "ROUGH", "STEP 1", bull, tech, bi, 4.0, None, 0.0, 0.0)),
+             ("STEP ONE WAY", st2, bs(p, "ROUGH", "STEP 2", mill12, tech, uni, 3.0, None, 0.3, 0.0)),
+             ("STEP WALL", st2, side_op(p, "FINISH", "STEP 2 WALL", mill12, tech, cp, 6.0, 0.0))])
+
+    # ---- thread drilling ----
+    p = program("thread-drilling", "thread drilling: drill to depth, helix up the thread with its pitch, out along the axis; M16x2 right-hand through, 1/2-13 left-hand blind")
+    bgf14 = p.tool("THREAD DRILL MILL 14", "MILLING_THREADING_TOOL", 14, edge_length=40.0, tip=31.0)
+    bgf108 = p.tool("THREAD DRILL MILL 10.8", "MILLING_THREADING_TOOL", 10.8, edge_length=40.0, tip=31.0)
+    h1 = hole(p, 0, 0, 14, 20)
+    h2 = hole(p, 40, 0, 10.8, 20, "FLAT_HOLE_BOTTOM()")
+    t1 = thread_feature(p, "M16X2", 0, 0, h1, 16, 0.5, "1/MM", "RIGHT", 20)
+    t2 = thread_feature(p, "1/2-13 UNC LH", 40, 0, h2, 12.7, 13, "TPI", "LEFT", 15)
+
+    def thread_op(name, tool, tech):
+        return p.add(f"THREAD_DRILLING($,$,'{name}',3.000,$,{tool},{tech},{p.functions()},$,$,$,$,$,$,.F.)")
+    p.write([("THREAD M16", t1, thread_op("BGF M16", bgf14, p.tech(0.01, -25.0))),
+             ("THREAD 1/2 LH", t2, thread_op("BGF 1/2", bgf108, p.tech(0.008, -30.0)))])
+
+    # ---- retract strategies, the approach run backwards ----
+    p = program("pocket-retract", "pockets left by a helix and by a ramp (the retract strategy of the operation)")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    f1 = rect_pocket(p, 0, 0, 50, 30, 6, 6)
+    f2 = circ_pocket(p, 80, 0, 40, 5)
+    hx = p.add("PLUNGE_HELIX($,3.0,5.0)")
+    ramp = p.add("PLUNGE_RAMP($,4.0)")
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    p.write([("POCKET HELIX OUT", f1, bs(p, "ROUGH", "HELIX OUT", t, tech, cp, 3.0, None, 0.0, 0.0, hx, retract=hx)),
+             ("POCKET RAMP OUT", f2, bs(p, "ROUGH", "RAMP OUT", t, tech, cp, 5.0, None, 0.0, 0.0, ramp, retract=ramp))])
+
+    # ---- wrong tools for the new shapes: STEPNC-102 naming the tool and the feature ----
+    p = program("wrong-tools-shapes", "tools that cannot make vee, partial-circular, woodruff-ended slots, steps and threads")
+    tech = p.tech(0.02, -40.0)
+    sink60 = p.tool("COUNTERSINK 16 X 60", "COUNTERSINK", 16, edge_length=12.0, tip=60.0)
+    sink_small = p.tool("COUNTERSINK 6 X 90", "COUNTERSINK", 6, edge_length=12.0, tip=45.0)
+    flat10 = mill(p, 10, 20)
+    ball16 = p.tool("BALL 16", "BALL_ENDMILL", 16, edge_length=20.0, edge_radius=8.0)
+    keyseat = p.tool("WOODRUFF CUTTER 25", "WOODRUFF_KEYSEAT_MILL", 25, edge_length=6.0)
+    bull2 = p.tool("BULLNOSE 10 R2", "BULLNOSE_ENDMILL", 10, edge_length=20.0, edge_radius=2.0)
+    drill = p.tool("DRILL 14", "TWIST_DRILL", 14, edge_length=40.0, tip=31.0)
+    bgf12 = p.tool("THREAD DRILL MILL 12", "MILLING_THREADING_TOOL", 12, edge_length=40.0, tip=31.0)
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    v90 = slot_feature(p, "VEE 90", 0, 0, line_path(p, 40), vee_profile(p, 90), [radiused, radiused], 5)
+    arc120 = p.add(f"PARTIAL_CIRCULAR_PROFILE($,{p.length(6)},120.0)")
+    pc = slot_feature(p, "ROUND 12", 0, 30, line_path(p, 40), arc120, [radiused, radiused], 3)
+    square = p.add(f"SQUARE_U_PROFILE($,{p.length(12)},{p.length(0)},90.0,{p.length(0)},90.0)")
+    w12 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(12)})")
+    key = slot_feature(p, "KEYWAY 12", 0, 60, line_path(p, 30), square, [w12, w12], 6)
+    st = step_feature(p, "STEP R1", 100, 0, 60, (0, 1, 0), (25, 0, -8), 8, radius=1.0)
+    w4 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(4)})")
+    shallow_key = slot_feature(p, "SHALLOW KEYWAY 12", 0, 90, line_path(p, 30),
+                               p.add(f"ROUNDED_U_PROFILE($,{p.length(12)})"), [w4, w4], 3)
+    ball12 = p.tool("BALL 12", "BALL_ENDMILL", 12, edge_length=20.0, edge_radius=6.0)
+    h = hole(p, 100, 100, 14, 20)
+    th = thread_feature(p, "M16X2", 100, 100, h, 16, 0.5, "1/MM", "RIGHT", 20)
+    centre = p.add("CENTER_MILLING($,.T.)")
+
+    def thread_op(name, tool):
+        return p.add(f"THREAD_DRILLING($,$,'{name}',3.000,$,{tool},{tech},{p.functions()},$,$,$,$,$,$,.F.)")
+    p.write([("VEE WRONG ANGLE", v90, bs(p, "FINISH", "VEE 60", sink60, tech, centre, None, None, None, None)),
+             ("VEE FLAT END MILL", v90, bs(p, "FINISH", "VEE FLAT", flat10, tech, centre, None, None, None, None)),
+             ("VEE CONE TOO NARROW", v90, bs(p, "FINISH", "VEE SMALL", sink_small, tech, centre, None, None, None, None)),
+             ("ROUND NOT A BALL", pc, bs(p, "FINISH", "ROUND FLAT", flat10, tech, centre, None, None, None, None)),
+             ("ROUND BALL TOO BIG", pc, bs(p, "FINISH", "ROUND 16", ball16, tech, centre, None, None, None, None)),
+             ("WOODRUFF END MILL", key, bs(p, "FINISH", "KEY FLAT", flat10, tech, centre, None, None, None, None)),
+             ("WOODRUFF KEYSEAT CUTTER", key, bs(p, "FINISH", "KEY CUTTER", keyseat, tech, centre, None, None, None, None)),
+             ("WOODRUFF SMALLER THAN THE BALL", shallow_key, bs(p, "FINISH", "KEY 12", ball12, tech, centre, None, None, None, None)),
+             ("STEP CORNER TOO BIG", st, bs(p, "FINISH", "STEP R2", bull2, tech, "$", None, None, None, None)),
+             ("STEP CORNER TOO SMALL", st, bs(p, "FINISH", "STEP FLAT", flat10, tech, "$", None, None, None, None)),
+             ("THREAD WITH A DRILL", th, thread_op("DRILL ONLY", drill)),
+             ("THREAD TOOL WRONG SIZE", th, thread_op("BGF 12", bgf12))])
+
+    # ---- hostile values for the new shapes: a clean STEPNC-103/101, never a crash or hang ----
+    p = program("hostile-shapes", "zero, negative, infinite and out-of-range sizes and angles for slots, steps and threads")
+    tech = p.tech(0.02, -40.0)
+    sink = p.tool("COUNTERSINK 16 X 90", "COUNTERSINK", 16, edge_length=12.0, tip=45.0)
+    zero_tool = p.tool("NO SIZE", "BALL_ENDMILL", 0, edge_length=12.0, edge_radius=0.0)
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    mill10 = mill(p, 10, 20)
+    bgf14 = p.tool("THREAD DRILL MILL 14", "MILLING_THREADING_TOOL", 14, edge_length=40.0, tip=31.0)
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    flat_angle = slot_feature(p, "VEE 180", 0, 0, line_path(p, 40), vee_profile(p, 180.0, 0.0, 0.0), [radiused, radiused], 5)
+    reflex = slot_feature(p, "VEE 200", 0, 0, line_path(p, 40), vee_profile(p, 200.0, 0.0, 0.0), [radiused, radiused], 5)
+    wide = slot_feature(p, "ARC 270", 0, 0, line_path(p, 40),
+                        p.add(f"PARTIAL_CIRCULAR_PROFILE($,{p.length(6)},270.0)"), [radiused, radiused], 3)
+    zero_width = slot_feature(p, "WIDTH 0", 0, 0, line_path(p, 40),
+                              p.add(f"SQUARE_U_PROFILE($,{p.length(0)},{p.length(0)},90.0,{p.length(0)},90.0)"),
+                              [radiused, radiused], 3)
+    negative = slot_feature(p, "WIDTH -8", 0, 0, line_path(p, 40), p.add(f"ROUNDED_U_PROFILE($,{p.length(-8)})"),
+                            [radiused, radiused], 3)
+    # Non-finite reals (1.E400) are refused by the reader (P21-008) before any generator runs.
+    huge_arc = slot_feature(p, "ARC RADIUS 1E300", 0, 0, line_path(p, 40),
+                            p.add(f"PARTIAL_CIRCULAR_PROFILE($,{p.length(1e300)},120.0)"), [radiused, radiused], 3)
+    arc120 = p.add(f"PARTIAL_CIRCULAR_PROFILE($,{p.length(6)},120.0)")
+    round_slot = slot_feature(p, "ROUND 12", 0, 0, line_path(p, 40), arc120, [radiused, radiused], 3)
+    huge_path = slot_feature(p, "VEE 1E9 LONG", 0, 0, line_path(p, 1e9), vee_profile(p, 90), [radiused, radiused], 5)
+    no_ends = slot_feature(p, "NO ENDS", 0, 0, line_path(p, 40), vee_profile(p, 90), [], 5)
+    loop_line = slot_feature(p, "LOOP ON A LINE", 0, 0, line_path(p, 40), vee_profile(p, 90),
+                             [p.add("LOOP_SLOT_END_TYPE()")], 5)
+    huge_step = step_feature(p, "STEP 1E12 WIDE", 0, 0, 60, (0, 1, 0), (1e12, 0, -8), 8)
+    no_wall = step_feature(p, "STEP NO WALL", 0, 0, 60, (0, 1, 0), None, 8)
+    h = hole(p, 0, 0, 14, 20)
+    no_pitch = thread_feature(p, "ZERO THREADS", 0, 0, h, 16, 0.0, "1/MM", "RIGHT", 20)
+    odd_unit = thread_feature(p, "PITCH UNIT", 0, 0, h, 16, 2.0, "MM", "RIGHT", 20)
+    tiny_pitch = thread_feature(p, "1E9 THREADS", 0, 0, h, 16, 1e9, "1/MM", "RIGHT", 20)
+    centre = p.add("CENTER_MILLING($,.T.)")
+    cp = p.add("CONTOUR_PARALLEL($,.T.,$,.CLIMB.)")
+
+    def op(name, tool, strategy=centre):
+        return bs(p, "FINISH", name, tool, tech, strategy, None, None, None, None)
+
+    def thread_op(name):
+        return p.add(f"THREAD_DRILLING($,$,'{name}',3.000,$,{bgf14},{tech},{p.functions()},$,$,$,$,$,$,.F.)")
+    p.write([("VEE 180 DEG", flat_angle, op("A", sink)), ("VEE 200 DEG", reflex, op("B", sink)),
+             ("ARC 270 DEG", wide, op("C", ball6)), ("ZERO WIDTH", zero_width, op("D", mill10)),
+             ("NEGATIVE WIDTH", negative, op("E", ball6)), ("HUGE RADIUS", huge_arc, op("F", ball6)),
+             ("TOOL RADIUS 0", round_slot, op("G", zero_tool)),
+             ("HUGE SLOT", huge_path, op("H", sink)), ("NO END CONDITIONS", no_ends, op("I", sink)),
+             ("LOOP ON A LINE", loop_line, op("J", sink)),
+             ("HUGE STEP", huge_step, op("K", mill10, cp)), ("STEP WITHOUT WALL", no_wall, op("L", mill10, cp)),
+             ("ZERO THREADS", no_pitch, thread_op("M")), ("PITCH UNIT", odd_unit, thread_op("N")),
+             ("TINY PITCH", tiny_pitch, thread_op("O"))])
+
     # ---- hostile numbers: refused by the motion limit before anything is built ----
     p = program("hostile", "stepover, axial depth and helix angle that would need billions of motions")
     t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
@@ -289,17 +545,28 @@ def main():
     gcp = p.add(f"GENERAL_CLOSED_PROFILE($,{poly})")
     b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
     tri = p.add(f"CLOSED_POCKET('TRIANGLE',#4,(),{p.placement(50, 0, 0)},{p.plane('D', -3)},(),5.0,{b},$,$,{gcp})")
-    step_path = p.add(f"LINEAR_PATH($,{p.length(40)},{p.direction(0, 1, 0)})")
-    step = p.add(f"STEP('STEP',#4,(),{p.placement(100, 0, 0)},{p.plane('D', -5)},{step_path},$,())")
+    step = step_feature(p, "STEP", 100, 0, 40, (0, 1, 0), (20, 0, -5), 5, angle=120.0)
     rect = rect_pocket(p, 0, 60, 40, 30, 5, 6)
     spiral = p.add("CONTOUR_SPIRAL($,.T.,.CW.,$)")
     air = p.add("AP_RETRACT_ANGLE($,45.0,5.0)")
     cp = p.add("CONTOUR_PARALLEL($,.T.,.CW.,$)")
     bi = p.add(f"BIDIRECTIONAL_MILLING($,.T.,{p.direction(1, 0, 0)},$,$)")
     side = p.add(f"SIDE_ROUGH_MILLING($,$,'SIDE',5.000,$,{mill10},{tech},{p.functions()},$,$,$,{bi},5.0,2.0,0.5)")
+    tee = p.add(f"TEE_PROFILE($,90.0,90.0,{p.length(20)},{p.length(4)},{p.length(0)},{p.length(8)},"
+                f"{p.length(6)},{p.length(6)})")
+    tslot = slot_feature(p, "TEE SLOT", 0, 120, line_path(p, 40), tee,
+                         [p.add("OPEN_SLOT_END_TYPE()"), p.add("OPEN_SLOT_END_TYPE()")], 10)
+    ball8 = p.tool("BALL 8", "BALL_ENDMILL", 8, edge_length=16.0, edge_radius=4.0)
+    w20 = p.add(f"WOODRUFF_SLOT_END_TYPE({p.length(20)})")
+    keyway = slot_feature(p, "KEYWAY", 0, 150, line_path(p, 30),
+                          p.add(f"ROUNDED_U_PROFILE($,{p.length(8)})"), [w20, w20], 5)
+    steep = p.add("PLUNGE_RAMP($,10.0)")
     p.write([("VEE SLOT", vslot, bs(p, "ROUGH", "VEE", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("TEE SLOT", tslot, bs(p, "ROUGH", "TEE", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("WOODRUFF END WITH A RAMP", keyway, bs(p, "FINISH", "KEY", ball8, tech, "$", None, None,
+                                                     None, None, steep)),
              ("SLOPED GENERAL POCKET", tri, bs(p, "ROUGH", "TRI", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
-             ("STEP", step, bs(p, "ROUGH", "STEP", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
+             ("SLOPED STEP WALL", step, bs(p, "ROUGH", "STEP", mill10, tech, cp, 1.0, None, 0.0, 0.0)),
              ("SPIRAL", rect, bs(p, "ROUGH", "SPIRAL", mill10, tech, spiral, 1.0, None, 0.0, 0.0)),
              ("AIR APPROACH", rect, bs(p, "ROUGH", "AIR", mill10, tech, cp, 1.0, None, 0.0, 0.0, air)),
              ("SIDE MILLING BIDIRECTIONAL", rect, side)])

@@ -102,9 +102,11 @@ def program(name, description, pocket_path=None, pocket_approach="ramp", floor_z
         f.add("TOLERANCED_LENGTH_MEASURE(0.,#925)", 971)
         f.add("CARTESIAN_POINT('',(30.,40.,0.))", 972)
     elif step:
-        # POCKET1 declared as a STEP: a kind the verifier does not check, which it must say.
-        f.add("STEP('STEP1',#900,(#31),#950,#951,#967,$,())", 21)
-        f.add("LINEAR_PATH($,#959,#922)", 967)
+        # POCKET1 declared as a SPHERICAL_CAP: a kind the verifier does not check, which it must
+        # say.
+        f.add("SPHERICAL_CAP('CAP1',#900,(#31),#950,#951,#967,#968)", 21)
+        f.add("NUMERIC_PARAMETER('INTERNAL ANGLE',90.,'DEG')", 967)
+        f.add("NUMERIC_PARAMETER('RADIUS',20.,'MM')", 968)
     else:
         f.add("CLOSED_POCKET('POCKET1',#900,(#31),#950,#951,(),$,#952,$,#953,#954)", 21)
     f.add("ROUND_HOLE('HOLE1',#900,(#32),#960,#961,#962,$,#963)", 22)
@@ -210,6 +212,157 @@ def program(name, description, pocket_path=None, pocket_approach="ramp", floor_z
         out.write("\n".join(text))
 
 
+def shape_program(name, description, feature, tool, path, approach="$"):
+    """One profiled feature (a slot of another profile, a step) machined by one explicit path
+    (in the feature's frame), in a block x 0..100, y 0..80, z -30..0; security plane z 20.
+    `feature(f)` adds the feature as #21 (its operations #31) with its own instances from #950,
+    `tool` is the body and dimension text of the tool #71."""
+    f = P21()
+    f.add("PROJECT('%s',#2,(#900),$,$,$)" % name.upper(), 1)
+    f.add("WORKPLAN('MAIN',(#11),$,#8,$)", 2)
+    f.add("SETUP('SETUP1',#923,#910,(#9))", 8)
+    f.add("WORKPIECE_SETUP(#900,#923,$,$,())", 9)
+    f.add("MACHINING_WORKINGSTEP('WS CUT',#910,#21,#31,$)", 11)
+    feature(f)
+    f.add("BOTTOM_AND_SIDE_FINISH_MILLING(#310,$,'CUT',10.,$,#71,#81,#90,$,%s,$,$,$,$,0.,0.)"
+          % approach, 31)
+    f.add("MILLING_CUTTING_TOOL('TOOL',#710,(#79),70.,$,$)", 71)
+    body, dimension = tool
+    f.add(body, 710)
+    f.add(dimension, 711)
+    f.add("CUTTING_COMPONENT(70.,$,$,$,$)", 79)
+    f.add("MILLING_TECHNOLOGY(0.01,.TCP.,$,-50.,$,.F.,.F.,.F.,$)", 81)
+    f.add("MILLING_MACHINE_FUNCTIONS(.T.,$,$,.F.,$,(),.F.,$,$,())", 90)
+    f.add("WORKPIECE('PART',$,$,$,$,#901,())", 900)
+    f.add("BLOCK('STOCK',#902,100.,80.,30.)", 901)
+    f.add("AXIS2_PLACEMENT_3D('STOCK CORNER',#903,#921,#922)", 902)
+    f.add("CARTESIAN_POINT('',(0.,0.,-30.))", 903)
+    f.add("PLANE('SECURITY PLANE',#911)", 910)
+    f.add("AXIS2_PLACEMENT_3D('SECURITY',#912,#921,#922)", 911)
+    f.add("CARTESIAN_POINT('',(0.,0.,20.))", 912)
+    f.add("CARTESIAN_POINT('ORIGIN',(0.,0.,0.))", 920)
+    f.add("DIRECTION('Z',(0.,0.,1.))", 921)
+    f.add("DIRECTION('X',(1.,0.,0.))", 922)
+    f.add("AXIS2_PLACEMENT_3D('IDENTITY',#920,#921,#922)", 923)
+    f.add("DIRECTION('Y',(0.,1.,0.))", 924)
+    f.add("PLUS_MINUS_VALUE(0.05,0.05,2)", 925)
+    f.add("TOOLPATH_LIST((%s))" % f.polyline("CUT", path), 310)
+
+    def key(line):
+        return int(line[1:line.index("=")])
+
+    text = ["ISO-10303-21;", "HEADER;",
+            "FILE_DESCRIPTION(('ncpost verify case: %s'),'2;1');" % description.replace("'", "''"),
+            "FILE_NAME('%s.stp','2026-11-22T00:00:00',('ncpost'),('ncpost project'),'',"
+            "'tests/golden/verify/make_cases.py','');" % name,
+            "FILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'));", "ENDSEC;", "DATA;"]
+    text += sorted(f.lines, key=key)
+    text += ["ENDSEC;", "END-ISO-10303-21;", ""]
+    with open(os.path.join(HERE, "cases", name + ".stp"), "w") as out:
+        out.write("\n".join(text))
+
+
+def slot_feature(profile, ends, depth, length=40.0, x=20.0, y=40.0):
+    """A SLOT at (x, y) along +x, `profile` and `ends` the texts of #968 and of its end types
+    (#969, #970)."""
+    def add(f):
+        items = ",".join(f"#{969 + k}" for k in range(len(ends)))
+        f.add(f"SLOT('SLOT1',#900,(#31),#950,#951,#967,#968,({items}))", 21)
+        f.add("AXIS2_PLACEMENT_3D('SLOT1',#955,#921,#922)", 950)
+        f.add("PLANE('SLOT1 DEPTH',#956)", 951)
+        f.add(f"CARTESIAN_POINT('',({x:.1f},{y:.1f},0.))", 955)
+        f.add("AXIS2_PLACEMENT_3D('SLOT1 DEPTH',#957,#921,#922)", 956)
+        f.add(f"CARTESIAN_POINT('',(0.,0.,{-depth:.1f}))", 957)
+        f.add("LINEAR_PATH($,#959,#922)", 967)
+        f.add(f"TOLERANCED_LENGTH_MEASURE({length:.1f},#925)", 959)
+        f.add(profile, 968)
+        for k, e in enumerate(ends):
+            f.add(e, 969 + k)
+        f.add("TOLERANCED_LENGTH_MEASURE(0.,#925)", 971)
+        f.add("TOLERANCED_LENGTH_MEASURE(8.,#925)", 972)
+        f.add("TOLERANCED_LENGTH_MEASURE(20.,#925)", 973)
+        f.add("TOLERANCED_LENGTH_MEASURE(6.,#925)", 974)
+    return add
+
+
+def step_feature(f):
+    """A STEP along y at x 0 (its open boundary), the foot of its wall at x 25, 8 deep."""
+    f.add("STEP('STEP1',#900,(#31),#950,#951,#967,#968,())", 21)
+    f.add("AXIS2_PLACEMENT_3D('STEP1',#920,#921,#922)", 950)
+    f.add("PLANE('STEP1 DEPTH',#956)", 951)
+    f.add("AXIS2_PLACEMENT_3D('STEP1 DEPTH',#957,#921,#922)", 956)
+    f.add("CARTESIAN_POINT('',(0.,0.,-8.))", 957)
+    f.add("LINEAR_PATH($,#959,#924)", 967)
+    f.add("TOLERANCED_LENGTH_MEASURE(80.,#925)", 959)
+    f.add("VEE_PROFILE(#958,#971,90.,0.)", 968)
+    f.add("AXIS2_PLACEMENT_3D('WALL FOOT',#960,#921,#922)", 958)
+    f.add("CARTESIAN_POINT('',(25.,0.,-8.))", 960)
+    f.add("TOLERANCED_LENGTH_MEASURE(0.,#925)", 971)
+
+
+def woodruff_arc(length, depth, woodruff, ball, end, z_from=None):
+    """The ball's tip along a woodruff end's arc, from the bottom out of the slot (end 1, at
+    x = length) or into it (end 0, at x = 0), 0.5 degree apart."""
+    axis = -depth + woodruff
+    rho = woodruff - ball
+    pts = []
+    phi = 0.0
+    while True:
+        x = rho * math.sin(math.radians(phi))
+        z = axis - rho * math.cos(math.radians(phi)) - ball
+        pts.append((length + x if end == 1 else -x, 0.0, z))
+        if z >= 0 or phi >= 90:
+            break
+        phi += 0.5
+    return pts if end == 1 else list(reversed(pts))
+
+
+def shape_cases():
+    countersink = ("COUNTERSINK(#711,4,.RIGHT.,.F.,$,$)",
+                   "MILLING_TOOL_DIMENSION(16.,45.,$,12.,0.,$,$)")
+    ball8 = ("BALL_ENDMILL(#711,2,.RIGHT.,.F.,$)", "MILLING_TOOL_DIMENSION(8.,$,$,16.,4.,$,$)")
+    ball12 = ("BALL_ENDMILL(#711,2,.RIGHT.,.F.,$)", "MILLING_TOOL_DIMENSION(12.,$,$,20.,6.,$,$)")
+    endmill10 = ("ENDMILL(#711,3,.RIGHT.,.F.,$)", "MILLING_TOOL_DIMENSION(10.,$,$,25.,0.,$,$)")
+    radiused = "RADIUSED_SLOT_END_TYPE()"
+    # A 90-degree vee 5 deep along x, radiused ends: the countersink's point on its bottom.
+    vee = slot_feature("VEE_PROFILE($,#971,90.,45.)", [radiused, radiused], 5)
+    shape_program("vee-good", "a 90-degree vee slot cut by a countersink of its angle", vee,
+                  countersink, [(0, 0, 5), (0, 0, -5), (40, 0, -5), (40, 0, 5)])
+    # The same path 0.3 mm deeper: the cone cuts 0.3 sin 45 = 0.21 into both walls.
+    shape_program("vee-too-deep", "the countersink 0.3 mm too deep in the vee", vee, countersink,
+                  [(0, 0, 5), (0, 0, -5.3), (40, 0, -5.3), (40, 0, 5)])
+    # 1 mm short: the bottom is not reached, and the vee's walls are left 0.7 mm thick.
+    shape_program("vee-shallow", "the countersink 1 mm short of the vee's bottom", vee,
+                  countersink, [(0, 0, 5), (0, 0, -4), (40, 0, -4), (40, 0, 5)])
+    # A rounded-U keyway 8 wide, 5 deep, woodruff ends of radius 20: the ball along the arcs.
+    keyway = slot_feature("ROUNDED_U_PROFILE($,#972)",
+                          ["WOODRUFF_SLOT_END_TYPE(#973)", "WOODRUFF_SLOT_END_TYPE(#973)"], 5,
+                          length=30.0)
+    arcs = woodruff_arc(30, 5, 20, 4, 0) + woodruff_arc(30, 5, 20, 4, 1)
+    shape_program("woodruff-good", "a keyway with woodruff ends, the ball rising along their arcs",
+                  keyway, ball8, [(arcs[0][0], 0, 5)] + arcs + [(arcs[-1][0], 0, 5)])
+    # The ball runs on 3 mm past the end of the course of travel at the bottom.
+    shape_program("woodruff-overcut", "the ball runs 3 mm along the bottom past a woodruff end",
+                  keyway, ball8, [(arcs[0][0], 0, 5)] + arcs[:arcs.index((0.0, 0.0, -5.0)) + 1] +
+                  [(33.0, 0, -5.0), (33.0, 0, 5)])
+    # A partial-circular slot (radius 6, 120 degrees, 3 deep): a ball 12 along the centre, then
+    # 0.5 mm to the side, into the arc.
+    arc = slot_feature("PARTIAL_CIRCULAR_PROFILE($,#974,120.)", [radiused, radiused], 3)
+    shape_program("partial-circle-off-centre", "a ball of the profile's radius 0.5 mm off the centre",
+                  arc, ball12, [(0, 0, 5), (0, 0, -3), (40, 0, -3), (40, 0.5, -3), (0, 0.5, -3),
+                                (0, 0.5, 5)])
+    # A step 25 wide: passes along y, the last one 0.4 mm into the wall at x 25.
+    passes = [(-7, -7, 5), (-7, -7, -8)]
+    for k, x in enumerate((3.0, 11.0, 20.4)):
+        y0, y1 = (-7, 87) if k % 2 == 0 else (87, -7)
+        passes += [(x, y0, -8), (x, y1, -8)]
+    passes.append((20.4, 87, 5))
+    shape_program("step-wall-gouge", "the last pass over a step 0.4 mm into its wall", step_feature,
+                  endmill10, passes)
+    good = [(p[0] if p[0] != 20.4 else 20.0, p[1], p[2]) for p in passes]
+    shape_program("step-good", "a step cut to its wall", step_feature, endmill10, good)
+
+
 def main():
     os.makedirs(os.path.join(HERE, "cases"), exist_ok=True)
     program("good", "a face, a pocket and a hole, machined right")
@@ -238,8 +391,9 @@ def main():
             hole_depth=-18.0)
     # POCKET1's outline as a SLOT with flat ends: the same path passes.
     program("slot-flat-ends", "the pocket's outline as a slot with flat ends", slot=True)
-    # POCKET1 declared as a STEP: not checked (a note), everything else still is.
-    program("step-not-checked", "a feature kind the verifier does not check", step=True)
+    # POCKET1 declared as a SPHERICAL_CAP: not checked (a note), everything else still is.
+    program("kind-not-checked", "a feature kind the verifier does not check", step=True)
+    shape_cases()
     general_cases()
     return 0
 

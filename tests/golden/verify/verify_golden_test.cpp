@@ -74,10 +74,11 @@ TEST_P(VerifyGolden, Case) {
   for (const Finding* f : found) codes.push_back(f->diagnostic.code);
   EXPECT_EQ(codes, e.codes) << text;
   EXPECT_EQ(r.ok(), e.codes.empty()) << text;
-  if (std::string(e.name) == "step-not-checked") {
+  if (std::string(e.name) == "kind-not-checked") {
     ASSERT_EQ(r.features.size(), 3u);
     EXPECT_FALSE(r.features[1].checked);
-    EXPECT_NE(text.find("note: VERIFY-010: #21 STEP 'STEP1': feature kind STEP is not checked"),
+    EXPECT_NE(text.find("note: VERIFY-010: #21 SPHERICAL_CAP 'CAP1': feature kind SPHERICAL_CAP "
+                        "is not checked"),
               std::string::npos)
         << text;
   }
@@ -108,8 +109,30 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"hole-too-deep", {Code::VerifyBelowFloor}, Position{20, 20, -18}},
         // The pocket's outline and path as a SLOT with flat, 6 mm-cornered ends: passes.
         Expected{"slot-flat-ends", {}},
-        // A STEP is not checked: a VERIFY-010 note, no error (the golden file holds the note).
-        Expected{"step-not-checked", {}},
+        // A SPHERICAL_CAP is not checked: a VERIFY-010 note, no error (the golden file holds
+        // the note).
+        Expected{"kind-not-checked", {}},
+        // A 90-degree vee slot (at (20, 40), 40 along x, 5 deep) and a countersink of 90
+        // degrees along its bottom: passes. 0.3 mm deeper: the point 0.3 below the vee's
+        // bottom (the walls 0.3 sin 45 = 0.21), from the start of the pass. 1 mm short: the
+        // depth, and the walls left 0.7 mm thick everywhere.
+        Expected{"vee-good", {}},
+        Expected{
+            "vee-too-deep", {Code::VerifyGouge, Code::VerifyBelowFloor}, Position{20, 40, -5.3}},
+        Expected{"vee-shallow", {Code::VerifyDepth, Code::VerifyCoverage}, Position{20, 40, -4}},
+        // A keyway (rounded-U 8 wide, 5 deep, 30 long) with woodruff ends of radius 20, a ball
+        // 8 rising along their arcs: passes. Running on 3 mm past the end at the bottom instead:
+        // a gouge at (53, 40, -5), worst there (the ball's centre 0.28 mm outside the torus the
+        // end is), and the arc it did not follow left uncut.
+        Expected{"woodruff-good", {}},
+        Expected{
+            "woodruff-overcut", {Code::VerifyGouge, Code::VerifyCoverage}, Position{53, 40, -5}},
+        // A ball of the partial circle's radius 0.5 mm off its centre, on the way back.
+        Expected{"partial-circle-off-centre", {Code::VerifyGouge}, Position{60, 40.5, -3}},
+        // A step, its wall's foot at x 25: the last pass at x 20.4 with a 10 mm end mill cuts
+        // 0.4 into the wall (from its start, past the step's open end).
+        Expected{"step-good", {}},
+        Expected{"step-wall-gouge", {Code::VerifyGouge}, Position{20.4, -7, -8}},
         // General outlines. An L-shaped polyline pocket with orthogonal_radius 5 = the tool
         // radius: its boundary at 5 from the walls and lines between pass.
         Expected{"l-pocket", {}},

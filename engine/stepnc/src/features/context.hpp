@@ -2,6 +2,7 @@
 // What every feature generator reads: the request's instances, the tool, the operation's
 // common parameters, and the reporting helpers that name the instances involved.
 
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -88,6 +89,14 @@ class Context {
     g.error(diag::Code::StepncNote, at, message);
   }
 
+  // False, after reporting, when a length is beyond FeatureOptions::max_length.
+  bool size_ok(const Instance& at, double value, std::string_view what) {
+    if (std::abs(value) <= opt.max_length) return true;
+    return bad(at, d(at) + " " + std::string(what) + " " + fmt(value) +
+                       " is beyond the generator's limit of " + fmt(opt.max_length) +
+                       " mm (FeatureOptions::max_length)");
+  }
+
   [[nodiscard]] bool is(const Instance* i, std::string_view entity) const {
     return i != nullptr && g.is_a(*i, entity);
   }
@@ -133,11 +142,18 @@ class Context {
 // Equal depth levels from 0 down to -depth, none deeper than `step` (one level when no step).
 std::vector<double> levels(double depth, std::optional<double> step);
 
+// A pointed tool's point (holes.cpp): the part below its full diameter, and its whole angle in
+// degrees, from tool_tip_half_angle as NIST reads it (docs/features.md, hole depth).
+double tip_length(const Tool& tool);
+double point_angle(double tip_half_angle);
+
 bool generate_face(Context& ctx);
 bool generate_pocket(Context& ctx);
 bool generate_open_pocket(Context& ctx);
 bool generate_slot(Context& ctx);
 bool generate_outside_profile(Context& ctx);
 bool generate_hole(Context& ctx);
+bool generate_step(Context& ctx);
+bool generate_thread_drilling(Context& ctx);
 
 }  // namespace ncpost::stepnc::features

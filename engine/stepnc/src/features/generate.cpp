@@ -78,6 +78,12 @@ std::optional<double> Context::depth() {
     return std::nullopt;
   }
   const double depth = -frame->origin.z;
+  if (depth > opt.max_length) {
+    bad(*plane, d(*plane) + " lies " + fmt(depth) + " below the top of " + d(feature()) +
+                    ", beyond the generator's limit of " + fmt(opt.max_length) +
+                    " mm (FeatureOptions::max_length)");
+    return std::nullopt;
+  }
   if (!(depth > 0)) {
     bad(*plane, d(*plane) + " lies at or above the top of " + d(feature()) + " (depth " +
                     std::to_string(depth) + ")");
@@ -141,7 +147,9 @@ Path generate(detail::GeometryReader& geometry, const Request& request,
     return {};
   }
   bool ok = false;
-  if (geometry.is_a(*request.feature, "planar_face")) {
+  if (geometry.is_a(*request.operation, "thread_drilling")) {
+    ok = generate_thread_drilling(ctx);  // on a THREAD feature, which names its hole
+  } else if (geometry.is_a(*request.feature, "planar_face")) {
     ok = generate_face(ctx);
   } else if (geometry.is_a(*request.feature, "closed_pocket")) {
     ok = generate_pocket(ctx);
@@ -151,6 +159,8 @@ Path generate(detail::GeometryReader& geometry, const Request& request,
     ok = generate_outside_profile(ctx);
   } else if (geometry.is_a(*request.feature, "slot")) {
     ok = generate_slot(ctx);
+  } else if (geometry.is_a(*request.feature, "step")) {
+    ok = generate_step(ctx);
   } else if (geometry.is_a(*request.feature, "round_hole")) {
     ok = generate_hole(ctx);
   } else {

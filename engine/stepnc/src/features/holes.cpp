@@ -12,6 +12,8 @@ namespace {
 
 constexpr double kEps = 1e-9;
 
+}  // namespace
+
 // The part of a pointed tool below its full diameter. NIST's ex1 gives a 20 mm twist drill a
 // tool_tip_half_angle of 31°: read as the angle between the cutting edge and the plane normal
 // to the axis (a standard 118° point), as NIST's interpreter does.
@@ -24,10 +26,11 @@ double tip_length(const Tool& tool) {
   return *tool.tip_half_angle < 90 ? tool.radius * std::tan(a) : tool.radius / std::tan(a / 2);
 }
 
-// The point angle (degrees) under the same reading.
 double point_angle(double tip_half_angle) {
   return tip_half_angle < 90 ? 180 - 2 * tip_half_angle : tip_half_angle;
 }
+
+namespace {
 
 struct Strategy {
   double cut_start = 1, feed_start = 1, depth_start = 0;

@@ -8,23 +8,19 @@
 #include <cmath>
 #include <numbers>
 
-#include "context.hpp"
-#include "shapes.hpp"
-
 namespace ncpost::stepnc::features {
 namespace {
 
 constexpr double kEps = 1e-9;
 // With no overlap in the strategy: half the diameter between neighbouring passes.
 constexpr double kDefaultOverlap = 0.5;
+
+}  // namespace
+
 double radians(double degrees) {
   return degrees * std::numbers::pi / 180.0;
 }
 
-}  // namespace
-
-// Stepover from the strategy's overlap (ISO 14649-11: the share of the tool diameter that
-// neighbouring passes have in common) and the operation's radial depth, whichever is smaller.
 double stepover(Context& ctx, const Tool& tool, const OperationData& o, double& overlap) {
   overlap = kDefaultOverlap;
   if (o.strategy != nullptr) {
@@ -42,7 +38,6 @@ bool check_overlap(Context& ctx, const OperationData& o, double overlap) {
                                                           " is not in [0, 1)");
 }
 
-// The cutting edge must take the deepest level step (the wall height cut at once).
 bool check_edge(Context& ctx, const Tool& tool, const std::vector<double>& z) {
   double deepest = -z.front();
   for (std::size_t i = 1; i < z.size(); ++i) deepest = std::max(deepest, z[i - 1] - z[i]);
@@ -53,7 +48,6 @@ bool check_edge(Context& ctx, const Tool& tool, const std::vector<double>& z) {
                                        ctx.d(ctx.op()) + " needs on " + ctx.d(ctx.feature()));
 }
 
-// Axial levels; allow_multiple_passes .F. asks for the whole depth at once.
 std::optional<std::vector<double>> depth_levels(Context& ctx, const OperationData& o,
                                                 double depth) {
   bool multiple = true;
@@ -133,6 +127,11 @@ bool generate_face(Context& ctx) {
     ctx.note(*o.approach, ctx.d(*o.approach) + ": every pass of " + ctx.d(f) +
                               " starts outside the material, so the tool goes down along its "
                               "axis there");
+  if (o.retract != nullptr && !ctx.is(o.retract, "plunge_strategy"))
+    return ctx.not_implemented(ctx.d(*o.retract) + " as the retract of " + ctx.d(ctx.op()));
+  if (o.retract != nullptr && !ctx.is(o.retract, "plunge_toolaxis"))
+    ctx.note(*o.retract, ctx.d(*o.retract) + ": every pass of " + ctx.d(f) +
+                             " ends outside the material, so the tool leaves along its axis there");
 
   // Face rectangle: from the placement origin along the course of travel, and to its right.
   const Vec3 z{0, 0, 1};
@@ -219,6 +218,28 @@ bool generate_face(Context& ctx) {
 // ---- CLOSED_POCKET
 // -------------------------------------------------------------------------------
 
+bool read_plunge(Context& ctx, const Instance& strategy, std::string_view role, Entry& e) {
+  if (ctx.is(&strategy, "plunge_toolaxis")) {
+    e.kind = Entry::Kind::Plunge;
+    return true;
+  }
+  if (ctx.is(&strategy, "plunge_helix")) {
+    e.kind = Entry::Kind::Helix;
+    e.radius = ctx.number(strategy, "radius").value_or(e.radius);
+    if (const auto angle = ctx.number(strategy, "angle")) e.angle = radians(*angle);
+  } else if (ctx.is(&strategy, "plunge_ramp") || ctx.is(&strategy, "plunge_zigzag")) {
+    e.kind = Entry::Kind::Ramp;
+    e.angle = radians(ctx.number(strategy, "angle").value_or(0));
+    e.width = ctx.number(strategy, "width").value_or(0);
+  } else {
+    return ctx.not_implemented(ctx.d(strategy) + " as the " + std::string(role) + " " +
+                               ctx.d(ctx.feature()));
+  }
+  if (!(e.angle > 0 && e.angle < radians(90)))
+    return ctx.bad(strategy, ctx.d(strategy) + " angle must be between 0 and 90 degrees");
+  return true;
+}
+
 void enter(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double ramp_length,
            bool ccw, double from_z, double to_z) {
   switch (e.kind) {
@@ -279,22 +300,7 @@ bool read_entry(Context& ctx, const OperationData& o, const Tool& tool, Entry& e
   entry.angle = radians(ctx.opt.default_helix_angle);
   if (o.approach == nullptr) return true;
   entry.explicit_entry = true;
-  if (ctx.is(o.approach, "plunge_toolaxis")) {
-    entry.kind = Entry::Kind::Plunge;
-  } else if (ctx.is(o.approach, "plunge_helix")) {
-    entry.radius = ctx.number(*o.approach, "radius").value_or(entry.radius);
-    entry.angle = radians(ctx.number(*o.approach, "angle").value_or(ctx.opt.default_helix_angle));
-  } else if (ctx.is(o.approach, "plunge_ramp") || ctx.is(o.approach, "plunge_zigzag")) {
-    entry.kind = Entry::Kind::Ramp;
-    entry.angle = radians(ctx.number(*o.approach, "angle").value_or(0));
-    entry.width = ctx.number(*o.approach, "width").value_or(0);
-  } else {
-    return ctx.not_implemented(ctx.d(*o.approach) + " as the approach into " +
-                               ctx.d(ctx.feature()));
-  }
-  if ((entry.kind != Entry::Kind::Plunge) && !(entry.angle > 0 && entry.angle < radians(90)))
-    return ctx.bad(*o.approach, ctx.d(*o.approach) + " angle must be between 0 and 90 degrees");
-  return true;
+  return read_plunge(ctx, *o.approach, "approach into", entry);
 }
 
 bool entry_too_long(Context& ctx, const Entry& e, double ramp_length, double drop) {
@@ -324,22 +330,43 @@ bool rings_ccw(Context& ctx, const OperationData& o, bool wall_outside) {
   return ccw;
 }
 
+void leave(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double ramp_length,
+           bool ccw, double from_z, double to_z) {
+  switch (e.kind) {
+    case Entry::Kind::Plunge:
+      ctx.feed({p0.x, p0.y, to_z});
+      return;
+    case Entry::Kind::Helix: {
+      // Out to the helix and whole turns up about p0 (the approach's helix, run backwards).
+      const double per_turn = 2 * std::numbers::pi * e.radius * std::tan(e.angle);
+      const int turns = std::max(1, static_cast<int>(std::ceil((to_z - from_z) / per_turn - 1e-9)));
+      const Vec3 start{p0.x + x.x * e.radius, p0.y + x.y * e.radius, from_z};
+      ctx.feed(start);
+      ctx.arc({start.x, start.y, to_z}, {p0.x, p0.y, to_z}, ccw ? turns : -turns);
+      return;
+    }
+    case Entry::Kind::Ramp: {
+      // Back and forth along the ramp line, rising by at most the angle.
+      const double rise = ramp_length * std::tan(e.angle);
+      double z = from_z;
+      bool out = true;
+      Vec3 here{p0.x, p0.y, from_z};
+      while (z < to_z - kEps) {
+        const double share = std::min(1.0, (to_z - z) / rise);
+        z = std::min(to_z, z + rise);
+        const Vec3 target =
+            out ? here + ramp_dir * (ramp_length * share) : here - ramp_dir * (ramp_length * share);
+        here = {target.x, target.y, z};
+        ctx.feed(here);
+        out = !out;
+        if (ctx.too_many()) return;
+      }
+      return;
+    }
+  }
+}
+
 namespace {
-
-// What a pocket-like feature (closed pocket, slot) gives the region clearing.
-struct Region {
-  Shape shape;
-  bool through = false;
-  std::optional<Toleranced> fillet;  // floor radius
-  // Corners that lie outside the material (open slot ends) need no corner check.
-  bool corners_in_material = true;
-  // Only the centre line may be cut (center milling): the tool must fill the width.
-  bool centre_only = false;
-  // Side milling: only the wall ring at each level (the inside is the bottom operation's).
-  bool walls_only = false;
-};
-
-bool clear_region(Context& ctx, const Region& region);
 
 // A rectangular or circular closed profile as a Shape in the feature's coordinates: the
 // boundary of pockets and outside profiles. `corner` is the rectangle's corner radius (0: sharp).
@@ -475,8 +502,6 @@ bool generate_pocket(Context& ctx) {
   return clear_region(ctx, region);
 }
 
-namespace {
-
 bool clear_region(Context& ctx, const Region& region) {
   const Instance& f = ctx.feature();
   const Shape& shape = region.shape;
@@ -581,9 +606,12 @@ bool clear_region(Context& ctx, const Region& region) {
     if (!lines_up) std::reverse(lines.begin(), lines.end());
     // The entry is at the centre; the ring of the combined strategies is the outermost one.
     rings.start = {0, 0, 0};
-    // One-way lines have no move along the wall between their ends, which leaves a cusp there:
-    // the wall ring clears it, as in the combined strategy.
-    if (pattern == Pattern::Lines && !zigzag) pattern = Pattern::LinesThenRing;
+    // One-way lines have no move along the wall between their ends, which leaves a cusp there,
+    // and zigzag lines join their ends by chords, which cut across rounded corners (and circles)
+    // of the region: the wall ring clears both, as in the combined strategy.
+    bool rounded = shape.kind == Shape::Kind::Circle;
+    for (int k = 0; k < 4; ++k) rounded = rounded || shape.corner_at(k) > inset + kEps;
+    if (pattern == Pattern::Lines && (!zigzag || rounded)) pattern = Pattern::LinesThenRing;
     if (pattern != Pattern::Lines) {
       const Rings outer = contour_rings(shape, inset, step);
       if (!outer.loops.empty()) rings.loops.push_back(outer.loops.back());
@@ -596,9 +624,12 @@ bool clear_region(Context& ctx, const Region& region) {
   Entry entry;
   if (!read_entry(ctx, o, *tool, entry)) return false;
   const bool explicit_entry = entry.explicit_entry;
-  if (o.retract != nullptr && !ctx.is(o.retract, "plunge_toolaxis"))
-    ctx.note(*o.retract, ctx.d(*o.retract) + ": the tool leaves " + ctx.d(f) +
-                             " along its axis, from inside the machined pocket");
+  // Retract: the operation's strategy, the approach run backwards; straight up when unset.
+  Entry exit;
+  exit.kind = Entry::Kind::Plunge;
+  exit.radius = entry.radius;
+  exit.angle = entry.angle;
+  if (o.retract != nullptr && !read_plunge(ctx, *o.retract, "retract from", exit)) return false;
   const Vec3 p0 = rings.start;
   Vec3 ramp_dir = rings.axis;
   double ramp_length = std::max(rings.line_length, room);
@@ -624,10 +655,24 @@ bool clear_region(Context& ctx, const Region& region) {
       return ctx.unfit(*o.approach, ctx.d(*o.approach) + ": no room for a ramp of " +
                                         ctx.d(*tool->instance) + " in " + ctx.d(f));
   }
+  // The retract needs the same room as an approach of its kind.
+  double exit_length = std::max(rings.line_length, room);
+  if (exit.kind == Entry::Kind::Helix && (exit.radius > room + kEps || exit.radius < 1e-3))
+    return ctx.unfit(*o.retract, ctx.d(*o.retract) + " radius " + fmt(exit.radius) +
+                                     " does not fit " + ctx.d(*tool->instance) + " in " + ctx.d(f) +
+                                     " (room " + fmt(room) + ")");
+  if (exit.kind == Entry::Kind::Ramp) {
+    if (exit.width > 0) exit_length = std::min(exit_length, exit.width);
+    if (exit_length < 1e-3)
+      return ctx.unfit(*o.retract, ctx.d(*o.retract) + ": no room for a ramp of " +
+                                       ctx.d(*tool->instance) + " in " + ctx.d(f));
+  }
 
   const double clear = ctx.opt.clearance;
   const double retract = o.retract_plane.value_or(clear);
-  if (entry_too_long(ctx, entry, ramp_length, clear + finish)) return ctx.limit_reached();
+  if (entry_too_long(ctx, entry, ramp_length, clear + finish) ||
+      entry_too_long(ctx, exit, exit_length, clear + finish))
+    return ctx.limit_reached();
   const Vec3 p0f = shape.frame.point(p0);
   const Vec3 x_axis = shape.frame.x;
   const Vec3 entry_start = entry.kind == Entry::Kind::Helix ? p0f + x_axis * entry.radius : p0f;
@@ -666,12 +711,15 @@ bool clear_region(Context& ctx, const Region& region) {
     if (ctx.too_many()) return ctx.limit_reached();
     from_z = zz;
   }
+  if (exit.kind != Entry::Kind::Plunge) {
+    // Back across the cleared floor to where the approach came down, and up the same way.
+    ctx.feed({p0f.x, p0f.y, from_z});
+    leave(ctx, exit, p0f, x_axis, shape.frame.direction(ramp_dir), exit_length, ccw, from_z, clear);
+  }
   const Vec3 end = ctx.path.moves.back().to;
-  ctx.rapid({end.x, end.y, std::max(retract, clear)});
+  if (end.z < std::max(retract, clear) - kEps) ctx.rapid({end.x, end.y, std::max(retract, clear)});
   return true;
 }
-
-}  // namespace
 
 // ---- GENERAL_OUTSIDE_PROFILE -------------------------------------------------------------------
 
@@ -694,6 +742,8 @@ bool generate_outside_profile(Context& ctx) {
     return ctx.not_implemented(ctx.d(*o.strategy) + " on " + ctx.d(f));
   if (o.approach != nullptr && !ctx.is(o.approach, "plunge_strategy"))
     return ctx.not_implemented(ctx.d(*o.approach) + " as the approach of " + ctx.d(ctx.op()));
+  if (o.retract != nullptr && !ctx.is(o.retract, "plunge_strategy"))
+    return ctx.not_implemented(ctx.d(*o.retract) + " as the retract of " + ctx.d(ctx.op()));
   // The part is inside the ring: going clockwise it is on the tool's right, which with a
   // clockwise spindle is climb milling.
   const bool spindle_cw = !ctx.req.spindle || *ctx.req.spindle <= 0;
@@ -737,100 +787,6 @@ bool generate_outside_profile(Context& ctx) {
   }
   ctx.rapid(at(lead_local, std::max(retract, clear)));
   return true;
-}
-
-// ---- SLOT ---------------------------------------------------------------------------------------
-
-bool generate_slot(Context& ctx) {
-  const Instance& f = ctx.feature();
-  if (!ctx.is(&ctx.op(), "bottom_and_side_milling") && !ctx.is(&ctx.op(), "side_milling"))
-    return ctx.not_implemented(ctx.d(ctx.op()) + " on " + ctx.d(f) +
-                               " (slots take bottom-and-side or side milling)");
-  const Instance* travel = ctx.ref(f, "course_of_travel", "travel_path");
-  const Instance* swept = ctx.ref(f, "swept_shape", "open_profile");
-  if (travel == nullptr || swept == nullptr)
-    return ctx.bad(f, ctx.d(f) + " needs a course_of_travel and a swept_shape");
-  if (!ctx.is(travel, "linear_path"))
-    return ctx.not_implemented(ctx.d(f) + " along " + ctx.d(*travel) + " (straight slots are)");
-  if (ctx.set(*travel, "placement") || ctx.set(*swept, "placement"))
-    return ctx.not_implemented(ctx.d(f) + " with a placed course_of_travel or swept_shape");
-  const auto length = ctx.toleranced(*travel, "distance");
-  const auto along = ctx.direction(*travel, "its_direction");
-  if (!length || !along || !(length->size > 0) || std::abs(along->z) > kEps)
-    return ctx.bad(*travel, ctx.d(*travel) + " needs a positive distance in the slot's plane");
-  Region region;
-  double width = 0;
-  if (ctx.is(swept, "square_u_profile")) {
-    const auto w = ctx.toleranced(*swept, "width");
-    const auto r1 = ctx.toleranced(*swept, "first_radius");
-    const auto r2 = ctx.toleranced(*swept, "second_radius");
-    const auto a1 = ctx.number(*swept, "first_angle");
-    const auto a2 = ctx.number(*swept, "second_angle");
-    if (!w || !(w->size > 0)) return ctx.bad(*swept, ctx.d(*swept) + " needs a positive width");
-    if ((a1 && std::abs(*a1 - 90) > 1e-6) || (a2 && std::abs(*a2 - 90) > 1e-6))
-      return ctx.not_implemented(ctx.d(*swept) + " with walls that are not vertical");
-    if (r1 && r2 && std::abs(r1->size - r2->size) > kEps)
-      return ctx.not_implemented(ctx.d(*swept) + " with two different floor radii");
-    width = w->size;
-    if (r1 && r1->size > 0) region.fillet = r1;
-  } else if (ctx.is(swept, "rounded_u_profile")) {
-    // A full-round floor: only a ball end mill of the slot's width, along the centre line.
-    const auto w = ctx.toleranced(*swept, "width");
-    if (!w || !(w->size > 0)) return ctx.bad(*swept, ctx.d(*swept) + " needs a positive width");
-    width = w->size;
-    region.fillet = Toleranced{w->size / 2, w->upper / 2, w->lower / 2};
-    region.centre_only = true;
-  } else {
-    return ctx.not_implemented(ctx.d(f) + " with " + ctx.d(*swept) +
-                               " (square-U and rounded-U slots are; others need a form tool)");
-  }
-  // End types: radiused (half circles about the ends of the course of travel), flat (the
-  // course of travel is the slot's length), open (the tool runs out past the end).
-  const auto ends = ctx.g.get(f, "end_conditions");
-  const Instance* end_type[2] = {nullptr, nullptr};
-  if (ends && ends->is_list()) {
-    const auto items = ctx.m.items(*ends);
-    for (std::size_t i = 0; i < items.size() && i < 2; ++i)
-      end_type[i] = ctx.g.instance(items[i], "slot_end_type", &f, "end_conditions");
-    if (items.size() == 1) end_type[1] = end_type[0];
-  }
-  const auto kind = [&](const Instance* e) {
-    if (e == nullptr || ctx.is(e, "radiused_slot_end_type")) return 'r';
-    if (ctx.is(e, "flat_slot_end_type")) return 'f';
-    if (ctx.is(e, "open_slot_end_type")) return 'o';
-    return '?';
-  };
-  const char k0 = kind(end_type[0]);
-  const char k1 = kind(end_type[1]);
-  if (k0 == '?' || k1 == '?' || k0 != k1)
-    return ctx.not_implemented(ctx.d(f) + " with end types " + ctx.d(end_type[0]) + " and " +
-                               ctx.d(end_type[1]) +
-                               " (two radiused, two flat or two open ends are)");
-  const auto tool = ctx.tool();
-  if (!tool) return false;
-  const double half = width / 2;
-  double half_length = length->size / 2;
-  double corner = half;
-  if (k0 == 'r') {
-    half_length += half;
-  } else if (k0 == 'f') {
-    const auto c1 = ctx.toleranced(*end_type[0], "corner_radius1");
-    const auto c2 = ctx.toleranced(*end_type[0], "corner_radius2");
-    corner = std::min(c1 ? c1->size : 0.0, c2 ? c2->size : 0.0);
-  } else {
-    half_length += tool->radius + ctx.opt.clearance;
-    corner = tool->radius + ctx.operation().allowance_side;
-    region.corners_in_material = false;
-  }
-  region.shape = Shape::rectangle(half_length, half, std::min(corner, half));
-  // The slot's frame: centred half way along the course of travel, x along it.
-  const Vec3 x = *along * (1.0 / along->length());
-  region.shape.frame.origin = x * (length->size / 2);
-  region.shape.frame.x = x;
-  region.shape.frame.y = Vec3{0, 0, 1}.cross(x);
-  if (ctx.is(ctx.operation().strategy, "center_milling")) region.centre_only = true;
-  region.walls_only = ctx.is(&ctx.op(), "side_milling");
-  return clear_region(ctx, region);
 }
 
 }  // namespace ncpost::stepnc::features

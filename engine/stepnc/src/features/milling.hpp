@@ -1,11 +1,15 @@
 #pragma once
-// What the milling generators share: stepover, depth levels, tool checks, the entry into a
-// pocket and the sense of its rings (milling.cpp; used by general.cpp for general profiles).
+// What the 2.5D milling generators share: stepover and depth levels from the operation, the
+// tool checks, the entry into and exit from the material, the sense of the rings round a wall,
+// and the clearing of a pocket-like region (closed pockets and the slots whose outline is a
+// rounded rectangle). General profiles (general.cpp) use the same pieces.
 
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "context.hpp"
+#include "shapes.hpp"
 
 namespace ncpost::stepnc::features {
 
@@ -13,17 +17,21 @@ namespace ncpost::stepnc::features {
 // (2 - √2)⁻¹ · R ≈ 1.707 R; a little less keeps the cusp inside the tool.
 inline constexpr double kSharpCornerStep = 1.7;
 
-// Stepover from the strategy's overlap and the operation's radial depth (the smaller).
+double radians(double degrees);
+
+// Stepover from the strategy's overlap (ISO 14649-11: the share of the tool diameter that
+// neighbouring passes have in common) and the operation's radial depth, whichever is smaller.
 double stepover(Context& ctx, const Tool& tool, const OperationData& o, double& overlap);
 bool check_overlap(Context& ctx, const OperationData& o, double overlap);
-// The cutting edge must take the deepest level step.
+// The cutting edge must take the deepest level step (the wall height cut at once).
 bool check_edge(Context& ctx, const Tool& tool, const std::vector<double>& z);
 // The tool's corner radius makes a pocket's floor fillet (planar_radius), within its tolerance.
 bool check_fillet(Context& ctx, const Tool& tool, const OperationData& o, const Toleranced& fillet);
 // Axial levels; allow_multiple_passes .F. asks for the whole depth at once.
 std::optional<std::vector<double>> depth_levels(Context& ctx, const OperationData& o, double depth);
 
-// How the tool gets from `from_z` down to `to_z` at the pattern's start point p0.
+// How the tool gets from one height to another at a pattern's start point: straight along its
+// axis, a helix, or a ramp back and forth along a line (PLUNGE_RAMP, PLUNGE_ZIGZAG).
 struct Entry {
   enum class Kind { Plunge, Ramp, Helix } kind = Kind::Helix;
   double radius = 0;            // helix
@@ -31,19 +39,45 @@ struct Entry {
   double width = 0;             // zigzag leg
   bool explicit_entry = false;  // named by the operation (else the default helix)
 };
-// The operation's approach (PLUNGE_TOOLAXIS, _HELIX, _RAMP, _ZIGZAG), else a helix of
-// FeatureOptions' default size. False after reporting an approach it cannot do.
+
+// Reads a PLUNGE_STRATEGY (approach or retract) into `e`; `e` keeps its defaults for the values
+// the strategy leaves unset. False after reporting a strategy that is not a plunge strategy or
+// has an angle outside (0, 90) degrees.
+bool read_plunge(Context& ctx, const Instance& strategy, std::string_view role, Entry& e);
+// The operation's approach, else a helix of FeatureOptions' default size.
 bool read_entry(Context& ctx, const OperationData& o, const Tool& tool, Entry& entry);
-// `x` is the profile's x axis: the helix starts at p0 + radius · x, where the caller put the tool.
+
+// Down from `from_z` to `to_z` at p0. `x` is the profile's x axis: the helix starts at
+// p0 + radius · x, where the caller put the tool.
 void enter(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double ramp_length,
            bool ccw, double from_z, double to_z);
-// A full helix the depth needs more turns, or a ramp more legs, than the motion limit allows.
+// The mirror of `enter`: up from `from_z` to `to_z`, the tool being at p0 (a helix first feeds
+// out to p0 + radius · x).
+void leave(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double ramp_length,
+           bool ccw, double from_z, double to_z);
+// A full helix the height needs more turns, or a ramp more legs, than the motion limit allows.
 bool entry_too_long(Context& ctx, const Entry& e, double ramp_length, double drop);
 
 // The sense of the rings round a wall: counter-clockwise or not, from rotation_direction, else
 // cutmode (climb when unset) and the spindle's direction. `wall_outside`: a pocket's wall is
 // outside its rings, an outside profile's part inside.
 bool rings_ccw(Context& ctx, const OperationData& o, bool wall_outside);
+
+// What a pocket-like feature (closed pocket, slot) gives the region clearing.
+struct Region {
+  Shape shape;
+  bool through = false;
+  std::optional<Toleranced> fillet;  // floor radius
+  // Corners that lie outside the material (open slot ends), or that the caller has checked
+  // itself, need no corner check here.
+  bool corners_in_material = true;
+  // Only the centre line may be cut (center milling): the tool must fill the width.
+  bool centre_only = false;
+  // Side milling: only the wall ring at each level (the inside is the bottom operation's).
+  bool walls_only = false;
+};
+
+bool clear_region(Context& ctx, const Region& region);
 
 // General profiles (general.cpp): a CLOSED_POCKET bounded by a GENERAL_CLOSED_PROFILE or an
 // NGON_CLOSED_PROFILE, and a GENERAL_OUTSIDE_PROFILE with such a boundary.

@@ -3,6 +3,8 @@
 // closed form are here (rounded rectangles, circles): an offset is then the same shape with
 // smaller sizes, never an approximation that could gouge a wall.
 
+#include <array>
+#include <optional>
 #include <vector>
 
 #include "context.hpp"
@@ -13,14 +15,20 @@ struct Shape {
   enum class Kind { Rectangle, Circle } kind = Kind::Rectangle;
   double a = 0;           // half length along x (rectangle) or radius (circle)
   double b = 0;           // half width along y (rectangle) or radius (circle)
-  double corner = 0;      // rectangle corner radius
+  double corner = 0;      // rectangle corner radius (the smallest, when they differ)
   detail::Frame frame{};  // the profile in the feature's coordinates
+  // A rectangle whose corners differ (a slot with mixed or flat ends): counter-clockwise from
+  // (+a, +b), i.e. (+a, +b), (-a, +b), (-a, -b), (+a, -b). Unset: every corner is `corner`.
+  std::optional<std::array<double, 4>> corners;
 
   static Shape rectangle(double half_length, double half_width, double corner_radius) {
-    return {Kind::Rectangle, half_length, half_width, corner_radius, {}};
+    return {Kind::Rectangle, half_length, half_width, corner_radius, {}, {}};
   }
-  static Shape circle(double radius) { return {Kind::Circle, radius, radius, radius, {}}; }
+  static Shape circle(double radius) { return {Kind::Circle, radius, radius, radius, {}, {}}; }
   [[nodiscard]] double inradius() const { return a < b ? a : b; }
+  [[nodiscard]] double corner_at(int k) const {
+    return corners ? (*corners)[static_cast<std::size_t>(k)] : corner;
+  }
 };
 
 // One piece of a closed loop, from the previous piece's end.

@@ -21,6 +21,14 @@ struct FeatureOptions {
   // radius, and its descent angle (degrees), as NIST's ex1E does.
   double default_helix_radius = 0.8;
   double default_helix_angle = 10.0;
+  // How far (mm) a path that approximates a curved surface may stay off it: the scallop left
+  // between stepped passes across a partial-circular slot, and the chord error of the arcs in
+  // a vertical plane (woodruff slot ends) that are played as straight feeds. Below the
+  // verifier's default tolerance (0.01 mm), so that what is left is within it.
+  double profile_tolerance = 0.005;
+  // Lengths (mm) of slots, steps and threads beyond this are refused (STEPNC-103): next to the
+  // profile tolerance, the arithmetic of a path of that size cannot be trusted.
+  double max_length = 1e6;
   // A workingstep whose generated path would need more motions than this is refused
   // (STEPNC-103): a hostile stepover or depth must not exhaust memory.
   std::size_t max_moves = 1'000'000;

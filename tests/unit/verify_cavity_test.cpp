@@ -1,0 +1,241 @@
+// The verifier's profiled features (engine/verify/src/cavity.hpp): distances to vee, circular,
+// step and woodruff-ended cavities against numbers worked out by hand, the tool shapes, and
+// each check made to fail by moving the generator's own path for such a feature.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "../../engine/verify/src/cavity.hpp"
+#include "corpus.hpp"
+#include "ncpost/canon/sink.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/verify/verify.hpp"
+
+namespace ncpost::verify {
+namespace {
+
+namespace fs = std::filesystem;
+using detail::Cavity;
+using detail::ToolShape;
+using detail::Vec2;
+using detail::Vec3;
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+TEST(VerifyCavity, VeeSection) {
+  // A 90-degree vee 5 deep with a sharp bottom along x from (0, 0) to (40, 0), radiused ends.
+  Cavity c;
+  c.vee(90 * kDeg, 0, 5);
+  c.segment({0, 0}, {40, 0}, false, false, 0, 0);
+  // On the centre line 1 above the bottom: sqrt(2)/2 from either wall.
+  EXPECT_NEAR(c.signed_distance({20, 0, -4}), std::sqrt(0.5), 1e-9);
+  // 0.3 below the bottom: 0.3 from the apex.
+  EXPECT_NEAR(c.signed_distance({20, 0, -5.3}), -0.3, 1e-9);
+  // Beside the slot just below its top: nearest is the wall's top edge (5, 0).
+  EXPECT_NEAR(c.signed_distance({20, 6, -0.5}), -std::sqrt(1.25), 1e-9);
+  // Beside the slot lower down: the wall (|y| = z + 5) is 1.5 / sqrt(2) away.
+  EXPECT_NEAR(c.signed_distance({20, 5, -1.5}), -1.5 / std::sqrt(2.0), 1e-9);
+  // The radiused end is the vee turned about the end of the spine (a cone).
+  EXPECT_NEAR(c.signed_distance({43, 0, -1}), c.signed_distance({20, 3, -1}), 1e-9);
+  EXPECT_NEAR(c.bottom({20, 2}), -3, 1e-9);
+  EXPECT_NEAR(c.bottom({20, 6}), 0, 1e-9);  // material up to the top
+  EXPECT_TRUE(c.on_floor({-2, 0}));         // in the end's cone
+  EXPECT_FALSE(c.on_floor({-6, 0}));
+}
+
+TEST(VerifyCavity, VeeWithRadiusAndPartialCircle) {
+  Cavity v;
+  v.vee(60 * kDeg, 1, 6);  // bottom radius 1: its centre 5 deep
+  v.segment({0, 0}, {40, 0}, true, true, 0, 0);
+  EXPECT_NEAR(v.signed_distance({20, 0, -5.5}), 0.5, 1e-6);
+  // (Heights come from the section's lower side as a polyline: within 1e-4 of the arcs.)
+  EXPECT_NEAR(v.bottom({20, 0}), -6, 1e-4);
+  // The tangent point of the fillet and the wall: (cos 30, 5 - sin 30) = (0.866, -5.5).
+  EXPECT_NEAR(v.bottom({20, std::cos(30 * kDeg)}), -5.5, 1e-4);
+  Cavity p;
+  ASSERT_TRUE(p.partial_circle(6, 120 * kDeg, 3));  // centre 3 above the top
+  p.segment({0, 0}, {40, 0}, true, true, 0, 0);
+  EXPECT_NEAR(p.bottom({20, 0}), -3, 1e-4);
+  EXPECT_NEAR(p.bottom({20, 3}), 3 - std::sqrt(36 - 9.0), 1e-4);
+  EXPECT_NEAR(p.signed_distance({20, 0, -2}), 1, 1e-9);
+  Cavity shallow;
+  EXPECT_FALSE(shallow.partial_circle(6, 60 * kDeg, 3));  // the arc ends below the top
+}
+
+TEST(VerifyCavity, StepIsSigned) {
+  // Wall foot along y at x 25 (into the wall: +x), floor 25 wide, 8 deep, fillet 1.
+  Cavity c;
+  c.step(90 * kDeg, 1, 8);
+  c.line({25, 0}, {0, 1}, {1, 0}, 60, 25);
+  EXPECT_NEAR(c.u({20, 10}), -5, 1e-9);
+  EXPECT_NEAR(c.signed_distance({23, 10, -4}), 2, 1e-9);  // 2 from the wall
+  EXPECT_NEAR(c.signed_distance({25.4, 10, -4}), -0.4, 1e-9);
+  EXPECT_NEAR(c.signed_distance({-200, 10, -4}), 4, 1e-9);  // open side: the floor is nearest
+  // In the fillet's corner: 1 - 1/sqrt(2) outside the arc (the corner (25, -8)).
+  EXPECT_NEAR(c.signed_distance({24.999999, 10, -7.999999}), -(std::sqrt(2.0) - 1), 1e-5);
+  EXPECT_TRUE(c.on_floor({10, 30}));
+  EXPECT_FALSE(c.on_floor({-1, 30}));  // past the open boundary
+  EXPECT_FALSE(c.on_floor({10, 61}));  // past the end of the step
+}
+
+TEST(VerifyCavity, WoodruffEnd) {
+  // Rounded-U 8 wide, 5 deep, 30 long, woodruff ends of radius 20 (axis 15 above the bottom).
+  Cavity c;
+  c.rounded_u(4, 5);
+  c.segment({0, 0}, {30, 0}, false, false, 20, 20);
+  // Beyond the end the bottom rises along the radius-20 arc about (30, 15).
+  EXPECT_NEAR(c.bottom({36, 0}), 15 - std::sqrt(400 - 36.0), 1e-4);
+  EXPECT_NEAR(c.bottom({30 + std::sqrt(400 - 225.0) + 0.1, 0}), 0, 1e-9);
+  // Below that arc: 20.402 from the axis, 0.402 into the material.
+  EXPECT_NEAR(c.signed_distance({36, 0, -4.5}), 20 - std::sqrt(36 + 19.5 * 19.5), 1e-4);
+  // A ball of radius 4 whose centre is 16 from the axis touches the end; 16.28 from it, it is
+  // 0.28 into it.
+  ToolShape ball{4, 4, 0};
+  const auto outline = ball.outline(0.05, 10);
+  EXPECT_NEAR(c.violation({33, 0, -5}, ball, outline, 0, nullptr), std::sqrt(265.0) - 16, 1e-4);
+  EXPECT_LT(c.violation({30 + 16 * std::sin(0.3), 0, 15 - 16 * std::cos(0.3) - 4}, ball, outline, 0,
+                        nullptr),
+            1e-4);
+}
+
+TEST(VerifyCavity, ToolShapes) {
+  const ToolShape flat{5, 0, 0};
+  const ToolShape bull{5, 1, 0};
+  const ToolShape ball{4, 4, 0};
+  const ToolShape cone{8, 0, 45 * kDeg};
+  const ToolShape rounded{5, 1, 30 * kDeg};
+  EXPECT_EQ(flat.lower(4.9), 0);
+  EXPECT_NEAR(bull.lower(5), 1, 1e-12);
+  EXPECT_NEAR(bull.lower(4.5), 1 - std::sqrt(0.75), 1e-12);
+  EXPECT_NEAR(ball.lower(4), 4, 1e-12);
+  EXPECT_NEAR(cone.lower(3), 3, 1e-12);
+  // A 60-degree cone with a tip radius 1: the flank touches the tip at 1 · cos 30 out.
+  EXPECT_NEAR(rounded.lower(0.5), 1 - std::sqrt(0.75), 1e-12);
+  EXPECT_NEAR(rounded.lower(3), 1 - 0.5 + (3 - std::cos(30 * kDeg)) / std::tan(30 * kDeg), 1e-12);
+}
+
+// ---- the generator's paths, moved ---------------------------------------------------------
+
+struct Program {
+  pipeline::LoadedModel loaded;
+  std::unique_ptr<stepnc::AttributeReader> attributes;
+  std::vector<canon::Call> calls;
+};
+
+Program load(const std::string& name) {
+  static const express::SchemaRegistry registry;
+  Program p;
+  const fs::path file = test::source_dir() / "tests/golden/features/cases" / (name + ".stp");
+  p.loaded = pipeline::load(test::read_file(file), registry);
+  EXPECT_TRUE(p.loaded.ok()) << file;
+  p.attributes = std::make_unique<stepnc::AttributeReader>(p.loaded.model, *p.loaded.schema);
+  canon::ProgramBuffer buffer;
+  EXPECT_TRUE(stepnc::interpret(p.loaded.model, *p.attributes, buffer).ok()) << file;
+  p.calls = buffer.calls();
+  return p;
+}
+
+std::size_t count(const VerifyResult& r, diag::Code code) {
+  std::size_t n = 0;
+  for (const auto& f : r.findings) n += f.diagnostic.code == code;
+  return n;
+}
+
+std::string dump(const VerifyResult& r) {
+  return format_text(r, "case");
+}
+
+// Moves every feed of one workingstep that `pick` selects by `by`.
+template <typename Pick>
+std::size_t move_feeds(std::vector<canon::Call>& calls, const std::string& workingstep, Pick pick,
+                       canon::Pose by) {
+  bool inside = false;
+  std::size_t moved = 0;
+  for (canon::Call& c : calls) {
+    if (const auto* b = std::get_if<canon::Begin>(&c); b && b->scope == canon::Scope::Workingstep)
+      inside = b->entity.name == workingstep;
+    auto* f = std::get_if<canon::StraightFeed>(&c);
+    if (!inside || f == nullptr || !pick(f->to)) continue;
+    f->to.x += by.x;
+    f->to.y += by.y;
+    f->to.z += by.z;
+    ++moved;
+  }
+  return moved;
+}
+
+TEST(VerifyCavityPrograms, GeneratedShapesPass) {
+  for (const char* name : {"slot-vee", "slot-partial-circular", "slot-woodruff", "slot-circular",
+                           "step", "thread-drilling"}) {
+    const Program p = load(name);
+    const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+    EXPECT_TRUE(r.ok()) << name << "\n" << dump(r);
+    for (const auto& f : r.features) EXPECT_TRUE(f.checked) << name << " " << f.name;
+  }
+}
+
+TEST(VerifyCavityPrograms, VeeCutTooDeep) {
+  Program p = load("slot-vee");
+  const auto deepest = [](const canon::Pose& to) { return std::abs(to.z + 5) < 1e-9; };
+  ASSERT_GT(move_feeds(p.calls, "VEE 90 RADIUSED", deepest, {0, 0, -0.3}), 1u);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+  EXPECT_EQ(count(r, diag::Code::VerifyBelowFloor), 1u) << dump(r);
+}
+
+TEST(VerifyCavityPrograms, WoodruffArcPushedOut) {
+  // The last level's arc stations at the +x end moved 0.3 mm further out: into the end.
+  Program p = load("slot-woodruff");
+  const auto on_arc = [](const canon::Pose& to) {
+    return to.x > 30.5 && to.x < 41 && to.z < -3.4 && std::abs(to.y) < 1e-9;
+  };
+  ASSERT_GT(move_feeds(p.calls, "KEYWAY WOODRUFF", on_arc, {0.3, 0, 0}), 3u);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+}
+
+TEST(VerifyCavityPrograms, SteppedRingTooFarOut) {
+  // One ring of the stepped partial-circular passes 0.2 mm wider: into the arc.
+  Program p = load("slot-partial-circular");
+  const auto ring = [](const canon::Pose& to) {
+    return std::abs(to.y - 32.4690) < 1e-3 && std::abs(to.z + 1.7042) < 1e-3;
+  };
+  ASSERT_GT(move_feeds(p.calls, "ROUND STEPPED", ring, {0, 0.2, 0}), 0u);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+}
+
+TEST(VerifyCavityPrograms, StepWallPassIntoTheWall) {
+  Program p = load("step");
+  const auto wall = [](const canon::Pose& to) { return std::abs(to.x - 20) < 1e-9; };
+  ASSERT_GT(move_feeds(p.calls, "STEP BIDIRECTIONAL", wall, {0.25, 0, 0}), 1u);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+}
+
+TEST(VerifyCavityPrograms, ThreadHelixTooWide) {
+  // The M16 helix 0.2 mm further out than the major diameter allows (lead-in moved with it).
+  Program p = load("thread-drilling");
+  bool moved = false;
+  bool inside = false;
+  for (canon::Call& c : p.calls) {
+    if (const auto* b = std::get_if<canon::Begin>(&c); b && b->scope == canon::Scope::Workingstep)
+      inside = b->entity.name == "THREAD M16";
+    if (!inside) continue;
+    if (auto* f = std::get_if<canon::StraightFeed>(&c); f && std::abs(f->to.x - 1) < 1e-9) {
+      f->to.x += 0.2;
+      moved = true;
+    }
+    if (auto* a = std::get_if<canon::ArcFeed>(&c)) a->end.x += 0.2;
+  }
+  ASSERT_TRUE(moved);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+}
+
+}  // namespace
+}  // namespace ncpost::verify
