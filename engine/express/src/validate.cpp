@@ -104,8 +104,15 @@ class Validator {
   }
 
   std::vector<diag::Diagnostic> run() {
+    constexpr std::size_t kCancelPollInstances = 4096;
+    std::size_t until_poll = kCancelPollInstances;
     for (const Instance& instance : model_.instances()) {
       if (muted()) break;
+      if (--until_poll == 0) {
+        until_poll = kCancelPollInstances;
+        if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed))
+          return std::move(diagnostics_);
+      }
       if (instance.keyword == Model::kExternalKeyword) continue;
       if (model_.is_complex(instance))
         check_complex(instance);
