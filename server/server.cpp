@@ -205,6 +205,15 @@ void Server::remove_session(std::uint64_t id) {
   }
 }
 
+std::shared_ptr<void> Server::try_stream_read() {
+  if (stream_reads_.fetch_add(1) >= config().workers) {
+    stream_reads_.fetch_sub(1);
+    return nullptr;
+  }
+  return std::shared_ptr<void>(static_cast<void*>(&stream_reads_),
+                               [this](void*) { stream_reads_.fetch_sub(1); });
+}
+
 bool Server::try_admit() noexcept {
   const std::int64_t limit = std::int64_t{config().workers} + config().queue;
   std::int64_t now = in_system_.load();

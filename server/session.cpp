@@ -1,5 +1,6 @@
 #include "session.hpp"
 
+#include <algorithm>
 #include <array>
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/post.hpp>
@@ -8,6 +9,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "multipart.hpp"
 #include "server.hpp"
 
 namespace ncpost::server {
@@ -82,12 +84,13 @@ class SessionExchange final : public Exchange {
     return true;
   }
 
-  void end_stream(bool complete) override {
+  void end_stream(bool complete, http::fields trailer) override {
     bool post = false;
     {
       std::lock_guard lock(state_->mutex);
       state_->ended = true;
       state_->complete = complete;
+      state_->trailer = std::move(trailer);
       post = !std::exchange(state_->pump_posted, true);
     }
     if (post) session_->post_pump(state_);
@@ -180,6 +183,8 @@ void Session::read_header() {
   request_id_ = server_.next_request_id();
   logged_ = false;
   arm_timer(server_.config().read_timeout);
+  upload_parser_.reset();
+  upload_.reset();
   parser_.emplace();
   parser_->header_limit(server_.config().max_header);
   parser_->body_limit(server_.config().max_body);
@@ -197,6 +202,10 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
   method_ = std::string(header.method_string());
   path_ = std::string(header.target().substr(0, header.target().find('?')));
   if (const auto id = header["X-Request-Id"]; valid_request_id(id)) request_id_ = std::string(id);
+  // Made now rather than at dispatch: a slice reading the upload as it arrives already needs
+  // the request's cancel flag.
+  state_ = std::make_shared<RequestState>();
+  take_upload_as_it_arrives();
   // curl and browsers wait for 100 Continue before a large body; answer it only once the
   // header passed its checks, so a too-large upload is refused before it is sent.
   if (beast::iequals(header[http::field::expect], "100-continue")) {
@@ -213,24 +222,60 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
   read_body();
 }
 
+// A large raw body to a route that reads a model is read as it arrives: hashed and, in slices
+// on the worker pool, read as P21, so that little is left when its last byte comes (upload.hpp).
+// Smaller bodies, multipart ones and bodies without a Content-Length are read whole as before.
+void Session::take_upload_as_it_arrives() {
+  const auto& config = server_.config();
+  const auto length = parser_->content_length();
+  if (config.stream_read_min == 0 || !length || *length < config.stream_read_min ||
+      *length > config.max_body)
+    return;
+  const auto& header = parser_->get();
+  if (is_multipart(header[http::field::content_type])) return;
+  const RouteMatch match = match_route(header.method(), header.target());
+  if (match.route == nullptr || !match.route->reads_model) return;
+  auto slot = server_.try_stream_read();
+  if (!slot) return;
+  // Slices of an eighth of the smallest streamed upload: several per upload, each worth a hop
+  // to the pool.
+  const auto slice_step =
+      std::clamp<std::uint64_t>(config.stream_read_min / 8, 4096, std::uint64_t{1} << 20);
+  upload_ = std::make_shared<StreamedUpload>(
+      static_cast<std::size_t>(*length), static_cast<std::size_t>(slice_step),
+      server_.pool().get_executor(),
+      std::shared_ptr<const std::atomic<bool>>(state_, &state_->cancel), std::move(slot));
+  upload_parser_.emplace(std::move(*parser_));
+  parser_.reset();
+  upload_parser_->body_limit(config.max_body);
+  upload_parser_->get().body() = upload_;
+}
+
 void Session::read_body() {
-  http::async_read(
-      socket_, buffer_, *parser_,
-      net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec, std::size_t n) {
-        self->on_body(ec, n);
-      }));
+  const auto done = [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+    self->on_body(ec, n);
+  };
+  if (upload_parser_)
+    http::async_read(socket_, buffer_, *upload_parser_, net::bind_executor(strand_, done));
+  else
+    http::async_read(socket_, buffer_, *parser_, net::bind_executor(strand_, done));
 }
 
 void Session::on_body(beast::error_code ec, std::size_t bytes) {
   bytes_in_ += bytes;
   if (ec) return read_failed(ec);
   timer_.cancel();
+  received_ = Clock::now();
   handle_request();
 }
 
 void Session::read_failed(beast::error_code ec) {
   if (phase_ == Phase::Closed) return;
   keep_alive_ = false;
+  if (upload_) {
+    upload_->complete();  // no more slices of an upload that will not be answered
+    upload_.reset();
+  }
   if (read_timed_out_) {
     status_ = 408;
     return send(error_response(408, diag::Code::HttpReadTimeout, "Request timeout",
@@ -264,11 +309,16 @@ void Session::read_failed(beast::error_code ec) {
 // ---- dispatch -------------------------------------------------------------------------------
 
 void Session::handle_request() {
-  request_ = parser_->release();
-  parser_.reset();
+  if (upload_parser_) {
+    request_ = Request(std::move(upload_parser_->release().base()));
+    upload_parser_.reset();
+    upload_->complete();
+  } else {
+    request_ = parser_->release();
+    parser_.reset();
+  }
   keep_alive_ = request_.keep_alive();
   is_head_ = request_.method() == http::verb::head;
-  state_ = std::make_shared<RequestState>();
   RouteMatch match = match_route(request_.method(), request_.target());
   if (match.route == nullptr) {
     Response r =
@@ -293,6 +343,7 @@ void Session::handle_request() {
     return;  // the response was posted to this strand
   }
   if (!server_.try_admit()) {
+    upload_.reset();
     server_.services().metrics->rejected_full++;
     Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
                                 "all workers are busy and the job queue is full; retry later");
@@ -319,12 +370,15 @@ void Session::dispatch_job(const Route& route, std::string id) {
   watch_client();
   auto request = std::make_shared<Request>(std::move(request_));
   net::post(server_.pool(), [self = shared_from_this(), state, request, handler = route.handler,
-                             id = std::move(id), &metrics]() mutable {
+                             id = std::move(id), upload = std::move(upload_), received = received_,
+                             &metrics]() mutable {
     metrics.queued--;
     metrics.active++;
     {
       SessionExchange exchange(self, state);
       exchange.path_id = std::move(id);
+      exchange.upload = std::move(upload);
+      exchange.received = received;
       // A job whose client left (or whose time ran out) while it queued is not started.
       if (!state->cancel.load()) {
         try {
@@ -537,7 +591,11 @@ void Session::pump(const std::shared_ptr<RequestState>& state) {
   if (complete) {
     writing_ = true;
     arm_timer(server_.config().write_timeout);
-    net::async_write(socket_, http::make_chunk_last(), done(true));
+    {
+      std::lock_guard lock(state->mutex);
+      out_trailer_ = std::move(state->trailer);
+    }
+    net::async_write(socket_, http::make_chunk_last(out_trailer_), done(true));
     return;
   }
   // A failed or cancelled post: the text ends with the error marker and the transfer is cut

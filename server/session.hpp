@@ -39,7 +39,8 @@ struct RequestState {
   bool pump_posted = false;
   std::string pending;  // stream bytes not yet handed to the socket
   std::optional<StreamHead> head;
-  std::string profile;  // for the access log, copied when the answer is handed over
+  http::fields trailer;  // after the last chunk of a complete stream
+  std::string profile;   // for the access log, copied when the answer is handed over
 };
 
 class Session : public std::enable_shared_from_this<Session> {
@@ -69,6 +70,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void wait_request();
   void read_header();
   void on_header(boost::beast::error_code ec, std::size_t bytes);
+  void take_upload_as_it_arrives();
   void read_body();
   void on_body(boost::beast::error_code ec, std::size_t bytes);
   void read_failed(boost::beast::error_code ec);
@@ -101,12 +103,16 @@ class Session : public std::enable_shared_from_this<Session> {
   boost::asio::steady_timer job_timer_;
   boost::beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
+  // A large raw upload to a model route is read through this parser instead (upload.hpp).
+  std::optional<http::request_parser<UploadBody>> upload_parser_;
+  std::shared_ptr<StreamedUpload> upload_;
   Request request_;
   std::shared_ptr<RequestState> state_;
   std::shared_ptr<Response> response_;
   std::unique_ptr<StreamHead> stream_head_;
   std::unique_ptr<http::response_serializer<http::empty_body>> stream_serializer_;
   std::string out_chunk_;
+  http::fields out_trailer_;
   std::string remote_;
   std::uint64_t id_ = 0;
   Phase phase_ = Phase::Idle;
@@ -122,6 +128,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool logged_ = true;
   // For the access log and metrics of the request in progress.
   std::chrono::steady_clock::time_point started_{};
+  std::chrono::steady_clock::time_point received_{};  // the request's last byte
   std::string request_id_;
   std::string route_name_;
   std::string method_;
