@@ -4,9 +4,10 @@ upload finished (the last byte was handed to the kernel) rather than from the re
 which is what curl's time_starttransfer would mix in. Also reports the server's own account of
 the time before the first byte (its Server-Timing header).
 
-    ttfb.py PORT FILE PROFILE [RUNS]
+    ttfb.py PORT FILE PROFILE [RUNS] [--first-byte-only]
 
-One line per run, then (with RUNS > 1) the medians.
+One line per run, then (with RUNS > 1) the medians. --first-byte-only hangs up once the first
+byte of the program came (the server cancels the rest), for runs that measure only that.
 """
 import re
 import socket
@@ -15,7 +16,7 @@ import sys
 import time
 
 
-def one_post(port, body, profile):
+def one_post(port, body, profile, first_byte_only=False):
     head = (f"POST /v1/posts?profile={profile} HTTP/1.1\r\nHost: 127.0.0.1\r\n"
             f"Content-Length: {len(body)}\r\nConnection: close\r\n\r\n").encode()
     s = socket.create_connection(("127.0.0.1", port))
@@ -36,6 +37,8 @@ def one_post(port, body, profile):
             end = received.find(b"\r\n\r\n")
             if end >= 0 and len(received) > end + 4:
                 first_body = time.monotonic()
+                if first_byte_only:
+                    break
         elif len(received) < (1 << 16):
             received += data
     done = time.monotonic()
@@ -54,12 +57,14 @@ def one_post(port, body, profile):
 
 
 def main():
-    port, path, profile = int(sys.argv[1]), sys.argv[2], sys.argv[3]
-    runs = int(sys.argv[4]) if len(sys.argv) > 4 else 1
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    first_byte_only = "--first-byte-only" in sys.argv
+    port, path, profile = int(args[0]), args[1], args[2]
+    runs = int(args[3]) if len(args) > 3 else 1
     body = open(path, "rb").read()
     results = []
     for _ in range(runs):
-        r = one_post(port, body, profile)
+        r = one_post(port, body, profile, first_byte_only)
         results.append(r)
         print(f"status={r['status']} upload_bytes={len(body)} upload_s={r['upload_s']:.3f} "
               f"first_byte_after_upload_s={r['first_byte_s']:.3f} "
