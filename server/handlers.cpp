@@ -75,10 +75,16 @@ std::optional<Upload> take_upload_or_respond(Request& request, Exchange& exchang
   return upload;
 }
 
+// Client text (a path, a file name, a profile id) may hold any bytes: invalid UTF-8 becomes
+// U+FFFD instead of an exception from the JSON library.
+std::string to_text(const json& body, int indent = 2) {
+  return body.dump(indent, ' ', false, json::error_handler_t::replace);
+}
+
 Response json_response(unsigned status, const json& body) {
   Response r{static_cast<http::status>(status), 11};
   r.set(http::field::content_type, "application/json");
-  r.body() = body.dump(2);
+  r.body() = to_text(body);
   r.body() += '\n';
   return r;
 }
@@ -682,7 +688,7 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
                          with_file(diagnostics, name));
     auto body = json::parse(r.body());
     body["inspection"] = std::move(info.json);
-    r.body() = body.dump(2) + "\n";
+    r.body() = to_text(body) + "\n";
     exchange.respond(std::move(r));
     return;
   }
@@ -779,7 +785,7 @@ std::string problem_body(unsigned status, std::string_view type, std::string_vie
   body["status"] = status;
   body["detail"] = detail;
   body["diagnostics"] = diagnostics_json(diagnostics);
-  return body.dump(2) + "\n";
+  return to_text(body) + "\n";
 }
 
 Response problem(unsigned status, std::string_view type, std::string_view title,
@@ -794,7 +800,7 @@ http::fields diagnostics_trailer(const std::vector<xslt::FileDiagnostic>& diagno
   std::string listed = "[";
   for (const auto& d : diagnostics) {
     // ASCII only (\\u escapes), no line breaks: a valid field value whatever the messages say.
-    std::string one = diagnostic_json(d).dump(-1, ' ', true);
+    std::string one = diagnostic_json(d).dump(-1, ' ', true, json::error_handler_t::replace);
     if (listed.size() + one.size() + 2 > kMaxDiagnosticsTrailer) break;
     if (listed.size() > 1) listed += ',';
     listed += one;

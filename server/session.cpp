@@ -7,8 +7,8 @@
 #include <boost/asio/write.hpp>
 #include <cctype>
 #include <functional>
-#include <nlohmann/json.hpp>
 
+#include "access_log.hpp"
 #include "multipart.hpp"
 #include "server.hpp"
 
@@ -330,7 +330,7 @@ void Session::handle_request() {
     state_->answered = true;
     return send(std::move(r));
   }
-  route_name_ = std::string(match.route->name);
+  route_name_ = match.route->name;
   if (match.route->where == Where::Inline) {
     phase_ = Phase::Handling;
     SessionExchange exchange(shared_from_this(), state_);
@@ -359,6 +359,7 @@ void Session::dispatch_job(const Route& route, std::string id) {
   job_running_ = true;
   writing_ = false;
   head_written_ = false;
+  streaming_ = false;
   auto state = state_;
   auto& metrics = *server_.services().metrics;
   metrics.queued++;
@@ -545,19 +546,29 @@ void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
   stream_head_->set("X-Request-Id", request_id_);
   stream_head_->keep_alive(keep_alive_);
   stream_head_->chunked(true);
-  stream_serializer_ = std::make_unique<http::response_serializer<http::empty_body>>(*stream_head_);
-  writing_ = true;
-  arm_timer(server_.config().write_timeout);
-  http::async_write_header(socket_, *stream_serializer_,
-                           net::bind_executor(strand_, [self = shared_from_this(), state](
-                                                           beast::error_code ec, std::size_t n) {
-                             self->on_stream_written(state, ec, n, false);
-                           }));
+  // The head is not written alone: it goes out with the first chunk (and, for a short program,
+  // with the last one too), one write instead of three.
+  head_bytes_.clear();
+  http::response_serializer<http::empty_body> serializer(*stream_head_);
+  serializer.split(true);
+  beast::error_code ec;
+  while (!serializer.is_header_done() && !ec) {
+    serializer.next(ec, [&](beast::error_code& e, const auto& buffers) {
+      e = {};
+      for (const auto b : beast::buffers_range_ref(buffers))
+        head_bytes_.append(static_cast<const char*>(b.data()), b.size());
+      serializer.consume(beast::buffer_bytes(buffers));
+    });
+  }
+  head_written_ = false;
+  streaming_ = true;
+  pump(state);
 }
 
 void Session::pump(const std::shared_ptr<RequestState>& state) {
-  if (!current(state) || writing_ || !head_written_) {
-    // Not yet (the head is still being written) or no longer; the head's completion pumps.
+  if (!current(state) || writing_ || !streaming_) {
+    // Not yet (a write is in flight, or the head is not here yet) or no longer; the write's
+    // completion, or stream_begin, pumps.
     if (state && !current(state)) {
       std::lock_guard lock(state->mutex);
       state->pump_posted = false;
@@ -573,31 +584,44 @@ void Session::pump(const std::shared_ptr<RequestState>& state) {
     out_chunk_.swap(state->pending);
     ended = state->ended;
     complete = state->complete;
+    if (ended && complete) out_trailer_ = std::move(state->trailer);
     state->drained.notify_all();
   }
-  auto done = [self = shared_from_this(), state](bool last) {
-    return net::bind_executor(self->strand_,
-                              [self, state, last](beast::error_code ec, std::size_t n) {
-                                self->on_stream_written(state, ec, n, last);
-                              });
-  };
+  // One gathered write: the head (first time), the chunk, and the last chunk with its trailer
+  // once the job ended complete.
+  out_buffers_.clear();
+  if (!head_written_) out_buffers_.emplace_back(net::buffer(head_bytes_));
   if (!out_chunk_.empty()) {
+    char size[24];
+    const int n = std::snprintf(size, sizeof size, "%zx\r\n", out_chunk_.size());
+    chunk_size_.assign(size, static_cast<std::size_t>(n));
+    out_buffers_.emplace_back(net::buffer(chunk_size_));
+    out_buffers_.emplace_back(net::buffer(out_chunk_));
+    out_buffers_.emplace_back(net::buffer("\r\n", 2));
+  }
+  const bool last = ended && complete;
+  if (last) {
+    last_chunk_ = "0\r\n";
+    for (const auto& field : out_trailer_) {
+      last_chunk_.append(field.name_string());
+      last_chunk_ += ": ";
+      last_chunk_.append(field.value());
+      last_chunk_ += "\r\n";
+    }
+    last_chunk_ += "\r\n";
+    out_buffers_.emplace_back(net::buffer(last_chunk_));
+  }
+  if (!out_buffers_.empty()) {
     writing_ = true;
     arm_timer(server_.config().write_timeout);
-    net::async_write(socket_, http::make_chunk(net::buffer(out_chunk_)), done(false));
+    net::async_write(socket_, out_buffers_,
+                     net::bind_executor(strand_, [self = shared_from_this(), state, last](
+                                                     beast::error_code ec, std::size_t n) {
+                       self->on_stream_written(state, ec, n, last);
+                     }));
     return;
   }
   if (!ended) return;
-  if (complete) {
-    writing_ = true;
-    arm_timer(server_.config().write_timeout);
-    {
-      std::lock_guard lock(state->mutex);
-      out_trailer_ = std::move(state->trailer);
-    }
-    net::async_write(socket_, http::make_chunk_last(out_trailer_), done(true));
-    return;
-  }
   // A failed or cancelled post: the text ends with the error marker and the transfer is cut
   // without its last chunk, so no client can take it for a whole program.
   finish_request(false);
@@ -610,9 +634,9 @@ void Session::on_stream_written(const std::shared_ptr<RequestState>& state, beas
   bytes_out_ += bytes;
   if (!current(state)) return;
   if (ec) return client_gone(state);
-  if (!head_written_) head_written_ = true;
+  head_written_ = true;
   if (last) {
-    stream_serializer_.reset();
+    streaming_ = false;
     stream_head_.reset();
     finish_request(true);
     return after_response();
@@ -641,20 +665,19 @@ void Session::finish_request(bool complete) {
   server_.services().metrics->request(route_name_, status_, duration, bytes_in_, bytes_out_);
   if (!server_.config().access_log) return;
   // Never the body, the query string or the Authorization header.
-  nlohmann::json line;
-  line["event"] = "access";
-  line["request_id"] = request_id_;
-  line["remote"] = remote_;
-  line["method"] = method_;
-  line["path"] = path_;
-  line["route"] = route_name_;
-  line["status"] = status_;
-  line["bytes_in"] = bytes_in_;
-  line["bytes_out"] = bytes_out_;
-  line["duration_ms"] = std::chrono::duration<double, std::milli>(duration).count();
-  if (!profile_.empty()) line["profile"] = profile_;
-  line["complete"] = complete;
-  server_.log().info(line.dump());
+  AccessRecord record;
+  record.request_id = request_id_;
+  record.remote = remote_;
+  record.method = method_;
+  record.path = path_;
+  record.route = route_name_;
+  record.profile = profile_;
+  record.status = status_;
+  record.bytes_in = bytes_in_;
+  record.bytes_out = bytes_out_;
+  record.duration_ms = std::chrono::duration<double, std::milli>(duration).count();
+  record.complete = complete;
+  server_.log().info(access_line(record));
 }
 
 void Session::linger_close() {

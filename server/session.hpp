@@ -17,6 +17,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "handlers.hpp"
 
@@ -110,9 +111,14 @@ class Session : public std::enable_shared_from_this<Session> {
   std::shared_ptr<RequestState> state_;
   std::shared_ptr<Response> response_;
   std::unique_ptr<StreamHead> stream_head_;
-  std::unique_ptr<http::response_serializer<http::empty_body>> stream_serializer_;
+  // What one gathered write of a stream holds: the head's bytes (until written), a chunk, the
+  // last chunk with the trailer.
+  std::string head_bytes_;
+  std::string chunk_size_;
   std::string out_chunk_;
+  std::string last_chunk_;
   http::fields out_trailer_;
+  std::vector<boost::asio::const_buffer> out_buffers_;
   std::string remote_;
   std::uint64_t id_ = 0;
   Phase phase_ = Phase::Idle;
@@ -122,6 +128,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool is_head_ = false;
   bool writing_ = false;
   bool head_written_ = false;
+  bool streaming_ = false;  // stream_begin ran for the request in progress
   bool watch_pending_ = false;
   bool job_running_ = false;
   bool awaiting_job_ = false;  // answered; the next read waits for the job to return
@@ -130,7 +137,7 @@ class Session : public std::enable_shared_from_this<Session> {
   std::chrono::steady_clock::time_point started_{};
   std::chrono::steady_clock::time_point received_{};  // the request's last byte
   std::string request_id_;
-  std::string route_name_;
+  std::string_view route_name_;  // the route table's (static) name, or "unmatched"
   std::string method_;
   std::string path_;
   std::string profile_;

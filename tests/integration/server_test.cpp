@@ -78,6 +78,27 @@ TEST(ServerRoutes, UnknownRouteAndMethod) {
   expect_serving(server);
 }
 
+TEST(ServerRoutes, BytesThatAreNotUtf8AreAnsweredNotFatal) {
+  // Once a path with a byte like 0xFF ended the process: the JSON library threw while the
+  // 404 and the access log line were written.
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  {
+    RawConnection c(server.port());
+    ASSERT_TRUE(c.send("GET /\xff\xfe HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"));
+    const std::string answer = c.receive_until("\r\n\r\n", 10s);
+    EXPECT_NE(answer.find("HTTP/1.1 404"), std::string::npos) << answer;
+  }
+  // The same bytes, percent-encoded, in a profile id and an upload name.
+  const auto unknown = curl({server.url("/v1/profiles/%FF%FE")});
+  EXPECT_EQ(unknown.status, 404) << unknown.body;
+  const auto named = curl({"--data-binary", "@" + src(kCurves).string(),
+                           server.url("/v1/traces?name=%FFx.stp&format=bogus")});
+  EXPECT_EQ(named.status, 400) << named.body;
+  expect_serving(server);
+  EXPECT_NE(server.log().find("\"path\":\"/\\ufffd\\ufffd\""), std::string::npos) << server.log();
+}
+
 TEST(ServerRoutes, Profiles) {
   ServerProcess server;
   ASSERT_TRUE(server.started()) << server.log();
