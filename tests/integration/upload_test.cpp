@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <regex>
@@ -110,6 +111,51 @@ TEST(LargeUploads, ABrokenUploadIsRejectedWithTheSameDiagnostics) {
   EXPECT_EQ(a.body, b.body);
   EXPECT_NE(a.body.find("P21-"), std::string::npos) << a.body;
   expect_serving(streaming);
+}
+
+TEST(LargeUploads, XmlIsTakenBackAndReadAsP28) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  TempDir dir;
+  const auto xml = dir.path() / "ex1E.stpx";
+  {
+    std::ofstream out(xml, std::ios::binary);
+    out << ncpost("convert --to p28 " + (corpus / kEx1E).string());
+  }
+  ASSERT_GT(std::filesystem::file_size(xml), 100000u);
+  ServerProcess streaming(with_args({"--stream-read-min", "4096"}));
+  ServerProcess whole(with_args({"--stream-read-min", "0"}));
+  ASSERT_TRUE(streaming.started()) << streaming.log();
+  ASSERT_TRUE(whole.started()) << whole.log();
+  const std::string target = "/v1/conversions?to=p21";
+  const auto a = curl({"--data-binary", "@" + xml.string(), streaming.url(target)});
+  const auto b = curl({"--data-binary", "@" + xml.string(), whole.url(target)});
+  ASSERT_EQ(a.status, 200) << a.body.substr(0, 2000);
+  EXPECT_EQ(a.body, b.body);
+  EXPECT_EQ(a.body, ncpost("convert --to p21 " + xml.string()));
+  expect_serving(streaming);
+}
+
+TEST(LargeUploads, EarlyAnswersLetGoOfTheUpload) {
+  REQUIRE_LARGE_PROGRAM(large, 2);
+  // One worker, one stream-read slot: each answer below must give it back.
+  ServerProcess server(with_args({"--workers", "1"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string file = "@" + large.string();
+  EXPECT_EQ(curl({"--data-binary", file, server.url("/v1/posts?profile=none")}).status, 404);
+  EXPECT_EQ(curl({"--data-binary", file, server.url("/v1/traces?format=bogus")}).status, 400);
+  EXPECT_EQ(curl({"--data-binary", file, server.url("/v1/conversions")}).status, 400);
+  const auto first = curl({"--data-binary", file, server.url(std::string(kLargeTarget))});
+  ASSERT_EQ(first.status, 200);
+  const auto again = curl({"--data-binary", file, "-H", "If-None-Match: " + first.header("ETag"),
+                           server.url(std::string(kLargeTarget))});
+  EXPECT_EQ(again.status, 304);
+  const auto last = curl({"--data-binary", file, server.url(std::string(kLargeTarget))});
+  EXPECT_EQ(last.status, 200);
+  EXPECT_NE(last.header("Server-Timing").find("arrival;desc="), std::string::npos)
+      << last.header("Server-Timing");
+  EXPECT_EQ(last.body, first.body);
+  EXPECT_EQ(until_idle(server, 20s).has_value(), true);
+  expect_serving(server);
 }
 
 TEST(LargeUploads, MostOfAnUploadIsReadBeforeItsLastByte) {
