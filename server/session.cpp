@@ -46,6 +46,7 @@ class SessionExchange final : public Exchange {
  public:
   SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<RequestState> state)
       : session_(std::move(session)), state_(std::move(state)) {}
+  using Exchange::end_stream;
 
   void respond(Response response) override {
     {
@@ -62,10 +63,12 @@ class SessionExchange final : public Exchange {
       std::lock_guard lock(state_->mutex);
       if (state_->answered || state_->gone) return false;
       state_->answered = true;
+      state_->streamed = true;
       state_->head = std::move(head);
       state_->profile = profile;
     }
-    session_->post_stream_begin(state_);
+    // Nothing is posted yet: the head goes out with the first write() or end_stream(), whose
+    // pump finds it (one hop to the strand instead of two).
     return true;
   }
 
@@ -391,6 +394,13 @@ void Session::dispatch_job(const Route& route, std::string id) {
       }
       exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error",
                                       "the handler gave no response"));  // dropped if answered
+      // A stream the handler began but did not end (it threw) is cut, never left open.
+      bool unended = false;
+      {
+        std::lock_guard lock(state->mutex);
+        unended = state->streamed && !state->ended;
+      }
+      if (unended) exchange.end_stream(false);
     }
     request.reset();  // free the upload on the worker, not on the IO thread
     metrics.active--;
@@ -523,13 +533,18 @@ void Session::after_response() {
 
 // ---- streamed responses ---------------------------------------------------------------------
 
-void Session::post_stream_begin(std::shared_ptr<RequestState> state) {
-  net::post(strand_,
-            [self = shared_from_this(), state = std::move(state)] { self->stream_begin(state); });
-}
-
 void Session::post_pump(std::shared_ptr<RequestState> state) {
-  net::post(strand_, [self = shared_from_this(), state = std::move(state)] { self->pump(state); });
+  net::post(strand_, [self = shared_from_this(), state = std::move(state)] {
+    if (!self->streaming_ && self->current(state)) {
+      bool head = false;
+      {
+        std::lock_guard lock(state->mutex);
+        head = state->head.has_value();
+      }
+      if (head) return self->stream_begin(state);
+    }
+    self->pump(state);
+  });
 }
 
 void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
@@ -537,6 +552,7 @@ void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
   {
     std::lock_guard lock(state->mutex);
     stream_head_ = std::make_unique<StreamHead>(std::move(*state->head));
+    state->head.reset();
     profile_ = state->profile;
   }
   phase_ = Phase::Writing;

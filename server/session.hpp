@@ -32,16 +32,17 @@ struct RequestState {
   std::mutex mutex;
   std::condition_variable drained;  // pending shrank, or the client is gone
   bool answered = false;            // respond() or begin_stream() happened, or a 504 went out
+  bool streamed = false;            // begin_stream() happened
   bool abandoned = false;           // the session answered (504): ignore the handler's output
   bool gone = false;                // the client went away
   bool finished = false;            // the handler returned
   bool ended = false;               // end_stream() was called
   bool complete = false;            // its argument
   bool pump_posted = false;
-  std::string pending;  // stream bytes not yet handed to the socket
-  std::optional<StreamHead> head;
-  http::fields trailer;  // after the last chunk of a complete stream
-  std::string profile;   // for the access log, copied when the answer is handed over
+  std::string pending;             // stream bytes not yet handed to the socket
+  std::optional<StreamHead> head;  // from begin_stream() until the strand takes it
+  http::fields trailer;            // after the last chunk of a complete stream
+  std::string profile;             // for the access log, copied when the answer is handed over
 };
 
 class Session : public std::enable_shared_from_this<Session> {
@@ -61,7 +62,6 @@ class Session : public std::enable_shared_from_this<Session> {
 
   // ---- called by SessionExchange, from a worker or from the strand ----
   void post_response(std::shared_ptr<RequestState> state, Response response);
-  void post_stream_begin(std::shared_ptr<RequestState> state);
   void post_pump(std::shared_ptr<RequestState> state);
   void post_job_finished(std::shared_ptr<RequestState> state);
 
