@@ -26,6 +26,8 @@ constexpr std::size_t kMaxPending = 1 << 20;
 // client still sends, so that the client sees the response instead of a reset.
 constexpr auto kLingerTime = std::chrono::seconds(2);
 constexpr std::size_t kLingerBytes = std::size_t{8} << 20;
+// At the shutdown deadline, how long a cancelled stream has to write its error marker.
+constexpr auto kForcedStreamGrace = std::chrono::seconds(2);
 
 Response error_response(unsigned status, diag::Code code, std::string_view title,
                         std::string detail) {
@@ -143,6 +145,16 @@ void Session::drain() {
 
 void Session::force_close() {
   net::post(strand_, [self = shared_from_this()] {
+    if (self->phase_ == Phase::Closed) return;
+    // A stream under way is cancelled and given a moment to end with the profile's error
+    // marker, so that the cut shows in the program text as well as in the transfer. A second
+    // force (a second signal) or the end of the moment closes it.
+    if (self->streaming_ && self->state_ && !self->forced_) {
+      self->forced_ = true;
+      self->state_->cancel = true;
+      self->arm_timer(std::chrono::duration_cast<std::chrono::milliseconds>(kForcedStreamGrace));
+      return;
+    }
     if (self->state_) {
       self->state_->cancel = true;
       std::lock_guard lock(self->state_->mutex);
@@ -629,7 +641,7 @@ void Session::pump(const std::shared_ptr<RequestState>& state) {
   }
   if (!out_buffers_.empty()) {
     writing_ = true;
-    arm_timer(server_.config().write_timeout);
+    if (!forced_) arm_timer(server_.config().write_timeout);
     net::async_write(socket_, out_buffers_,
                      net::bind_executor(strand_, [self = shared_from_this(), state, last](
                                                      beast::error_code ec, std::size_t n) {

@@ -129,6 +129,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool writing_ = false;
   bool head_written_ = false;
   bool streaming_ = false;  // stream_begin ran for the request in progress
+  bool forced_ = false;     // the shutdown deadline passed while it streamed
   bool watch_pending_ = false;
   bool job_running_ = false;
   bool awaiting_job_ = false;  // answered; the next read waits for the job to return

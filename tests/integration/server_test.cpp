@@ -475,6 +475,31 @@ TEST(ServerStreaming, SigtermDuringAStreamDrainsAndExitsZero) {
   EXPECT_EQ(*status, 0) << server.log();
 }
 
+TEST(ServerStreaming, ShutdownDeadlineEndsAStreamWithTheMarker) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server(with_args({"--shutdown-timeout", "0.3"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string body = read_file(large);
+  RawConnection c(server.port());
+  ASSERT_TRUE(c.send(post_head(kLargeTarget, body.size()) + body));
+  std::string raw = c.receive_until("\r\n\r\n", 60s);
+  ASSERT_NE(raw.find("HTTP/1.1 200"), std::string::npos) << raw.substr(0, 300);
+  server.signal(SIGTERM);
+  RawResponse r = decode_chunked(raw);
+  while (!r.complete && !c.closed()) {
+    raw += c.receive(30s, 1 << 20);
+    r = decode_chunked(raw);
+  }
+  // The deadline passed mid-stream: the job was cancelled, its text ends with the marker, and
+  // the transfer is cut (no last chunk).
+  EXPECT_FALSE(r.complete);
+  EXPECT_TRUE(std::regex_search(r.body, std::regex("\\(ERROR: [^\n]*\\)\n$")))
+      << r.body.substr(r.body.size() > 300 ? r.body.size() - 300 : 0);
+  const auto status = server.wait(30s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 0) << server.log();
+}
+
 TEST(ServerStreaming, SigtermWhenIdleExitsAtOnce) {
   ServerProcess server;
   ASSERT_TRUE(server.started()) << server.log();
