@@ -16,6 +16,8 @@ constexpr std::string_view kUsage = R"(usage: ncpostd --listen HOST:PORT [option
   --admin-token-file FILE   bearer token for PUT/DELETE /v1/profiles (or NCPOST_ADMIN_TOKEN)
   --max-body BYTES          request body limit, 413 beyond it (default 268435456)
   --max-header BYTES        request header limit, 431 beyond it (default 16384)
+  --stream-read-min BYTES   raw model uploads this large are read while they arrive; 0: never
+                            (default 1048576)
   --io-threads N            threads running the connections (default: 1 per 2 cores, at least 1)
   --workers N               threads running jobs (default: the core count)
   --queue N                 jobs that may wait for a worker; 503 beyond (default 64)
@@ -97,6 +99,8 @@ ParsedArgs parse_args(std::span<const std::string_view> args) {
       config.openapi_file = std::filesystem::path(value);
     } else if (name == "max-body") {
       if (!parse_number(value, config.max_body) || config.max_body == 0) return bad();
+    } else if (name == "stream-read-min") {
+      if (!parse_number(value, config.stream_read_min)) return bad();
     } else if (name == "max-header") {
       if (!parse_number(value, config.max_header) || config.max_header < 1024) return bad();
     } else if (name == "io-threads") {

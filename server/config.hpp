@@ -22,6 +22,9 @@ struct Config {
   std::optional<std::filesystem::path> openapi_file;  // none: the source tree's openapi/
   std::uint64_t max_body = std::uint64_t{256} << 20;
   std::uint32_t max_header = 16 * 1024;
+  // Raw uploads at least this large to a route that reads a model are read while they arrive
+  // (docs/server.md, "Large uploads"); 0 turns it off.
+  std::uint64_t stream_read_min = std::uint64_t{1} << 20;
   unsigned io_threads = 0;  // 0: from the core count
   unsigned workers = 0;     // 0: from the core count
   // Jobs that may wait for a worker; beyond workers + queue a job route answers 503 at once.

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "auth.hpp"
+#include "body_hash.hpp"
 #include "multipart.hpp"
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/canon/xml.hpp"
@@ -69,15 +70,21 @@ Response bad_request(std::string detail) {
 // has been sent.
 std::optional<Upload> take_upload_or_respond(Request& request, Exchange& exchange) {
   std::optional<Response> error;
-  auto upload = take_upload(request, error);
+  auto upload = take_upload(request, error, exchange.upload);
   if (!upload) exchange.respond(std::move(*error));
   return upload;
+}
+
+// Client text (a path, a file name, a profile id) may hold any bytes: invalid UTF-8 becomes
+// U+FFFD instead of an exception from the JSON library.
+std::string to_text(const json& body, int indent = 2) {
+  return body.dump(indent, ' ', false, json::error_handler_t::replace);
 }
 
 Response json_response(unsigned status, const json& body) {
   Response r{static_cast<http::status>(status), 11};
   r.set(http::field::content_type, "application/json");
-  r.body() = body.dump(2);
+  r.body() = to_text(body);
   r.body() += '\n';
   return r;
 }
@@ -156,15 +163,23 @@ bool stop_if_cancelled(Exchange& exchange) {
   return true;
 }
 
-// The upload read and checked, or nullopt after answering.
-std::optional<pipeline::LoadedModel> load_upload(Request& request, Services& services,
-                                                 Exchange& exchange, Upload& upload,
-                                                 bool validate) {
-  const auto started = Clock::now();
+// The upload read and checked, whether it came whole or was read as it arrived (upload.hpp).
+pipeline::LoadedModel load_model(Upload& upload, Services& services, Exchange& exchange,
+                                 bool validate) {
+  pipeline::LoadOptions options;
+  options.validate = validate;
+  options.cancel = exchange.cancel_flag();
   pipeline::LoadedModel loaded =
-      pipeline::load(std::move(upload.bytes), *services.schemas, validate);
-  services.metrics->stage("read", Clock::now() - started);
-  (void)request;
+      upload.streamed ? pipeline::load(upload.streamed->reader(), *services.schemas, options)
+                      : pipeline::load(std::move(upload.bytes), *services.schemas, options);
+  services.metrics->stage("read", loaded.read_time + loaded.check_time);
+  return loaded;
+}
+
+// The upload read and checked, or nullopt after answering.
+std::optional<pipeline::LoadedModel> load_upload(Services& services, Exchange& exchange,
+                                                 Upload& upload, bool validate) {
+  pipeline::LoadedModel loaded = load_model(upload, services, exchange, validate);
   if (stop_if_cancelled(exchange)) return std::nullopt;
   if (!loaded.ok()) {
     if (loaded.model.instances_of("PROJECT").empty() && validate)
@@ -175,6 +190,14 @@ std::optional<pipeline::LoadedModel> load_upload(Request& request, Services& ser
     return std::nullopt;
   }
   return loaded;
+}
+
+// For Server-Timing: milliseconds with one decimal.
+std::string timing_ms(std::chrono::nanoseconds d) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f",
+                std::chrono::duration<double, std::milli>(d).count());
+  return buffer;
 }
 
 // ---- block → workingstep map ---------------------------------------------------------------
@@ -494,6 +517,7 @@ void post_json(Services& services, Exchange& exchange, const pipeline::LoadedMod
 }
 
 void handle_post(Request& request, Services& services, Exchange& exchange) {
+  const auto job_started = Clock::now();
   const auto id = query_param(request.target(), "profile");
   if (!id || id->empty()) {
     exchange.respond(
@@ -511,10 +535,12 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   }
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
-  // The same input, profile version and engine give the same program.
-  const std::uint64_t input_hash = std::hash<std::string_view>{}(upload->bytes);
+  // The same input, profile version and engine give the same program. A large upload was
+  // hashed as it arrived.
+  const std::uint64_t input_hash =
+      upload->streamed ? upload->streamed->hash() : body_hash(upload->bytes);
   const std::uint64_t context_hash =
-      std::hash<std::string>{}(loaded_profile->version + "/" + services.engine_version);
+      body_hash(loaded_profile->version + "/" + services.engine_version);
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
   if (request[http::field::if_none_match] == etag && !as_json) {
@@ -525,7 +551,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   }
   const std::string name = upload->name;
   const std::string filename = file_stem(name) + loaded_profile->profile.extension;
-  auto loaded = load_upload(request, services, exchange, *upload, true);
+  auto loaded = load_upload(services, exchange, *upload, true);
   if (!loaded) return;
   if (as_json) {
     post_json(services, exchange, *loaded, *loaded_profile, name, filename);
@@ -538,6 +564,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   head.set(http::field::etag, etag);
   head.set("X-Content-Type-Options", "nosniff");
   head.set("X-Ncpost-Profile-Version", loaded_profile->version);
+  head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
   // The head goes out with the first piece of text, so that an error found before any output
   // is still an ordinary problem+json response.
   bool begun = false;
@@ -545,33 +572,53 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   pipeline::PostOptions options;
   options.input_name = name;
   options.cancel = exchange.cancel_flag();
+  const auto render_started = Clock::now();
+  const auto begin = [&] {
+    std::string timing;
+    if (exchange.received != Clock::time_point{})
+      timing = "queue;dur=" + timing_ms(job_started - exchange.received) + ", ";
+    // How much of a large upload had been read before its last byte came.
+    if (upload->streamed)
+      timing += "arrival;desc=\"read " +
+                std::to_string(upload->streamed->read_while_arriving() * 100 /
+                               std::max<std::size_t>(1, upload->streamed->size())) +
+                "% while arriving\", ";
+    timing += "read;dur=" + timing_ms(loaded->read_time) +
+              ", check;dur=" + timing_ms(loaded->check_time) +
+              ", first-text;dur=" + timing_ms(Clock::now() - render_started);
+    head.set("Server-Timing", timing);
+    return exchange.begin_stream(head);
+  };
   const pipeline::PostResult result = pipeline::post(
       *loaded, *loaded_profile,
       [&](std::string_view piece) {
         if (!alive) return;
         if (!begun) {
           begun = true;
-          alive = exchange.begin_stream(head);
+          alive = begin();
           if (!alive) return;
         }
         alive = exchange.write(piece);
       },
       options);
   services.metrics->stage("interpret_render", result.interpret_and_render);
+  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded->diagnostics, name);
+  diagnostics.insert(diagnostics.end(), result.diagnostics.begin(), result.diagnostics.end());
   if (begun) {
-    exchange.end_stream(result.ok);
+    if (result.ok)
+      exchange.end_stream(true, diagnostics_trailer(diagnostics));
+    else
+      exchange.end_stream(false);
     return;
   }
   if (stop_if_cancelled(exchange)) return;
-  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded->diagnostics, name);
-  diagnostics.insert(diagnostics.end(), result.diagnostics.begin(), result.diagnostics.end());
   if (!result.ok) {
     exchange.respond(problem(422, "post-failed", "The program could not be posted",
                              "the post stopped before any output; see diagnostics", diagnostics));
     return;
   }
   // A program that renders to nothing is still a (complete, empty) program.
-  if (exchange.begin_stream(head)) exchange.end_stream(true);
+  if (begin()) exchange.end_stream(true, diagnostics_trailer(diagnostics));
 }
 
 void handle_conversion(Request& request, Services& services, Exchange& exchange) {
@@ -588,12 +635,13 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   // Conversion is lossless whatever the schema says of the data: not validated (as the CLI).
-  auto loaded = load_upload(request, services, exchange, *upload, false);
+  auto loaded = load_upload(services, exchange, *upload, false);
   if (!loaded) return;
   StreamHead head{http::status::ok, 11};
   head.set(http::field::content_type, *to == "p21" ? "application/p21" : "application/xml");
   head.set(http::field::content_disposition, "attachment; filename=\"" + file_stem(upload->name) +
                                                  (*to == "p21" ? ".stp\"" : ".stpx\""));
+  head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
   if (!exchange.begin_stream(head)) return;
   Coalescer out(exchange);
   const auto started = Clock::now();
@@ -607,16 +655,17 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
   }
   out.flush();
   services.metrics->stage("convert", Clock::now() - started);
-  exchange.end_stream(out.alive());
+  if (out.alive())
+    exchange.end_stream(true, diagnostics_trailer(with_file(loaded->diagnostics, upload->name)));
+  else
+    exchange.end_stream(false);
 }
 
 void handle_inspection(Request& request, Services& services, Exchange& exchange) {
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   const std::string name = upload->name;
-  const auto started = Clock::now();
-  pipeline::LoadedModel loaded = pipeline::load(std::move(upload->bytes), *services.schemas);
-  services.metrics->stage("read", Clock::now() - started);
+  pipeline::LoadedModel loaded = load_model(*upload, services, exchange, true);
   if (stop_if_cancelled(exchange)) return;
   // The same assembly as `ncpost inspect`: reading, schema choice and check, then the
   // program-structure diagnostics of stepnc::inspect.
@@ -639,7 +688,7 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
                          with_file(diagnostics, name));
     auto body = json::parse(r.body());
     body["inspection"] = std::move(info.json);
-    r.body() = body.dump(2) + "\n";
+    r.body() = to_text(body) + "\n";
     exchange.respond(std::move(r));
     return;
   }
@@ -655,7 +704,7 @@ void handle_trace(Request& request, Services& services, Exchange& exchange) {
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   const std::string name = upload->name;
-  auto loaded = load_upload(request, services, exchange, *upload, true);
+  auto loaded = load_upload(services, exchange, *upload, true);
   if (!loaded) return;
   std::string text;
   const auto out = [&text](std::string_view piece) { text.append(piece); };
@@ -736,7 +785,7 @@ std::string problem_body(unsigned status, std::string_view type, std::string_vie
   body["status"] = status;
   body["detail"] = detail;
   body["diagnostics"] = diagnostics_json(diagnostics);
-  return body.dump(2) + "\n";
+  return to_text(body) + "\n";
 }
 
 Response problem(unsigned status, std::string_view type, std::string_view title,
@@ -745,6 +794,22 @@ Response problem(unsigned status, std::string_view type, std::string_view title,
   r.set(http::field::content_type, "application/problem+json");
   r.body() = problem_body(status, type, title, detail, diagnostics);
   return r;
+}
+
+http::fields diagnostics_trailer(const std::vector<xslt::FileDiagnostic>& diagnostics) {
+  std::string listed = "[";
+  for (const auto& d : diagnostics) {
+    // ASCII only (\\u escapes), no line breaks: a valid field value whatever the messages say.
+    std::string one = diagnostic_json(d).dump(-1, ' ', true, json::error_handler_t::replace);
+    if (listed.size() + one.size() + 2 > kMaxDiagnosticsTrailer) break;
+    if (listed.size() > 1) listed += ',';
+    listed += one;
+  }
+  listed += ']';
+  http::fields trailer;
+  trailer.set("Ncpost-Warnings", std::to_string(diagnostics.size()));
+  trailer.set("Ncpost-Diagnostics", listed);
+  return trailer;
 }
 
 std::optional<std::string> query_param(std::string_view target, std::string_view name) {
@@ -762,11 +827,18 @@ std::optional<std::string> query_param(std::string_view target, std::string_view
   return std::nullopt;
 }
 
-std::optional<Upload> take_upload(Request& request, std::optional<Response>& error) {
+std::optional<Upload> take_upload(Request& request, std::optional<Response>& error,
+                                  std::shared_ptr<StreamedUpload> streamed) {
   Upload upload;
   const auto content_type = request[http::field::content_type];
   if (auto name = query_param(request.target(), "name"); name && !name->empty())
     upload.name = *name;
+  if (streamed) {
+    // The session took in only large raw bodies this way, never multipart ones.
+    upload.streamed = std::move(streamed);
+    upload.content_type = std::string(content_type);
+    return upload;
+  }
   if (is_multipart(content_type)) {
     const auto boundary = multipart_boundary(content_type);
     if (!boundary) {
@@ -784,11 +856,15 @@ std::optional<Upload> take_upload(Request& request, std::optional<Response>& err
       error = bad_request("multipart/form-data upload needs a part named 'file'");
       return std::nullopt;
     }
-    upload.bytes = std::string(part->body);
     if (!part->filename.empty()) upload.name = part->filename;
     upload.content_type = part->content_type;
-    request.body().clear();
-    request.body().shrink_to_fit();
+    // The part is moved to the front of the body it is in, not copied: a large upload's copy
+    // would cost a fresh allocation's page faults (about as much as reading it).
+    const auto offset = static_cast<std::size_t>(part->body.data() - request.body().data());
+    const std::size_t length = part->body.size();
+    upload.bytes = std::move(request.body());
+    upload.bytes.erase(0, offset);
+    upload.bytes.resize(length);
   } else {
     upload.bytes = std::move(request.body());
     upload.content_type = std::string(content_type);
@@ -851,12 +927,12 @@ nlohmann::ordered_json block_map(std::string_view text, const std::vector<Workin
 
 const std::vector<Route>& routes() {
   static const std::vector<Route> table = {
-      {http::verb::post, "/v1/posts", "POST /v1/posts", Where::Worker, handle_post},
+      {http::verb::post, "/v1/posts", "POST /v1/posts", Where::Worker, handle_post, true},
       {http::verb::post, "/v1/conversions", "POST /v1/conversions", Where::Worker,
-       handle_conversion},
+       handle_conversion, true},
       {http::verb::post, "/v1/inspections", "POST /v1/inspections", Where::Worker,
-       handle_inspection},
-      {http::verb::post, "/v1/traces", "POST /v1/traces", Where::Worker, handle_trace},
+       handle_inspection, true},
+      {http::verb::post, "/v1/traces", "POST /v1/traces", Where::Worker, handle_trace, true},
       {http::verb::post, "/v1/schemas", "POST /v1/schemas", Where::Worker, handle_schema},
       {http::verb::post, "/v1/nc/parse", "POST /v1/nc/parse", Where::Inline,
        handle_not_implemented},

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -21,6 +22,7 @@
 #include "ncpost/express/registry.hpp"
 #include "ncpost/profile/profile.hpp"
 #include "ncpost/xslt/xslt.hpp"
+#include "upload.hpp"
 
 namespace ncpost::server {
 
@@ -58,8 +60,10 @@ class Exchange {
   // One chunk. May block while the client is behind (bounded buffering). False: client gone.
   virtual bool write(std::string_view piece) = 0;
   // complete=false cuts the stream without its last chunk, so that the client sees an
-  // incomplete transfer, never a complete-looking program.
-  virtual void end_stream(bool complete) = 0;
+  // incomplete transfer, never a complete-looking program. `trailer`: fields sent after the
+  // last chunk of a complete stream (announced in the head's Trailer field).
+  virtual void end_stream(bool complete, http::fields trailer) = 0;
+  void end_stream(bool complete) { end_stream(complete, {}); }
   // Set when the client went away or the job's time limit passed; the engine polls it.
   [[nodiscard]] virtual const std::atomic<bool>* cancel_flag() const noexcept = 0;
   [[nodiscard]] virtual bool timed_out() const noexcept = 0;
@@ -67,6 +71,10 @@ class Exchange {
   // Filled by the router / handler for the access log.
   std::string path_id;  // the {id} of /v1/profiles/{id}
   std::string profile;  // the profile a post used
+  // Filled by the session: a large raw upload it took in as it arrived (then the request's body
+  // is empty), and when the request's last byte arrived.
+  std::shared_ptr<StreamedUpload> upload;
+  std::chrono::steady_clock::time_point received{};
 };
 
 using Handler = void (*)(Request& request, Services& services, Exchange& exchange);
@@ -79,6 +87,8 @@ struct Route {
   std::string_view name;     // for metrics and logs: the pattern, with the method
   Where where;
   Handler handler;
+  // Its upload is a model (P21/P28): a large raw one is read while it arrives (upload.hpp).
+  bool reads_model = false;
 };
 
 struct RouteMatch {
@@ -106,12 +116,22 @@ struct RouteMatch {
 // The upload of a job route: the raw body, or the `file` part (else the only part) of a
 // multipart/form-data body.
 struct Upload {
-  std::string bytes;
+  std::string bytes;  // empty when `streamed` holds them
+  std::shared_ptr<StreamedUpload> streamed;
   std::string name = "upload";  // names the input in diagnostics
   std::string content_type;
 };
-// nullopt: a 400 problem is in `error`.
-[[nodiscard]] std::optional<Upload> take_upload(Request& request, std::optional<Response>& error);
+// nullopt: a 400 problem is in `error`. `streamed`: what the session took in as it arrived.
+[[nodiscard]] std::optional<Upload> take_upload(Request& request, std::optional<Response>& error,
+                                                std::shared_ptr<StreamedUpload> streamed = {});
+
+// At most this much of the diagnostics goes into the Ncpost-Diagnostics trailer (whole entries;
+// Ncpost-Warnings still counts them all), so that the trailer stays within any client's limits.
+inline constexpr std::size_t kMaxDiagnosticsTrailer = 8 * 1024;
+// The trailer of a complete stream: Ncpost-Warnings (how many diagnostics the job gave; a job
+// that streams to the end has no errors) and Ncpost-Diagnostics (them as compact ASCII JSON).
+[[nodiscard]] http::fields diagnostics_trailer(
+    const std::vector<xslt::FileDiagnostic>& diagnostics);
 
 // From the lines of a posted program and the offsets at which each workingstep's text begins:
 // {block number (or "L" + line) → workingstep id}. Exposed for unit tests.

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     nlohmann::json line;
     line["event"] = "error";
     line["message"] = message;
-    log->error(line.dump());
+    log->error(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     return 1;
   };
 
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
     nlohmann::json line;
     line["event"] = "warning";
     line["message"] = w;
-    log->warn(line.dump());
+    log->warn(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
 
   std::unique_ptr<profile::ProfileStore> store;

@@ -45,7 +45,11 @@ void Metrics::request(std::string_view route, unsigned status, std::chrono::nano
   Histogram* histogram = nullptr;
   {
     std::lock_guard lock(mutex_);
-    ++requests_[{std::string(route), status}];
+    const auto key = std::pair<std::string_view, unsigned>(route, status);
+    auto counter = requests_.find(key);
+    if (counter == requests_.end())
+      counter = requests_.emplace(std::pair<std::string, unsigned>(route, status), 0).first;
+    ++counter->second;
     auto it = latency_.find(route);
     if (it == latency_.end()) it = latency_.try_emplace(std::string(route)).first;
     histogram = &it->second;

@@ -49,7 +49,17 @@ class Metrics {
 
  private:
   mutable std::mutex mutex_;
-  std::map<std::pair<std::string, unsigned>, std::uint64_t, std::less<>> requests_;
+  // Looked up by (route, status) views, so that counting a request allocates nothing.
+  struct RouteStatusLess {
+    using is_transparent = void;
+    template <class A, class B>
+    bool operator()(const A& a, const B& b) const {
+      const std::string_view ar = a.first;
+      const std::string_view br = b.first;
+      return ar < br || (ar == br && a.second < b.second);
+    }
+  };
+  std::map<std::pair<std::string, unsigned>, std::uint64_t, RouteStatusLess> requests_;
   std::map<std::string, Histogram, std::less<>> latency_;
   std::map<std::string, Histogram, std::less<>> stages_;
   std::atomic<std::uint64_t> bytes_in_{0};

@@ -70,7 +70,7 @@ int Server::run() {
   line["queue"] = config().queue;
   line["max_body"] = config().max_body;
   line["admin_token"] = services_.admin_token.has_value();  // whether one is set, never which
-  log_->info(line.dump());
+  log_->info(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   log_->flush();
 
   stop_signals_.async_wait([this](boost::system::error_code ec, int sig) {
@@ -99,7 +99,7 @@ int Server::run() {
   pool_.join();
   nlohmann::json stopped;
   stopped["event"] = "stopped";
-  log_->info(stopped.dump());
+  log_->info(stopped.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   log_->flush();
   return 0;
 }
@@ -113,7 +113,7 @@ void Server::accept() {
           nlohmann::json line;
           line["event"] = "accept_error";
           line["error"] = ec.message();
-          log_->warn(line.dump());
+          log_->warn(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
           auto timer = std::make_shared<net::steady_timer>(ioc_, std::chrono::milliseconds(50));
           timer->async_wait([this, timer](boost::system::error_code) {
             if (acceptor_.is_open()) accept();
@@ -132,12 +132,12 @@ void Server::on_signal(int sig) {
   if (draining_) {
     // A second signal: do not wait for the deadline.
     line["action"] = "force";
-    log_->info(line.dump());
+    log_->info(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     force_close_all();
     return;
   }
   line["action"] = "drain";
-  log_->info(line.dump());
+  log_->info(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   // Armed before begin_shutdown(), which cancels it when nothing is left to drain.
   stop_signals_.async_wait([this](boost::system::error_code ec, int s) {
     if (!ec) on_signal(s);
@@ -168,7 +168,7 @@ void Server::begin_shutdown() {
     if (e) return;
     nlohmann::json line;
     line["event"] = "shutdown_deadline";
-    log_->warn(line.dump());
+    log_->warn(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     force_close_all();
   });
 }
@@ -203,6 +203,15 @@ void Server::remove_session(std::uint64_t id) {
       stop_signals_.cancel(ec);
     });
   }
+}
+
+std::shared_ptr<void> Server::try_stream_read() {
+  if (stream_reads_.fetch_add(1) >= config().workers) {
+    stream_reads_.fetch_sub(1);
+    return nullptr;
+  }
+  return std::shared_ptr<void>(static_cast<void*>(&stream_reads_),
+                               [this](void*) { stream_reads_.fetch_sub(1); });
 }
 
 bool Server::try_admit() noexcept {
@@ -244,7 +253,7 @@ void Server::reload_profiles() {
     services_.profiles->reload();
     nlohmann::json line;
     line["event"] = "profiles_reloaded";
-    log_->info(line.dump());
+    log_->info(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   });
 }
 

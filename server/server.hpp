@@ -47,6 +47,9 @@ class Server {
   [[nodiscard]] bool try_admit() noexcept;
   void release() noexcept;
   [[nodiscard]] bool saturated() const noexcept;
+  // A slot for reading an upload while it arrives (at most one per worker at a time); null when
+  // none is free. Released when the last holder lets go.
+  [[nodiscard]] std::shared_ptr<void> try_stream_read();
   [[nodiscard]] bool draining() const noexcept { return draining_.load(); }
   [[nodiscard]] std::string next_request_id();
   void add_session(std::uint64_t id, const std::shared_ptr<Session>& session);
@@ -69,6 +72,8 @@ class Server {
   std::mutex sessions_mutex_;
   std::unordered_map<std::uint64_t, std::weak_ptr<Session>> sessions_;
   bool shutdown_armed_ = false;  // guarded by sessions_mutex_
+  // Before pool_: pool tasks hold stream-read slots until they end.
+  std::atomic<unsigned> stream_reads_{0};
   boost::asio::io_context ioc_;
   boost::asio::thread_pool pool_;
   boost::asio::ip::tcp::acceptor acceptor_;

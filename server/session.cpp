@@ -1,13 +1,15 @@
 #include "session.hpp"
 
+#include <algorithm>
 #include <array>
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 #include <cctype>
 #include <functional>
-#include <nlohmann/json.hpp>
 
+#include "access_log.hpp"
+#include "multipart.hpp"
 #include "server.hpp"
 
 namespace ncpost::server {
@@ -24,6 +26,8 @@ constexpr std::size_t kMaxPending = 1 << 20;
 // client still sends, so that the client sees the response instead of a reset.
 constexpr auto kLingerTime = std::chrono::seconds(2);
 constexpr std::size_t kLingerBytes = std::size_t{8} << 20;
+// At the shutdown deadline, how long a cancelled stream has to write its error marker.
+constexpr auto kForcedStreamGrace = std::chrono::seconds(2);
 
 Response error_response(unsigned status, diag::Code code, std::string_view title,
                         std::string detail) {
@@ -44,6 +48,7 @@ class SessionExchange final : public Exchange {
  public:
   SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<RequestState> state)
       : session_(std::move(session)), state_(std::move(state)) {}
+  using Exchange::end_stream;
 
   void respond(Response response) override {
     {
@@ -60,10 +65,12 @@ class SessionExchange final : public Exchange {
       std::lock_guard lock(state_->mutex);
       if (state_->answered || state_->gone) return false;
       state_->answered = true;
+      state_->streamed = true;
       state_->head = std::move(head);
       state_->profile = profile;
     }
-    session_->post_stream_begin(state_);
+    // Nothing is posted yet: the head goes out with the first write() or end_stream(), whose
+    // pump finds it (one hop to the strand instead of two).
     return true;
   }
 
@@ -82,12 +89,13 @@ class SessionExchange final : public Exchange {
     return true;
   }
 
-  void end_stream(bool complete) override {
+  void end_stream(bool complete, http::fields trailer) override {
     bool post = false;
     {
       std::lock_guard lock(state_->mutex);
       state_->ended = true;
       state_->complete = complete;
+      state_->trailer = std::move(trailer);
       post = !std::exchange(state_->pump_posted, true);
     }
     if (post) session_->post_pump(state_);
@@ -137,6 +145,16 @@ void Session::drain() {
 
 void Session::force_close() {
   net::post(strand_, [self = shared_from_this()] {
+    if (self->phase_ == Phase::Closed) return;
+    // A stream under way is cancelled and given a moment to end with the profile's error
+    // marker, so that the cut shows in the program text as well as in the transfer. A second
+    // force (a second signal) or the end of the moment closes it.
+    if (self->streaming_ && self->state_ && !self->forced_) {
+      self->forced_ = true;
+      self->state_->cancel = true;
+      self->arm_timer(std::chrono::duration_cast<std::chrono::milliseconds>(kForcedStreamGrace));
+      return;
+    }
     if (self->state_) {
       self->state_->cancel = true;
       std::lock_guard lock(self->state_->mutex);
@@ -180,6 +198,8 @@ void Session::read_header() {
   request_id_ = server_.next_request_id();
   logged_ = false;
   arm_timer(server_.config().read_timeout);
+  upload_parser_.reset();
+  upload_.reset();
   parser_.emplace();
   parser_->header_limit(server_.config().max_header);
   parser_->body_limit(server_.config().max_body);
@@ -197,6 +217,10 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
   method_ = std::string(header.method_string());
   path_ = std::string(header.target().substr(0, header.target().find('?')));
   if (const auto id = header["X-Request-Id"]; valid_request_id(id)) request_id_ = std::string(id);
+  // Made now rather than at dispatch: a slice reading the upload as it arrives already needs
+  // the request's cancel flag.
+  state_ = std::make_shared<RequestState>();
+  take_upload_as_it_arrives();
   // curl and browsers wait for 100 Continue before a large body; answer it only once the
   // header passed its checks, so a too-large upload is refused before it is sent.
   if (beast::iequals(header[http::field::expect], "100-continue")) {
@@ -213,24 +237,60 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
   read_body();
 }
 
+// A large raw body to a route that reads a model is read as it arrives: hashed and, in slices
+// on the worker pool, read as P21, so that little is left when its last byte comes (upload.hpp).
+// Smaller bodies, multipart ones and bodies without a Content-Length are read whole as before.
+void Session::take_upload_as_it_arrives() {
+  const auto& config = server_.config();
+  const auto length = parser_->content_length();
+  if (config.stream_read_min == 0 || !length || *length < config.stream_read_min ||
+      *length > config.max_body)
+    return;
+  const auto& header = parser_->get();
+  if (is_multipart(header[http::field::content_type])) return;
+  const RouteMatch match = match_route(header.method(), header.target());
+  if (match.route == nullptr || !match.route->reads_model) return;
+  auto slot = server_.try_stream_read();
+  if (!slot) return;
+  // Slices of an eighth of the smallest streamed upload: several per upload, each worth a hop
+  // to the pool.
+  const auto slice_step =
+      std::clamp<std::uint64_t>(config.stream_read_min / 8, 4096, std::uint64_t{1} << 20);
+  upload_ = std::make_shared<StreamedUpload>(
+      static_cast<std::size_t>(*length), static_cast<std::size_t>(slice_step),
+      server_.pool().get_executor(),
+      std::shared_ptr<const std::atomic<bool>>(state_, &state_->cancel), std::move(slot));
+  upload_parser_.emplace(std::move(*parser_));
+  parser_.reset();
+  upload_parser_->body_limit(config.max_body);
+  upload_parser_->get().body() = upload_;
+}
+
 void Session::read_body() {
-  http::async_read(
-      socket_, buffer_, *parser_,
-      net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec, std::size_t n) {
-        self->on_body(ec, n);
-      }));
+  const auto done = [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+    self->on_body(ec, n);
+  };
+  if (upload_parser_)
+    http::async_read(socket_, buffer_, *upload_parser_, net::bind_executor(strand_, done));
+  else
+    http::async_read(socket_, buffer_, *parser_, net::bind_executor(strand_, done));
 }
 
 void Session::on_body(beast::error_code ec, std::size_t bytes) {
   bytes_in_ += bytes;
   if (ec) return read_failed(ec);
   timer_.cancel();
+  received_ = Clock::now();
   handle_request();
 }
 
 void Session::read_failed(beast::error_code ec) {
   if (phase_ == Phase::Closed) return;
   keep_alive_ = false;
+  if (upload_) {
+    upload_->complete();  // no more slices of an upload that will not be answered
+    upload_.reset();
+  }
   if (read_timed_out_) {
     status_ = 408;
     return send(error_response(408, diag::Code::HttpReadTimeout, "Request timeout",
@@ -264,11 +324,16 @@ void Session::read_failed(beast::error_code ec) {
 // ---- dispatch -------------------------------------------------------------------------------
 
 void Session::handle_request() {
-  request_ = parser_->release();
-  parser_.reset();
+  if (upload_parser_) {
+    request_ = Request(std::move(upload_parser_->release().base()));
+    upload_parser_.reset();
+    upload_->complete();
+  } else {
+    request_ = parser_->release();
+    parser_.reset();
+  }
   keep_alive_ = request_.keep_alive();
   is_head_ = request_.method() == http::verb::head;
-  state_ = std::make_shared<RequestState>();
   RouteMatch match = match_route(request_.method(), request_.target());
   if (match.route == nullptr) {
     Response r =
@@ -280,7 +345,7 @@ void Session::handle_request() {
     state_->answered = true;
     return send(std::move(r));
   }
-  route_name_ = std::string(match.route->name);
+  route_name_ = match.route->name;
   if (match.route->where == Where::Inline) {
     phase_ = Phase::Handling;
     SessionExchange exchange(shared_from_this(), state_);
@@ -293,6 +358,7 @@ void Session::handle_request() {
     return;  // the response was posted to this strand
   }
   if (!server_.try_admit()) {
+    upload_.reset();
     server_.services().metrics->rejected_full++;
     Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
                                 "all workers are busy and the job queue is full; retry later");
@@ -308,6 +374,7 @@ void Session::dispatch_job(const Route& route, std::string id) {
   job_running_ = true;
   writing_ = false;
   head_written_ = false;
+  streaming_ = false;
   auto state = state_;
   auto& metrics = *server_.services().metrics;
   metrics.queued++;
@@ -319,12 +386,15 @@ void Session::dispatch_job(const Route& route, std::string id) {
   watch_client();
   auto request = std::make_shared<Request>(std::move(request_));
   net::post(server_.pool(), [self = shared_from_this(), state, request, handler = route.handler,
-                             id = std::move(id), &metrics]() mutable {
+                             id = std::move(id), upload = std::move(upload_), received = received_,
+                             &metrics]() mutable {
     metrics.queued--;
     metrics.active++;
     {
       SessionExchange exchange(self, state);
       exchange.path_id = std::move(id);
+      exchange.upload = std::move(upload);
+      exchange.received = received;
       // A job whose client left (or whose time ran out) while it queued is not started.
       if (!state->cancel.load()) {
         try {
@@ -336,6 +406,13 @@ void Session::dispatch_job(const Route& route, std::string id) {
       }
       exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error",
                                       "the handler gave no response"));  // dropped if answered
+      // A stream the handler began but did not end (it threw) is cut, never left open.
+      bool unended = false;
+      {
+        std::lock_guard lock(state->mutex);
+        unended = state->streamed && !state->ended;
+      }
+      if (unended) exchange.end_stream(false);
     }
     request.reset();  // free the upload on the worker, not on the IO thread
     metrics.active--;
@@ -468,13 +545,18 @@ void Session::after_response() {
 
 // ---- streamed responses ---------------------------------------------------------------------
 
-void Session::post_stream_begin(std::shared_ptr<RequestState> state) {
-  net::post(strand_,
-            [self = shared_from_this(), state = std::move(state)] { self->stream_begin(state); });
-}
-
 void Session::post_pump(std::shared_ptr<RequestState> state) {
-  net::post(strand_, [self = shared_from_this(), state = std::move(state)] { self->pump(state); });
+  net::post(strand_, [self = shared_from_this(), state = std::move(state)] {
+    if (!self->streaming_ && self->current(state)) {
+      bool head = false;
+      {
+        std::lock_guard lock(state->mutex);
+        head = state->head.has_value();
+      }
+      if (head) return self->stream_begin(state);
+    }
+    self->pump(state);
+  });
 }
 
 void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
@@ -482,6 +564,7 @@ void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
   {
     std::lock_guard lock(state->mutex);
     stream_head_ = std::make_unique<StreamHead>(std::move(*state->head));
+    state->head.reset();
     profile_ = state->profile;
   }
   phase_ = Phase::Writing;
@@ -491,19 +574,29 @@ void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
   stream_head_->set("X-Request-Id", request_id_);
   stream_head_->keep_alive(keep_alive_);
   stream_head_->chunked(true);
-  stream_serializer_ = std::make_unique<http::response_serializer<http::empty_body>>(*stream_head_);
-  writing_ = true;
-  arm_timer(server_.config().write_timeout);
-  http::async_write_header(socket_, *stream_serializer_,
-                           net::bind_executor(strand_, [self = shared_from_this(), state](
-                                                           beast::error_code ec, std::size_t n) {
-                             self->on_stream_written(state, ec, n, false);
-                           }));
+  // The head is not written alone: it goes out with the first chunk (and, for a short program,
+  // with the last one too), one write instead of three.
+  head_bytes_.clear();
+  http::response_serializer<http::empty_body> serializer(*stream_head_);
+  serializer.split(true);
+  beast::error_code ec;
+  while (!serializer.is_header_done() && !ec) {
+    serializer.next(ec, [&](beast::error_code& e, const auto& buffers) {
+      e = {};
+      for (const auto b : beast::buffers_range_ref(buffers))
+        head_bytes_.append(static_cast<const char*>(b.data()), b.size());
+      serializer.consume(beast::buffer_bytes(buffers));
+    });
+  }
+  head_written_ = false;
+  streaming_ = true;
+  pump(state);
 }
 
 void Session::pump(const std::shared_ptr<RequestState>& state) {
-  if (!current(state) || writing_ || !head_written_) {
-    // Not yet (the head is still being written) or no longer; the head's completion pumps.
+  if (!current(state) || writing_ || !streaming_) {
+    // Not yet (a write is in flight, or the head is not here yet) or no longer; the write's
+    // completion, or stream_begin, pumps.
     if (state && !current(state)) {
       std::lock_guard lock(state->mutex);
       state->pump_posted = false;
@@ -519,27 +612,44 @@ void Session::pump(const std::shared_ptr<RequestState>& state) {
     out_chunk_.swap(state->pending);
     ended = state->ended;
     complete = state->complete;
+    if (ended && complete) out_trailer_ = std::move(state->trailer);
     state->drained.notify_all();
   }
-  auto done = [self = shared_from_this(), state](bool last) {
-    return net::bind_executor(self->strand_,
-                              [self, state, last](beast::error_code ec, std::size_t n) {
-                                self->on_stream_written(state, ec, n, last);
-                              });
-  };
+  // One gathered write: the head (first time), the chunk, and the last chunk with its trailer
+  // once the job ended complete.
+  out_buffers_.clear();
+  if (!head_written_) out_buffers_.emplace_back(net::buffer(head_bytes_));
   if (!out_chunk_.empty()) {
+    char size[24];
+    const int n = std::snprintf(size, sizeof size, "%zx\r\n", out_chunk_.size());
+    chunk_size_.assign(size, static_cast<std::size_t>(n));
+    out_buffers_.emplace_back(net::buffer(chunk_size_));
+    out_buffers_.emplace_back(net::buffer(out_chunk_));
+    out_buffers_.emplace_back(net::buffer("\r\n", 2));
+  }
+  const bool last = ended && complete;
+  if (last) {
+    last_chunk_ = "0\r\n";
+    for (const auto& field : out_trailer_) {
+      last_chunk_.append(field.name_string());
+      last_chunk_ += ": ";
+      last_chunk_.append(field.value());
+      last_chunk_ += "\r\n";
+    }
+    last_chunk_ += "\r\n";
+    out_buffers_.emplace_back(net::buffer(last_chunk_));
+  }
+  if (!out_buffers_.empty()) {
     writing_ = true;
-    arm_timer(server_.config().write_timeout);
-    net::async_write(socket_, http::make_chunk(net::buffer(out_chunk_)), done(false));
+    if (!forced_) arm_timer(server_.config().write_timeout);
+    net::async_write(socket_, out_buffers_,
+                     net::bind_executor(strand_, [self = shared_from_this(), state, last](
+                                                     beast::error_code ec, std::size_t n) {
+                       self->on_stream_written(state, ec, n, last);
+                     }));
     return;
   }
   if (!ended) return;
-  if (complete) {
-    writing_ = true;
-    arm_timer(server_.config().write_timeout);
-    net::async_write(socket_, http::make_chunk_last(), done(true));
-    return;
-  }
   // A failed or cancelled post: the text ends with the error marker and the transfer is cut
   // without its last chunk, so no client can take it for a whole program.
   finish_request(false);
@@ -552,9 +662,9 @@ void Session::on_stream_written(const std::shared_ptr<RequestState>& state, beas
   bytes_out_ += bytes;
   if (!current(state)) return;
   if (ec) return client_gone(state);
-  if (!head_written_) head_written_ = true;
+  head_written_ = true;
   if (last) {
-    stream_serializer_.reset();
+    streaming_ = false;
     stream_head_.reset();
     finish_request(true);
     return after_response();
@@ -583,20 +693,19 @@ void Session::finish_request(bool complete) {
   server_.services().metrics->request(route_name_, status_, duration, bytes_in_, bytes_out_);
   if (!server_.config().access_log) return;
   // Never the body, the query string or the Authorization header.
-  nlohmann::json line;
-  line["event"] = "access";
-  line["request_id"] = request_id_;
-  line["remote"] = remote_;
-  line["method"] = method_;
-  line["path"] = path_;
-  line["route"] = route_name_;
-  line["status"] = status_;
-  line["bytes_in"] = bytes_in_;
-  line["bytes_out"] = bytes_out_;
-  line["duration_ms"] = std::chrono::duration<double, std::milli>(duration).count();
-  if (!profile_.empty()) line["profile"] = profile_;
-  line["complete"] = complete;
-  server_.log().info(line.dump());
+  AccessRecord record;
+  record.request_id = request_id_;
+  record.remote = remote_;
+  record.method = method_;
+  record.path = path_;
+  record.route = route_name_;
+  record.profile = profile_;
+  record.status = status_;
+  record.bytes_in = bytes_in_;
+  record.bytes_out = bytes_out_;
+  record.duration_ms = std::chrono::duration<double, std::milli>(duration).count();
+  record.complete = complete;
+  server_.log().info(access_line(record));
 }
 
 void Session::linger_close() {

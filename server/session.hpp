@@ -17,6 +17,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "handlers.hpp"
 
@@ -31,15 +32,17 @@ struct RequestState {
   std::mutex mutex;
   std::condition_variable drained;  // pending shrank, or the client is gone
   bool answered = false;            // respond() or begin_stream() happened, or a 504 went out
+  bool streamed = false;            // begin_stream() happened
   bool abandoned = false;           // the session answered (504): ignore the handler's output
   bool gone = false;                // the client went away
   bool finished = false;            // the handler returned
   bool ended = false;               // end_stream() was called
   bool complete = false;            // its argument
   bool pump_posted = false;
-  std::string pending;  // stream bytes not yet handed to the socket
-  std::optional<StreamHead> head;
-  std::string profile;  // for the access log, copied when the answer is handed over
+  std::string pending;             // stream bytes not yet handed to the socket
+  std::optional<StreamHead> head;  // from begin_stream() until the strand takes it
+  http::fields trailer;            // after the last chunk of a complete stream
+  std::string profile;             // for the access log, copied when the answer is handed over
 };
 
 class Session : public std::enable_shared_from_this<Session> {
@@ -59,7 +62,6 @@ class Session : public std::enable_shared_from_this<Session> {
 
   // ---- called by SessionExchange, from a worker or from the strand ----
   void post_response(std::shared_ptr<RequestState> state, Response response);
-  void post_stream_begin(std::shared_ptr<RequestState> state);
   void post_pump(std::shared_ptr<RequestState> state);
   void post_job_finished(std::shared_ptr<RequestState> state);
 
@@ -69,6 +71,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void wait_request();
   void read_header();
   void on_header(boost::beast::error_code ec, std::size_t bytes);
+  void take_upload_as_it_arrives();
   void read_body();
   void on_body(boost::beast::error_code ec, std::size_t bytes);
   void read_failed(boost::beast::error_code ec);
@@ -101,12 +104,21 @@ class Session : public std::enable_shared_from_this<Session> {
   boost::asio::steady_timer job_timer_;
   boost::beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
+  // A large raw upload to a model route is read through this parser instead (upload.hpp).
+  std::optional<http::request_parser<UploadBody>> upload_parser_;
+  std::shared_ptr<StreamedUpload> upload_;
   Request request_;
   std::shared_ptr<RequestState> state_;
   std::shared_ptr<Response> response_;
   std::unique_ptr<StreamHead> stream_head_;
-  std::unique_ptr<http::response_serializer<http::empty_body>> stream_serializer_;
+  // What one gathered write of a stream holds: the head's bytes (until written), a chunk, the
+  // last chunk with the trailer.
+  std::string head_bytes_;
+  std::string chunk_size_;
   std::string out_chunk_;
+  std::string last_chunk_;
+  http::fields out_trailer_;
+  std::vector<boost::asio::const_buffer> out_buffers_;
   std::string remote_;
   std::uint64_t id_ = 0;
   Phase phase_ = Phase::Idle;
@@ -116,14 +128,17 @@ class Session : public std::enable_shared_from_this<Session> {
   bool is_head_ = false;
   bool writing_ = false;
   bool head_written_ = false;
+  bool streaming_ = false;  // stream_begin ran for the request in progress
+  bool forced_ = false;     // the shutdown deadline passed while it streamed
   bool watch_pending_ = false;
   bool job_running_ = false;
   bool awaiting_job_ = false;  // answered; the next read waits for the job to return
   bool logged_ = true;
   // For the access log and metrics of the request in progress.
   std::chrono::steady_clock::time_point started_{};
+  std::chrono::steady_clock::time_point received_{};  // the request's last byte
   std::string request_id_;
-  std::string route_name_;
+  std::string_view route_name_;  // the route table's (static) name, or "unmatched"
   std::string method_;
   std::string path_;
   std::string profile_;

@@ -1,6 +1,7 @@
 // libFuzzer target for the ISO 10303-21 reader: any input must give a model and diagnostics,
-// never a crash, a hang or a sanitizer report. After a clean read, writing the model and
-// reading it again must succeed with an equal model (the writer's contract).
+// never a crash, a hang or a sanitizer report. Read in pieces by p21::StreamReader it must give
+// the same diagnostics and model. After a clean read, writing the model and reading it again
+// must succeed with an equal model (the writer's contract).
 
 #include <cstddef>
 #include <cstdint>
@@ -8,11 +9,46 @@
 
 #include "ncpost/p21/compare.hpp"
 #include "ncpost/p21/reader.hpp"
+#include "ncpost/p21/stream_reader.hpp"
 #include "ncpost/p21/writer.hpp"
+
+namespace {
+
+// Pieces of pseudo-random sizes (1..64 bytes) that depend on the input only.
+ncpost::p21::ReadResult read_in_pieces(std::string_view text) {
+  ncpost::p21::StreamReader reader(text.size());
+  std::uint32_t state = static_cast<std::uint32_t>(text.size()) * 2654435761u + 1;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    state = state * 1664525u + 1013904223u;
+    const std::size_t take = std::min<std::size_t>(1 + (state >> 26), text.size() - at);
+    (void)reader.append(text.substr(at, take));
+    at += take;
+    reader.read_more(reader.appended());
+  }
+  return reader.finish();
+}
+
+bool same_diagnostics(const ncpost::p21::ReadResult& a, const ncpost::p21::ReadResult& b) {
+  if (a.diagnostics.size() != b.diagnostics.size()) return false;
+  for (std::size_t i = 0; i < a.diagnostics.size(); ++i) {
+    const auto& x = a.diagnostics[i];
+    const auto& y = b.diagnostics[i];
+    if (x.code != y.code || x.line != y.line || x.column != y.column || x.message != y.message)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
+  const auto streamed = read_in_pieces(text);
   const auto first = ncpost::p21::read(std::move(text));
+  if (!same_diagnostics(first, streamed) ||
+      ncpost::p21::first_difference(first.model, streamed.model))
+    __builtin_trap();
   // Decode every string: decoding must cope with whatever the reader let through.
   std::size_t total = 0;
   for (ncpost::p21::Value v : first.model.all_values())

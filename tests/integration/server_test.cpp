@@ -15,113 +15,13 @@
 #include <thread>
 
 #include "corpus.hpp"
+#include "server_helpers.hpp"
 #include "server_process.hpp"
 
 namespace ncpost::test {
 namespace {
 
 using namespace std::chrono_literals;
-using Clock = std::chrono::steady_clock;
-
-std::filesystem::path src(std::string_view relative) {
-  return source_dir() / relative;
-}
-
-// Runs a command and returns its stdout (the CLI side of byte-identity checks).
-std::string run_stdout(const std::string& command, int* status = nullptr) {
-  FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r");
-  std::string out;
-  if (pipe == nullptr) return out;
-  char buffer[65536];
-  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  const int s = ::pclose(pipe);
-  if (status != nullptr) *status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-  return out;
-}
-
-std::string ncpost(const std::string& args, int* status = nullptr) {
-  return run_stdout(ncpost_path().string() + " " + args, status);
-}
-
-ServerOptions with_args(std::vector<std::string> args) {
-  ServerOptions options;
-  options.args = std::move(args);
-  return options;
-}
-
-void expect_serving(const ServerProcess& server) {
-  const auto r = curl({server.url("/healthz")});
-  EXPECT_EQ(r.status, 200) << "the server stopped serving after a failure path\n" << server.log();
-}
-
-// A large program: NIST's ex1E replicated to `megabytes` (bench/make_large_stepnc), made once
-// per test run. Empty when the corpus or the generator is missing.
-std::filesystem::path large_program(int megabytes) {
-  static std::map<int, std::filesystem::path> made;
-  static TempDir dir;
-  if (auto it = made.find(megabytes); it != made.end()) return it->second;
-  const auto corpus = corpus_dir();
-  const auto generator = ncpostd_path().parent_path() / "make_large_stepnc";
-  if (!corpus || !std::filesystem::exists(generator)) return {};
-  const auto out = dir.path() / ("large-" + std::to_string(megabytes) + ".stp");
-  const std::string command = generator.string() + " " +
-                              (*corpus / "p21" / "nist_toolkit_ex1E.stp").string() + " " +
-                              std::to_string(megabytes) + " " + out.string() + " >/dev/null 2>&1";
-  if (std::system(command.c_str()) != 0) return {};
-  made[megabytes] = out;
-  return out;
-}
-
-#define REQUIRE_LARGE_PROGRAM(var, mb)                                                      \
-  const auto var = large_program(mb);                                                       \
-  if (var.empty()) {                                                                        \
-    if (corpus_required()) FAIL() << "the corpus or make_large_stepnc is missing";          \
-    GTEST_SKIP() << "needs the corpus (nist_toolkit_ex1E.stp) and bench/make_large_stepnc " \
-                    "(built with the tests)";                                               \
-  }
-
-// What a raw client read of a chunked response: head, decoded body, whether the terminal chunk
-// came.
-struct RawResponse {
-  std::string head;
-  std::string body;
-  bool complete = false;
-  bool closed = false;
-};
-
-// Decodes as much of a chunked response as `raw` holds.
-RawResponse decode_chunked(const std::string& raw) {
-  RawResponse r;
-  const auto head_end = raw.find("\r\n\r\n");
-  if (head_end == std::string::npos) return r;
-  r.head = raw.substr(0, head_end);
-  std::size_t pos = head_end + 4;
-  for (;;) {
-    const auto eol = raw.find("\r\n", pos);
-    if (eol == std::string::npos) return r;
-    const std::size_t size = std::stoul(raw.substr(pos, eol - pos), nullptr, 16);
-    if (size == 0) {
-      r.complete = true;
-      return r;
-    }
-    if (raw.size() < eol + 2 + size + 2) {
-      r.body += raw.substr(eol + 2, raw.size() - eol - 2);  // partial chunk
-      return r;
-    }
-    r.body += raw.substr(eol + 2, size);
-    pos = eol + 2 + size + 2;
-  }
-}
-
-std::string post_head(std::string_view target, std::size_t length) {
-  return "POST " + std::string(target) +
-         " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: " + std::to_string(length) + "\r\n\r\n";
-}
-
-const std::string kCurves = "tests/golden/trace/cases/curves.stp";
-// The replicated ex1E keeps P21 ids as tool numbers; linuxcnc's tool range takes them (fanuc-0i
-// stops at T9999 with RENDER-001), so the whole program is posted.
-constexpr std::string_view kLargeTarget = "/v1/posts?profile=linuxcnc";
 
 // ---- every route ---------------------------------------------------------------------------
 
@@ -176,6 +76,27 @@ TEST(ServerRoutes, UnknownRouteAndMethod) {
   EXPECT_EQ(method.status, 405);
   EXPECT_EQ(method.header("Allow"), "GET");
   expect_serving(server);
+}
+
+TEST(ServerRoutes, BytesThatAreNotUtf8AreAnsweredNotFatal) {
+  // Once a path with a byte like 0xFF ended the process: the JSON library threw while the
+  // 404 and the access log line were written.
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  {
+    RawConnection c(server.port());
+    ASSERT_TRUE(c.send("GET /\xff\xfe HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"));
+    const std::string answer = c.receive_until("\r\n\r\n", 10s);
+    EXPECT_NE(answer.find("HTTP/1.1 404"), std::string::npos) << answer;
+  }
+  // The same bytes, percent-encoded, in a profile id and an upload name.
+  const auto unknown = curl({server.url("/v1/profiles/%FF%FE")});
+  EXPECT_EQ(unknown.status, 404) << unknown.body;
+  const auto named = curl({"--data-binary", "@" + src(kCurves).string(),
+                           server.url("/v1/traces?name=%FFx.stp&format=bogus")});
+  EXPECT_EQ(named.status, 400) << named.body;
+  expect_serving(server);
+  EXPECT_NE(server.log().find("\"path\":\"/\\ufffd\\ufffd\""), std::string::npos) << server.log();
 }
 
 TEST(ServerRoutes, Profiles) {
@@ -550,6 +471,31 @@ TEST(ServerStreaming, SigtermDuringAStreamDrainsAndExitsZero) {
     EXPECT_TRUE(std::regex_search(r.body, std::regex("\\(ERROR: [^\n]*\\)\n$")));
   }
   const auto status = server.wait(40s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 0) << server.log();
+}
+
+TEST(ServerStreaming, ShutdownDeadlineEndsAStreamWithTheMarker) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server(with_args({"--shutdown-timeout", "0.3"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string body = read_file(large);
+  RawConnection c(server.port());
+  ASSERT_TRUE(c.send(post_head(kLargeTarget, body.size()) + body));
+  std::string raw = c.receive_until("\r\n\r\n", 60s);
+  ASSERT_NE(raw.find("HTTP/1.1 200"), std::string::npos) << raw.substr(0, 300);
+  server.signal(SIGTERM);
+  RawResponse r = decode_chunked(raw);
+  while (!r.complete && !c.closed()) {
+    raw += c.receive(30s, 1 << 20);
+    r = decode_chunked(raw);
+  }
+  // The deadline passed mid-stream: the job was cancelled, its text ends with the marker, and
+  // the transfer is cut (no last chunk).
+  EXPECT_FALSE(r.complete);
+  EXPECT_TRUE(std::regex_search(r.body, std::regex("\\(ERROR: [^\n]*\\)\n$")))
+      << r.body.substr(r.body.size() > 300 ? r.body.size() - 300 : 0);
+  const auto status = server.wait(30s);
   ASSERT_TRUE(status.has_value());
   EXPECT_EQ(*status, 0) << server.log();
 }

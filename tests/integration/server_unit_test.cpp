@@ -1,10 +1,13 @@
 // The pure parts of ncpostd, without a process: the multipart parser, the router, query
-// parameters, the block → workingstep map, the command line and problem details.
+// parameters, the block → workingstep map, the command line, problem details, the access log
+// line, the ETag hash and the diagnostics trailer.
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include "access_log.hpp"
+#include "body_hash.hpp"
 #include "config.hpp"
 #include "handlers.hpp"
 #include "multipart.hpp"
@@ -158,6 +161,99 @@ TEST(Problem, Rfc9457ShapeWithDiagnostics) {
   EXPECT_EQ(j["diagnostics"][0]["column"], 1);
   EXPECT_EQ(j["diagnostics"][0]["severity"], "error");
   EXPECT_EQ(j["diagnostics"][0]["file"], "up.stp");
+}
+
+TEST(Problem, ClientTextThatIsNotUtf8IsReplacedNotThrown) {
+  // A path or file name may hold any bytes; the JSON library would throw on them.
+  const std::vector<xslt::FileDiagnostic> diagnostics = {
+      {"bad\xff.stp", diag::make(diag::Code::P21DanglingReference, 1, 1, "x")}};
+  const Response r = problem(404, "HTTP-009", "Not found", "no route for /\xfe\xff", diagnostics);
+  const auto j = nlohmann::json::parse(r.body());
+  EXPECT_EQ(j["detail"], "no route for /\xef\xbf\xbd\xef\xbf\xbd");
+  EXPECT_EQ(j["diagnostics"][0]["file"], "bad\xef\xbf\xbd.stp");
+}
+
+TEST(AccessLog, OneValidJsonObjectWhateverTheClientSent) {
+  AccessRecord r;
+  r.request_id = "abc-1";
+  r.remote = "127.0.0.1:5000";
+  r.method = "POST";
+  r.path = "/v1/\"q\\\n\x01\x7f/\xc3\xa9/\xe2\x82\xac/\xf0\x9f\x98\x80/\xff\xc0\xaf\xed\xa0\x80";
+  r.route = "POST /v1/posts";
+  r.profile = "fanuc-0i";
+  r.status = 200;
+  r.bytes_in = 12;
+  r.bytes_out = 3456;
+  r.duration_ms = 1.23456;
+  r.complete = true;
+  const std::string line = access_line(r);
+  EXPECT_EQ(line.find('\n'), std::string::npos);
+  const auto j = nlohmann::json::parse(line);
+  EXPECT_EQ(line.rfind("{\"event\":\"access\",\"request_id\":\"abc-1\"", 0), 0u) << line;
+  // Quotes, backslashes and control characters escaped; valid UTF-8 kept (é € 😀); each byte
+  // of an invalid sequence (a stray 0xFF, an overlong '/', a surrogate) one U+FFFD.
+  EXPECT_EQ(j["path"],
+            "/v1/\"q\\\n\x01\x7f/\xc3\xa9/\xe2\x82\xac/\xf0\x9f\x98\x80/"
+            "\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd");
+  EXPECT_EQ(j["status"], 200);
+  EXPECT_EQ(j["bytes_out"], 3456);
+  EXPECT_DOUBLE_EQ(j["duration_ms"].get<double>(), 1.235);
+  EXPECT_EQ(j["profile"], "fanuc-0i");
+  EXPECT_EQ(j["complete"], true);
+  r.profile = {};
+  r.complete = false;
+  const auto k = nlohmann::json::parse(access_line(r));
+  EXPECT_FALSE(k.contains("profile"));
+  EXPECT_EQ(k["complete"], false);
+}
+
+TEST(BodyHash, PublishedXxh64VectorsWholeAndInPieces) {
+  // XXH64, seed 0: the published values (also what Debian's libxxhash computes).
+  const std::vector<std::pair<std::string, std::uint64_t>> vectors = {
+      {"", 0xef46db3751d8e999ULL},
+      {"a", 0xd24ec4f1a98c6e5bULL},
+      {"ABC", 0xe66ae7354fcfee98ULL},
+      {"xxhash", 0x32dd38952c4bc720ULL},
+      {"abcdefghijklmnopqrstuvwxyz12345", 0x467605901b01d6f6ULL},
+      {"abcdefghijklmnopqrstuvwxyz123456", 0x0022ee3b5a18531bULL},
+      {"Nobody inspects the spammish repetition", 0xfbcea83c8a378bf1ULL},
+  };
+  for (const auto& [text, expected] : vectors) {
+    EXPECT_EQ(body_hash(text), expected) << text;
+    for (std::size_t piece = 1; piece <= 33; piece += 4) {
+      BodyHash h;
+      for (std::size_t at = 0; at < text.size(); at += piece)
+        h.update(std::string_view(text).substr(at, piece));
+      EXPECT_EQ(h.digest(), expected) << text << " in pieces of " << piece;
+    }
+  }
+  std::string long_text;
+  for (int i = 0; i < 4; ++i)
+    for (int b = 0; b < 256; ++b) long_text += static_cast<char>(b);
+  long_text += "tail!";
+  EXPECT_EQ(body_hash(long_text), 0x92fd9dccca84e2ebULL);
+}
+
+TEST(DiagnosticsTrailer, CountsAllAndListsWhatFitsAsAsciiJson) {
+  std::vector<xslt::FileDiagnostic> diagnostics;
+  EXPECT_EQ(diagnostics_trailer(diagnostics)["Ncpost-Warnings"], "0");
+  EXPECT_EQ(diagnostics_trailer(diagnostics)["Ncpost-Diagnostics"], "[]");
+  for (int i = 0; i < 200; ++i)
+    diagnostics.push_back(
+        {"f\xc3\xa9.stp", diag::make(diag::Code::ExpUnknownEntity, i + 1, 1,
+                                     "entity \xe2\x82\xac is not in the schema")});
+  const http::fields trailer = diagnostics_trailer(diagnostics);
+  EXPECT_EQ(trailer["Ncpost-Warnings"], "200");
+  const std::string listed(trailer["Ncpost-Diagnostics"]);
+  EXPECT_LE(listed.size(), kMaxDiagnosticsTrailer);
+  for (const char c : listed) ASSERT_TRUE(c >= 0x20 && c < 0x7f) << "not a plain field value";
+  const auto j = nlohmann::json::parse(listed);
+  ASSERT_GT(j.size(), 10u);
+  EXPECT_LT(j.size(), 200u);
+  EXPECT_EQ(j[0]["file"], "f\xc3\xa9.stp");
+  EXPECT_EQ(j[0]["code"], "EXP-060");
+  EXPECT_EQ(j[0]["severity"], "warning");
+  EXPECT_EQ(j[1]["line"], 2);
 }
 
 }  // namespace

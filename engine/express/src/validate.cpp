@@ -104,8 +104,15 @@ class Validator {
   }
 
   std::vector<diag::Diagnostic> run() {
+    constexpr std::size_t kCancelPollInstances = 4096;
+    std::size_t until_poll = kCancelPollInstances;
     for (const Instance& instance : model_.instances()) {
       if (muted()) break;
+      if (--until_poll == 0) {
+        until_poll = kCancelPollInstances;
+        if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed))
+          return std::move(diagnostics_);
+      }
       if (instance.keyword == Model::kExternalKeyword) continue;
       if (model_.is_complex(instance))
         check_complex(instance);
@@ -131,6 +138,16 @@ class Validator {
   // ---- reporting ----------------------------------------------------------------------------
 
   [[nodiscard]] bool muted() const { return stopped_; }
+
+  // One Where per instance, its path's storage kept: a fresh vector per instance was a
+  // malloc/free pair for most of them.
+  Where& fresh_where() {
+    std::vector<std::uint32_t> path = std::move(where_.path);
+    path.clear();
+    where_ = Where{};
+    where_.path = std::move(path);
+    return where_;
+  }
 
   void add(diag::Code code, const Instance& at, std::string message) {
     if (stopped_) return;
@@ -571,28 +588,33 @@ class Validator {
     const auto count = static_cast<std::int64_t>(items.size());
     const auto lower = bound_value(spec.lower, w);
     const auto upper = bound_value(spec.upper, w);
-    const std::string kind(aggregate_keyword(spec.aggregate));
-    std::string written = to_express(spec);
-    // A bound computed from the instance: say what it came to.
-    const bool computed = (spec.lower && !spec.lower->value && !spec.lower->indeterminate()) ||
-                          (spec.upper && !spec.upper->value && !spec.upper->indeterminate());
-    if (computed)
-      written += " (here [" + (lower ? std::to_string(*lower) : std::string("?")) + ":" +
-                 (upper ? std::to_string(*upper) : std::string("?")) + "])";
+    // Messages are built only when reported: this runs for nearly every instance.
+    const auto written = [&] {
+      std::string text = to_express(spec);
+      // A bound computed from the instance: say what it came to.
+      const bool computed = (spec.lower && !spec.lower->value && !spec.lower->indeterminate()) ||
+                            (spec.upper && !spec.upper->value && !spec.upper->indeterminate());
+      if (computed)
+        text += " (here [" + (lower ? std::to_string(*lower) : std::string("?")) + ":" +
+                (upper ? std::to_string(*upper) : std::string("?")) + "])";
+      return text;
+    };
     const auto elements = [](std::int64_t n) {
       return std::to_string(n) + (n == 1 ? " element" : " elements");
     };
     if (spec.aggregate == AggregateKind::Array) {
       if (lower && upper && count != *upper - *lower + 1)
         report(diag::Code::ExpAggregateSize, w,
-               written + " holds exactly " + elements(*upper - *lower + 1) + ", found " +
+               written() + " holds exactly " + elements(*upper - *lower + 1) + ", found " +
                    std::to_string(count));
     } else if (lower && count < *lower) {
-      report(diag::Code::ExpAggregateSize, w,
-             written + " needs at least " + elements(*lower) + ", found " + std::to_string(count));
+      report(
+          diag::Code::ExpAggregateSize, w,
+          written() + " needs at least " + elements(*lower) + ", found " + std::to_string(count));
     } else if (upper && count > *upper) {
-      report(diag::Code::ExpAggregateSize, w,
-             written + " allows at most " + elements(*upper) + ", found " + std::to_string(count));
+      report(
+          diag::Code::ExpAggregateSize, w,
+          written() + " allows at most " + elements(*upper) + ", found " + std::to_string(count));
     }
     const TypeSpec& element = *spec.element;
     std::uint32_t number = 0;
@@ -602,7 +624,8 @@ class Validator {
       if (item.kind() == ValueKind::Omitted) {
         if (!spec.optional_elements)
           report(diag::Code::ExpRequiredOmitted, w,
-                 "'$' but the elements of " + kind + " are not OPTIONAL");
+                 "'$' but the elements of " + std::string(aggregate_keyword(spec.aggregate)) +
+                     " are not OPTIONAL");
       } else {
         check_value(w, element, r.schema, nullptr, item, depth + 1);
       }
@@ -686,7 +709,7 @@ class Validator {
               " " + std::to_string(e.attributes.size()) + " (" + attribute_list(names) + ")");
       return;
     }
-    Where w;
+    Where& w = fresh_where();
     w.instance = &instance;
     w.entity = written;
     w.declared_entity = e.name;
@@ -734,7 +757,7 @@ class Validator {
                 std::to_string(own.size()) + " (" + attribute_list(names) + ")");
         continue;
       }
-      Where w;
+      Where& w = fresh_where();
       w.instance = &instance;
       w.entity = written;
       w.declared_entity = e.name;
@@ -788,6 +811,7 @@ class Validator {
   std::unordered_map<const TypeDecl*, std::vector<std::string>> enumerations_;
   std::unordered_map<std::pair<const TypeDecl*, const Entity*>, bool, PairHash> select_fits_;
   std::optional<p21::LineIndex> lines_;  // built at the first diagnostic
+  Where where_;
   std::vector<diag::Diagnostic> diagnostics_;
   bool stopped_ = false;
 };

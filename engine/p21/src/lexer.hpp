@@ -64,6 +64,8 @@ static_assert(sizeof(Token) == 16);
 
 class Lexer {
  public:
+  // `text` is what may be lexed now: the whole file, or (p21::StreamReader) the part of it that
+  // has arrived, cut after a ';' outside any literal or comment. Its end gives Tok::Eof.
   Lexer(std::string_view text, diag::DiagnosticList& diagnostics);
 
   [[nodiscard]] Token next();
@@ -74,6 +76,15 @@ class Lexer {
   // content is not made of tokens). Returns false at end of input.
   bool skip_raw_past(std::string_view terminator);
   [[nodiscard]] bool at_end() const { return p_ >= end_; }
+  // More of the same text has arrived: it now ends `length` bytes after its start. The text's
+  // address may have changed (it was moved to its owner), its bytes have not.
+  void extend(const char* text, std::size_t length) {
+    p_ = text + (p_ - begin_);
+    begin_ = text;
+    end_ = text + length;
+  }
+  // Stops lexing here: every later token is Tok::Eof (a cancelled read unwinds this way).
+  void cut() { end_ = p_; }
   // Line and column of a byte offset; the line table is built on the first call.
   [[nodiscard]] LineIndex::Position position(std::uint32_t offset);
 

@@ -6,7 +6,9 @@
 #include <limits>
 #include <optional>
 
+#include "cut_finder.hpp"
 #include "lexer.hpp"
+#include "ncpost/p21/stream_reader.hpp"
 
 namespace ncpost::p21 {
 namespace {
@@ -77,18 +79,37 @@ enum class ListEnd : std::uint8_t { Closed, Broken };
 
 class Parser {
  public:
-  Parser(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const ReadOptions& options)
+  // `text` is the whole file's extent (slices are taken from it); only its first `available`
+  // bytes may be read until extend() says more arrived, and `final` says that they are all.
+  Parser(ModelBuilder& builder, std::string_view text, std::size_t available, bool final,
+         diag::DiagnosticList& diagnostics, const ReadOptions& options)
       : builder_(builder),
-        text_(builder.text()),
-        lexer_(text_, diagnostics),
+        text_(text),
+        lexer_(text.substr(0, available), diagnostics),
         diagnostics_(diagnostics),
-        options_(options) {
+        options_(options),
+        final_(final) {
     advance();
   }
 
-  void parse_file();
+  // Reads on. False: it stopped where the available text ends, at an instance or section
+  // boundary, and extend() lets it go on; true: the file has been read to its end.
+  bool run();
+  // The first `available` bytes of `text` (which may have moved) can be read; `final`: all.
+  void extend(std::string_view text, std::size_t available, bool final) {
+    text_ = text;
+    lexer_.extend(text.data(), available);
+    final_ = final;
+    // The end of the text that was available gave Tok::Eof; lex what follows it now.
+    if (current_.kind == Tok::Eof && !has_peeked_) current_ = lexer_.next();
+  }
+  // Whether run() stopped cleanly at the end of the available text, so extend() may follow.
+  [[nodiscard]] bool suspended() const { return suspended_ && !has_peeked_; }
+  [[nodiscard]] bool cancelled() const { return cancelled_; }
 
  private:
+  enum class Stage : std::uint8_t { Magic, Sections, Header, Data, End, Done };
+
   // ---- tokens ----
   void advance() {
     previous_end_ = current_.offset + current_.length;
@@ -98,6 +119,18 @@ class Parser {
     } else {
       current_ = lexer_.next();
     }
+    poll_cancel();
+  }
+  // A look at the flag every few thousand tokens costs nothing measurable and stops even one
+  // enormous instance within microseconds.
+  void poll_cancel() {
+    if (options_.cancel == nullptr || --until_cancel_poll_ != 0) return;
+    until_cancel_poll_ = kCancelPollTokens;
+    if (!options_.cancel->load(std::memory_order_relaxed)) return;
+    cancelled_ = true;
+    lexer_.cut();
+    has_peeked_ = false;
+    current_ = lexer_.next();
   }
   const Token& peek() {
     if (!has_peeked_) {
@@ -112,7 +145,13 @@ class Parser {
   [[nodiscard]] bool at_keyword(std::string_view word) const {
     return current_.kind == Tok::Keyword && slice(current_) == word;
   }
-  [[nodiscard]] bool stopped() const { return diagnostics_.full(); }
+  [[nodiscard]] bool stopped() const { return diagnostics_.full() || cancelled_; }
+  // At the end of the text that has arrived so far (not the file's end).
+  [[nodiscard]] bool at_window_end() const { return current_.kind == Tok::Eof && !final_; }
+  bool suspend() {
+    suspended_ = true;
+    return false;
+  }
 
   void error(Code code, const Token& at, std::string message) {
     error_at(code, at.start, std::move(message));
@@ -133,11 +172,16 @@ class Parser {
   void resynchronise();
 
   // ---- sections ----
-  void parse_header_section();
+  void begin_header_section();
+  // False: suspended at the end of the available text inside the section.
+  bool parse_header_entities();
   void parse_anchor_section();
   void parse_reference_section();
-  void parse_data_section();
+  void begin_data_section();
+  // False: suspended at the end of the available text inside the section.
+  bool parse_data_instances();
   void parse_instance();
+  void end_of_file();
   void check_header_order(std::uint32_t first_header);
 
   // Parses the parameters after a '(' up to its ')', into the arena. On success `first` and
@@ -179,6 +223,16 @@ class Parser {
   Token peeked_;
   bool has_peeked_ = false;
   std::uint32_t previous_end_ = 0;  // just past the previous token, for "missing ';'"
+
+  bool final_ = true;
+  Stage stage_ = Stage::Magic;
+  bool suspended_ = false;
+  bool seen_data_ = false;
+  DataSection section_;             // the DATA section being read
+  std::uint32_t first_header_ = 0;  // of the HEADER section being read
+  static constexpr std::uint32_t kCancelPollTokens = 4096;
+  std::uint32_t until_cancel_poll_ = kCancelPollTokens;
+  bool cancelled_ = false;
 
   struct Frame {
     std::uint32_t stack_base;  // where this list's items start on the scratch stack
@@ -387,66 +441,107 @@ ListEnd Parser::parse_parameters(std::uint32_t& first, std::uint32_t& count) {
   }
 }
 
-void Parser::parse_file() {
-  if (current_.kind != Tok::Magic) {
-    error(Code::P21MissingMagic, current_,
-          "the file must start with 'ISO-10303-21;', found " + describe(current_, text_));
-    // Go on if a HEADER follows anyway: more can be said about the file that way.
-    while (current_.kind != Tok::Eof && !at_keyword("HEADER") && !at_keyword("DATA")) advance();
-  } else {
-    advance();
-    expect_semicolon("'ISO-10303-21'");
-  }
-
-  bool seen_data = false;
-  while (!stopped()) {
-    if (current_.kind == Tok::Eof) {
-      error(Code::P21MissingEnd, current_, "the file ends without 'END-ISO-10303-21;'");
-      break;
-    }
-    if (current_.kind == Tok::EndMagic) {
-      advance();
-      expect_semicolon("'END-ISO-10303-21'");
-      // Ed.3 signatures follow the end; their base64 content is not tokens.
-      while (at_keyword("SIGNATURE")) {
-        error(Code::P21SectionSkipped, current_, "SIGNATURE section skipped; it is not verified");
-        lexer_.skip_raw_past("ENDSEC;");
-        has_peeked_ = false;
+bool Parser::run() {
+  suspended_ = false;
+  for (;;) {
+    switch (stage_) {
+      case Stage::Magic:
+        if (current_.kind != Tok::Magic) {
+          error(Code::P21MissingMagic, current_,
+                "the file must start with 'ISO-10303-21;', found " + describe(current_, text_));
+          // Go on if a HEADER follows anyway: more can be said about the file that way.
+          while (current_.kind != Tok::Eof && !at_keyword("HEADER") && !at_keyword("DATA"))
+            advance();
+        } else {
+          advance();
+          expect_semicolon("'ISO-10303-21'");
+        }
+        stage_ = Stage::Sections;
+        continue;
+      case Stage::Sections:
+        if (stopped()) {
+          stage_ = Stage::End;
+          continue;
+        }
+        if (at_window_end()) return suspend();
+        if (current_.kind == Tok::Eof) {
+          error(Code::P21MissingEnd, current_, "the file ends without 'END-ISO-10303-21;'");
+          stage_ = Stage::End;
+          continue;
+        }
+        if (current_.kind == Tok::EndMagic) {
+          // What follows the end (signatures, stray content) is read once all of it is there.
+          if (!final_) return suspend();
+          end_of_file();
+          stage_ = Stage::End;
+          continue;
+        }
+        if (current_.kind == Tok::Keyword) {
+          const std::string_view word = slice(current_);
+          if (word == "HEADER") {
+            begin_header_section();
+            stage_ = Stage::Header;
+            continue;
+          }
+          if (word == "ANCHOR") {
+            parse_anchor_section();
+            continue;
+          }
+          if (word == "REFERENCE") {
+            parse_reference_section();
+            continue;
+          }
+          if (word == "DATA") {
+            seen_data_ = true;
+            begin_data_section();
+            stage_ = Stage::Data;
+            continue;
+          }
+        }
+        unexpected(current_, "a section (HEADER, ANCHOR, REFERENCE, DATA) or 'END-ISO-10303-21;'");
         advance();
-      }
-      if (current_.kind != Tok::Eof)
-        error(Code::P21TrailingContent, current_, "content after 'END-ISO-10303-21;' is ignored");
-      break;
+        resynchronise();
+        continue;
+      case Stage::Header:
+        if (!parse_header_entities()) return suspend();
+        stage_ = Stage::Sections;
+        continue;
+      case Stage::Data:
+        if (!parse_data_instances()) return suspend();
+        section_.end_instance = builder_.instance_count();
+        builder_.add_section(section_);
+        stage_ = Stage::Sections;
+        continue;
+      case Stage::End:
+        if (cancelled_) {
+          stage_ = Stage::Done;
+          continue;
+        }
+        if (stopped())
+          error_at(Code::P21TooManyErrors, current_.start,
+                   "stopped after " + std::to_string(options_.max_errors) + " errors");
+        if (!seen_data_ && !stopped())
+          diagnostics_.add(Code::P21NoData, 1, 1, "the file has no DATA section");
+        stage_ = Stage::Done;
+        continue;
+      case Stage::Done:
+        return true;
     }
-    if (current_.kind == Tok::Keyword) {
-      const std::string_view word = slice(current_);
-      if (word == "HEADER") {
-        parse_header_section();
-        continue;
-      }
-      if (word == "ANCHOR") {
-        parse_anchor_section();
-        continue;
-      }
-      if (word == "REFERENCE") {
-        parse_reference_section();
-        continue;
-      }
-      if (word == "DATA") {
-        seen_data = true;
-        parse_data_section();
-        continue;
-      }
-    }
-    unexpected(current_, "a section (HEADER, ANCHOR, REFERENCE, DATA) or 'END-ISO-10303-21;'");
-    advance();
-    resynchronise();
   }
-  if (stopped())
-    error_at(Code::P21TooManyErrors, current_.start,
-             "stopped after " + std::to_string(options_.max_errors) + " errors");
-  if (!seen_data && !stopped())
-    diagnostics_.add(Code::P21NoData, 1, 1, "the file has no DATA section");
+}
+
+void Parser::end_of_file() {
+  advance();
+  expect_semicolon("'END-ISO-10303-21'");
+  // Ed.3 signatures follow the end; their base64 content is not tokens.
+  while (at_keyword("SIGNATURE")) {
+    error(Code::P21SectionSkipped, current_, "SIGNATURE section skipped; it is not verified");
+    lexer_.skip_raw_past("ENDSEC;");
+    has_peeked_ = false;
+    advance();
+  }
+  if (current_.kind != Tok::Eof)
+    error(Code::P21TrailingContent, current_, "content after 'END-ISO-10303-21;' is ignored");
 }
 
 void Parser::check_header_order(std::uint32_t first_header) {
@@ -465,16 +560,19 @@ void Parser::check_header_order(std::uint32_t first_header) {
   }
 }
 
-void Parser::parse_header_section() {
+void Parser::begin_header_section() {
   advance();  // HEADER
   expect_semicolon("'HEADER'");
-  const auto first_header = static_cast<std::uint32_t>(builder_.model().header().size());
+  first_header_ = static_cast<std::uint32_t>(builder_.model().header().size());
+}
+
+bool Parser::parse_header_entities() {
   while (!stopped()) {
     if (at_keyword("ENDSEC")) {
-      check_header_order(first_header);
+      check_header_order(first_header_);
       advance();
       expect_semicolon("'ENDSEC'");
-      return;
+      return true;
     }
     if (current_.kind == Tok::Keyword) {
       const Token keyword = current_;
@@ -498,14 +596,16 @@ void Parser::parse_header_section() {
       expect_semicolon(std::string(slice(keyword)));
       continue;
     }
+    if (at_window_end()) return false;
     if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic || at_keyword("DATA")) {
       error(Code::P21MissingEndsec, current_, "HEADER section is not closed by 'ENDSEC;'");
-      return;
+      return true;
     }
     unexpected(current_, "a header entity or 'ENDSEC;'");
     advance();
     resynchronise();
   }
+  return true;
 }
 
 void Parser::parse_anchor_section() {
@@ -610,17 +710,20 @@ void Parser::parse_reference_section() {
   }
 }
 
-void Parser::parse_data_section() {
-  DataSection section;
-  section.offset = current_.start;
+void Parser::begin_data_section() {
+  section_ = DataSection{};
+  section_.offset = current_.start;
   advance();  // DATA
   if (current_.kind == Tok::LParen) {
     advance();
-    if (parse_parameters(section.first_param, section.param_count) == ListEnd::Broken)
+    if (parse_parameters(section_.first_param, section_.param_count) == ListEnd::Broken)
       resynchronise();
   }
   expect_semicolon("'DATA'");
-  section.first_instance = builder_.instance_count();
+  section_.first_instance = builder_.instance_count();
+}
+
+bool Parser::parse_data_instances() {
   while (!stopped()) {
     if (current_.kind == Tok::InstanceName) {
       parse_instance();
@@ -631,6 +734,7 @@ void Parser::parse_data_section() {
       expect_semicolon("'ENDSEC'");
       break;
     }
+    if (at_window_end()) return false;
     if (current_.kind == Tok::Eof || current_.kind == Tok::EndMagic ||
         (current_.kind == Tok::Keyword && peek().kind == Tok::Semicolon)) {
       error(Code::P21MissingEndsec, current_, "DATA section is not closed by 'ENDSEC;'");
@@ -640,8 +744,7 @@ void Parser::parse_data_section() {
     advance();
     resynchronise();
   }
-  section.end_instance = builder_.instance_count();
-  builder_.add_section(section);
+  return true;
 }
 
 void Parser::parse_instance() {
@@ -725,8 +828,18 @@ void Parser::parse_instance() {
   expect_semicolon(what());
 }
 
-// After the scan: ids, duplicates and references.
-void resolve(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const ReadOptions& options) {
+ReadResult cancelled_result() {
+  ReadResult r;
+  r.cancelled = true;
+  return r;
+}
+
+[[nodiscard]] bool cancel_requested(const ReadOptions& options) {
+  return options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed);
+}
+
+// After the scan: ids, duplicates and references. False when cancelled.
+bool resolve(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const ReadOptions& options) {
   const auto duplicates = builder.build_indexes();
   const Model& model = builder.model();
   std::optional<LineIndex> lines;
@@ -743,7 +856,7 @@ void resolve(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const Rea
                     "#" + std::to_string(dup.id) + " is defined again (first at line " +
                         std::to_string(first_at.line) + "); this one is ignored");
   }
-  if (!options.check_references) return;
+  if (!options.check_references) return true;
 
   // Walk each instance's values with an explicit stack; depth is bounded by max_list_depth.
   struct Pending {
@@ -782,8 +895,14 @@ void resolve(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const Rea
       }
     }
   };
+  constexpr std::size_t kCancelPollInstances = 4096;
+  std::size_t until_poll = kCancelPollInstances;
   for (const auto& inst : model.instances()) {
     if (diagnostics.full()) break;
+    if (--until_poll == 0) {
+      until_poll = kCancelPollInstances;
+      if (cancel_requested(options)) return false;
+    }
     if (inst.keyword != Model::kExternalKeyword) check_instance(inst);
   }
   for (const auto& anchor : model.anchors()) {
@@ -795,13 +914,15 @@ void resolve(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const Rea
                           "> is not defined");
     }
   }
+  return true;
 }
 
 }  // namespace
 
 bool ReadResult::ok() const {
-  return std::none_of(diagnostics.begin(), diagnostics.end(),
-                      [](const auto& d) { return d.severity == diag::Severity::Error; });
+  return !cancelled && std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
+    return d.severity == diag::Severity::Error;
+  });
 }
 
 ReadResult read(std::string text, const ReadOptions& options) {
@@ -816,10 +937,118 @@ ReadResult read(std::string text, const ReadOptions& options) {
   // ("#1=A();"). Reserving them avoids any reallocation copy while reading.
   const std::size_t size = text.size();
   ModelBuilder builder(std::move(text), size / 2 + 16, size / 6 + 16);
-  Parser parser(builder, diagnostics, options);
-  parser.parse_file();
-  resolve(builder, diagnostics, options);
+  Parser parser(builder, builder.text(), size, true, diagnostics, options);
+  (void)parser.run();
+  if (parser.cancelled() || !resolve(builder, diagnostics, options)) return cancelled_result();
   return {std::move(builder).finish(), std::move(diagnostics).take()};
+}
+
+// ---- StreamReader -----------------------------------------------------------------------------
+
+struct StreamReader::Impl {
+  Impl(std::size_t size_, const ReadOptions& options_)
+      : options(options_),
+        size(size_),
+        diagnostics(options_.max_errors),
+        builder(std::make_unique<ModelBuilder>(std::string{}, size_ / 2 + 16, size_ / 6 + 16)) {
+    text.reserve(size);
+    base = text.data();  // stable: appends stay within the reserved capacity
+  }
+
+  void give_up() {
+    gave_up = true;
+    parser.reset();
+    builder.reset();
+  }
+
+  ReadOptions options;
+  std::size_t size;
+  std::string text;
+  const char* base;
+  diag::DiagnosticList diagnostics;
+  std::unique_ptr<ModelBuilder> builder;
+  std::unique_ptr<Parser> parser;
+  detail::CutFinder cuts;
+  std::size_t window = 0;  // bytes handed to the parser
+  bool gave_up = false;
+  bool finished = false;
+};
+
+StreamReader::StreamReader(std::size_t size, const ReadOptions& options)
+    : impl_(std::make_unique<Impl>(size, options)) {
+  // Too large for the reader's offsets: p21::read() reports it at the end.
+  if (size >= std::numeric_limits<std::uint32_t>::max()) impl_->give_up();
+}
+
+StreamReader::~StreamReader() = default;
+
+std::size_t StreamReader::size() const {
+  return impl_->size;
+}
+
+bool StreamReader::append(std::string_view bytes) {
+  Impl& m = *impl_;
+  if (bytes.size() > m.size - m.text.size()) return false;
+  m.text.append(bytes);
+  return true;
+}
+
+std::size_t StreamReader::appended() const {
+  return impl_->text.size();
+}
+
+std::string_view StreamReader::arrived(std::size_t available) const {
+  return {impl_->base, available};
+}
+
+std::size_t StreamReader::read_through() const {
+  return impl_->gave_up ? 0 : impl_->window;
+}
+
+bool StreamReader::gave_up() const {
+  return impl_->gave_up;
+}
+
+void StreamReader::read_more(std::size_t available) {
+  Impl& m = *impl_;
+  if (m.gave_up || m.finished) return;
+  m.cuts.scan(m.base, available);
+  if (m.cuts.cut() <= m.window) return;
+  m.window = m.cuts.cut();
+  const std::string_view whole(m.base, m.size);
+  if (!m.parser)
+    m.parser =
+        std::make_unique<Parser>(*m.builder, whole, m.window, false, m.diagnostics, m.options);
+  else
+    m.parser->extend(whole, m.window, false);
+  const bool done = m.parser->run();
+  // Reading the rest the ordinary way is what keeps the result independent of the pieces.
+  if (done || !m.parser->suspended() || !m.diagnostics.items().empty()) m.give_up();
+}
+
+ReadResult StreamReader::finish() {
+  Impl& m = *impl_;
+  m.finished = true;
+  if (cancel_requested(m.options)) return cancelled_result();
+  if (m.gave_up || !m.parser) {
+    m.parser.reset();
+    m.builder.reset();
+    return read(std::move(m.text), m.options);
+  }
+  m.builder->set_text(std::move(m.text));
+  const std::string_view whole = m.builder->text();
+  m.parser->extend(whole, whole.size(), true);
+  (void)m.parser->run();
+  if (m.parser->cancelled() || !resolve(*m.builder, m.diagnostics, m.options))
+    return cancelled_result();
+  m.parser.reset();
+  return {std::move(*m.builder).finish(), std::move(m.diagnostics).take()};
+}
+
+std::string StreamReader::take_text() {
+  impl_->finished = true;
+  impl_->give_up();
+  return std::move(impl_->text);
 }
 
 LineIndex::LineIndex(std::string_view text) {

@@ -289,6 +289,18 @@ TEST(express_validate, DiagnosticsAreBounded) {
             "checked");
 }
 
+TEST(express_validate, ACancelFlagStopsTheCheck) {
+  std::string data;
+  for (int i = 1; i <= 10000; ++i) data += "#" + std::to_string(i) + "=POINT($,(0.));\n";
+  ValidateOptions options;
+  options.max_diagnostics = 100000;
+  EXPECT_EQ(run(program(data), test_schema(), options).size(), 10000u);
+  std::atomic<bool> cancel{true};
+  options.cancel = &cancel;
+  // The flag is looked at every 4096 instances: the check stops at the first look.
+  EXPECT_LT(run(program(data), test_schema(), options).size(), 4096u);
+}
+
 TEST(express_validate, DeepValuesAreBoundedByTheReader) {
   // LIST [1:3] OF length_measure given lists nested to the reader's limit: one diagnostic, no
   // deep recursion.

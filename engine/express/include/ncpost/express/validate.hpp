@@ -30,6 +30,7 @@
 // Cost: one pass over the instances and their values; types, SELECT closures and enumeration
 // items are resolved once per declaration and cached for the pass.
 
+#include <atomic>
 #include <cstddef>
 #include <vector>
 
@@ -44,6 +45,10 @@ struct ValidateOptions {
   // problems there were. A large file that was written for another schema would otherwise give
   // a diagnostic per instance.
   std::size_t max_diagnostics = 1000;
+  // Set by another thread to stop the check (a job that was cancelled): looked at every few
+  // thousand instances. A cancelled check returns what it found so far, which is no verdict;
+  // the caller knows that it cancelled. Null: never cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 [[nodiscard]] std::vector<diag::Diagnostic> validate(const p21::Model& model,

@@ -173,6 +173,9 @@ class ModelBuilder {
   KeywordId intern(std::string_view name);
   // Appends text (for example P21-escaped strings from another format) and returns its offset.
   std::uint32_t append_text(std::string_view text);
+  // The text the values were read from, handed over by a reader that read it while it arrived
+  // (StreamReader): replaces the (empty) text the builder was made with.
+  void set_text(std::string text) { *model_.text_ = std::move(text); }
 
   std::uint32_t push_values(std::span<const Value> values);  // returns the index of the first
   void truncate_values(std::uint32_t count) { model_.values_.resize(count); }

@@ -7,6 +7,7 @@
 //      reading resumes at the next instance. References are resolved after the scan, and a
 //      dangling one is named ("#12 used by #7 attribute 3 is not defined").
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,11 +24,16 @@ struct ReadOptions {
   std::size_t max_errors = 1000;
   // Resolve references and report dangling ones (turn off only for partial or streamed files).
   bool check_references = true;
+  // Set by another thread to stop reading (a client that went away, a job out of time): looked
+  // at every few thousand tokens and instances. Null: never cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct ReadResult {
   Model model;
   std::vector<diag::Diagnostic> diagnostics;
+  // Stopped by ReadOptions::cancel: the model and diagnostics are empty, not a verdict.
+  bool cancelled = false;
 
   [[nodiscard]] bool ok() const;
 };

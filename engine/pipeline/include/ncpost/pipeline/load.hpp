@@ -2,6 +2,8 @@
 // The front of every job: detect → read (P21 or P28) → choose the schema → check the model
 // against it. The CLI verbs and the server share it, so they treat an upload the same way.
 
+#include <atomic>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -10,7 +12,19 @@
 #include "ncpost/p21/model.hpp"
 #include "ncpost/pipeline/detect.hpp"
 
+namespace ncpost::p21 {
+class StreamReader;
+}
+
 namespace ncpost::pipeline {
+
+struct LoadOptions {
+  // Check the model against its schema (skipped for a fallback schema, where every instance
+  // would be reported).
+  bool validate = true;
+  // Set by another thread to stop the job: passed to the P21 reader and the schema check.
+  const std::atomic<bool>* cancel = nullptr;
+};
 
 struct LoadedModel {
   InputFormat format = InputFormat::Unknown;
@@ -21,12 +35,20 @@ struct LoadedModel {
   // Reading, schema choice (EXP-050/052) and, unless the schema is a fallback, the check of the
   // model against it, in that order.
   std::vector<diag::Diagnostic> diagnostics;
+  // Stopped by LoadOptions::cancel: nothing else here means anything.
+  bool cancelled = false;
+  std::chrono::nanoseconds read_time{0};   // the text into a model (what was left of it)
+  std::chrono::nanoseconds check_time{0};  // schema choice and the check against it
   [[nodiscard]] bool ok() const;
 };
 
-// `validate`: check the model against its schema (skipped for a fallback schema, where every
-// instance would be reported).
+[[nodiscard]] LoadedModel load(std::string bytes, const express::SchemaRegistry& schemas,
+                               const LoadOptions& options);
 [[nodiscard]] LoadedModel load(std::string bytes, const express::SchemaRegistry& schemas,
                                bool validate = true);
+// The same, for an upload that `streamed` has been reading while it arrived (every byte of it
+// appended by now). Input that turns out not to be P21 is taken back and loaded as above.
+[[nodiscard]] LoadedModel load(p21::StreamReader& streamed, const express::SchemaRegistry& schemas,
+                               const LoadOptions& options);
 
 }  // namespace ncpost::pipeline
