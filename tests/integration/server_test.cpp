@@ -417,7 +417,12 @@ TEST(ServerStreaming, FirstChunkArrivesBeforeTheProgramIsProcessed) {
   EXPECT_TRUE(r.complete);
   const auto to_first = std::chrono::duration<double>(first - sent).count();
   const auto total = std::chrono::duration<double>(done - sent).count();
-  EXPECT_LT(to_first, total / 2) << "first byte after " << to_first << " s of " << total << " s";
+  // A server that kept the text until the job ended would send its first byte within the few
+  // milliseconds that writing 3 MB to loopback takes before the end. A streaming one sends it
+  // once the model is read and the first workingstep rendered; how much of the whole that is
+  // depends on how fast reading is against rendering (under AddressSanitizer on a loaded machine
+  // it came near one half), so the bound only asks for a fifth of the time left after it.
+  EXPECT_LT(to_first, total * 0.8) << "first byte after " << to_first << " s of " << total << " s";
   RecordProperty("first_byte_s", std::to_string(to_first));
   RecordProperty("total_s", std::to_string(total));
 }
