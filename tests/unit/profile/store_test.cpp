@@ -3,6 +3,7 @@
 // killed with SIGKILL at random moments leaves the old or the new version, never a broken one.
 
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -333,13 +334,22 @@ TEST_F(StoreTest, CrashAtAnyMomentLeavesOneCompleteVersion) {
   int changes = 0;
   std::string last = version_b;
   for (int kill = 0; kill < 50; ++kill) {
+    int ready[2];
+    ASSERT_EQ(::pipe(ready), 0);
     const pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
+      ::dup2(ready[1], STDOUT_FILENO);
       ::execl(NCPOST_STORE_WRITER, NCPOST_STORE_WRITER, dir_.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
-    std::this_thread::sleep_for(std::chrono::microseconds(delay_us(rng)));
+    ::close(ready[1]);
+    // The delays count from the writer's first write, not from its start.
+    pollfd wait_ready{ready[0], POLLIN, 0};
+    char byte = 0;
+    const bool started = ::poll(&wait_ready, 1, 30'000) == 1 && ::read(ready[0], &byte, 1) == 1;
+    ::close(ready[0]);
+    if (started) std::this_thread::sleep_for(std::chrono::microseconds(delay_us(rng)));
     ::kill(pid, SIGKILL);
     int status = 0;
     ::waitpid(pid, &status, 0);
@@ -358,6 +368,7 @@ TEST_F(StoreTest, CrashAtAnyMomentLeavesOneCompleteVersion) {
     if (loaded->version != last) ++changes;
     last = loaded->version;
   }
+  RecordProperty("version_changes", changes);
   // The kills must have hit a writer that was writing, or the test proves nothing.
   EXPECT_GT(changes, 5);
   // Leftovers never break the next write, and the next write removes them.
