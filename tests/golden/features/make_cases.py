@@ -429,8 +429,25 @@ def main():
     hx = p.add("PLUNGE_HELIX($,3.0,5.0)")
     ramp = p.add("PLUNGE_RAMP($,4.0)")
     cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    # General outlines: an L pocket left by a helix about where the (default) helix came down, a
+    # hexagon by a ramp along the approach's ramp line.
+    ell = polyline(p, [(0, 0), (60, 0), (60, 25), (25, 25), (25, 50), (0, 50)])
+    f3 = general_pocket(p, "L OUT", 0, 60, ell, 6, corner=6)
+    f4 = general_pocket(p, "HEX OUT", 100, 60, None, 5, corner=6, profile=ngon(p, 50, 6, False))
+    hx_any = p.add("PLUNGE_HELIX($,4.0,5.0)")
     p.write([("POCKET HELIX OUT", f1, bs(p, "ROUGH", "HELIX OUT", t, tech, cp, 3.0, None, 0.0, 0.0, hx, retract=hx)),
-             ("POCKET RAMP OUT", f2, bs(p, "ROUGH", "RAMP OUT", t, tech, cp, 5.0, None, 0.0, 0.0, ramp, retract=ramp))])
+             ("POCKET RAMP OUT", f2, bs(p, "ROUGH", "RAMP OUT", t, tech, cp, 5.0, None, 0.0, 0.0, ramp, retract=ramp)),
+             ("L HELIX OUT", f3, bs(p, "ROUGH", "L HELIX OUT", t, tech, cp, 3.0, None, 0.0, 0.0, retract=hx_any)),
+             ("HEX RAMP OUT", f4, bs(p, "ROUGH", "HEX RAMP OUT", t, tech, cp, 5.0, None, 0.0, 0.0, ramp, retract=ramp))])
+
+    p = program("retract-refused", "retracts from a general pocket that cannot be made: a ramp out after a helix in, a helix too wide")
+    t, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    f3 = general_pocket(p, "L OUT", 0, 60, polyline(p, [(0, 0), (60, 0), (60, 25), (25, 25), (25, 50), (0, 50)]), 6, corner=6)
+    ramp = p.add("PLUNGE_RAMP($,4.0)")
+    hx_wide = p.add("PLUNGE_HELIX($,30.0,5.0)")
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    p.write([("L RAMP OUT AFTER A HELIX", f3, bs(p, "ROUGH", "L RAMP OUT", t, tech, cp, 3.0, None, 0.0, 0.0, retract=ramp)),
+             ("L HELIX OUT TOO WIDE", f3, bs(p, "ROUGH", "L WIDE OUT", t, tech, cp, 3.0, None, 0.0, 0.0, retract=hx_wide))])
 
     # ---- wrong tools for the new shapes: STEPNC-102 naming the tool and the feature ----
     p = program("wrong-tools-shapes", "tools that cannot make vee, partial-circular, woodruff-ended slots, steps and threads")

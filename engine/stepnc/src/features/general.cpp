@@ -69,6 +69,10 @@ std::vector<Span2> fit_arcs(const std::vector<P>& pts, double tolerance) {
   std::vector<Span2> out;
   if (pts.size() < 2) return out;
   const std::size_t last = pts.size() - 1;
+  // What does not depend on the candidate circle is computed once: half of each chord.
+  std::vector<double> half(last);
+  for (std::size_t k = 0; k < last; ++k) half[k] = (pts[k + 1] - pts[k]).length() / 2;
+  const double full_turn = 2 * std::numbers::pi - 1e-3;
   std::size_t i = 0;
   while (i < last) {
     std::size_t best = i + 1;
@@ -80,19 +84,34 @@ std::vector<Span2> fit_arcs(const std::vector<P>& pts, double tolerance) {
       const std::size_t mid = (i + j) / 2;
       if (!circle_through(pts[i], pts[mid], pts[j], c, r) || r > kMaxArcRadius) break;
       const bool ccw = (pts[mid] - pts[i]).cross(pts[j] - pts[mid]) > 0;
+      // Each chord turns by less than a quarter about c, the way of the arc: the dot product
+      // positive and the cross product of that sign, which is what atan2 of the two says.
+      // atan(t) <= t bounds the sweep from above, so the exact sum of atan2s is needed only
+      // when the bound comes near a full turn.
       bool ok = true;
-      double sweep = 0;
+      double bound = 0;
+      P u = pts[i] - c;
+      double u_length = u.length();
       for (std::size_t k = i; k < j && ok; ++k) {
-        const P u = pts[k] - c;
         const P v = pts[k + 1] - c;
-        const double step = std::atan2(u.cross(v), u.dot(v));
-        const double half = (pts[k + 1] - pts[k]).length() / 2;
-        ok = std::abs(u.length() - r) <= tolerance && (step > 0) == ccw &&
-             std::abs(step) < std::numbers::pi / 2 &&
-             r - std::sqrt(std::max(0.0, r * r - half * half)) <= 2 * tolerance;
-        sweep += step;
+        const double cross = u.cross(v);
+        const double dot = u.dot(v);
+        ok = std::abs(u_length - r) <= tolerance && dot > 0 && (cross > 0) == ccw &&
+             r - std::sqrt(std::max(0.0, r * r - half[k] * half[k])) <= 2 * tolerance;
+        bound += std::abs(cross) / dot;
+        u = v;
+        u_length = v.length();
       }
-      if (!ok || std::abs(sweep) > 2 * std::numbers::pi - 1e-3) break;
+      if (!ok) break;
+      if (bound > full_turn) {
+        double sweep = 0;
+        for (std::size_t k = i; k < j; ++k) {
+          const P a = pts[k] - c;
+          const P b = pts[k + 1] - c;
+          sweep += std::atan2(a.cross(b), a.dot(b));
+        }
+        if (std::abs(sweep) > full_turn) break;
+      }
       best = j;
       best_centre = c;
       best_ccw = ccw;
@@ -594,9 +613,18 @@ std::optional<std::vector<Group>> Planner::lines(double step, P u, bool left, bo
 
 // ---- playing a plan ----------------------------------------------------------------------------
 
+// The margin by which every centre region is kept inside the exact one: the round joins' chords
+// (chord_tolerance), the arcs fitted back (three times that), Clipper's grid.
+double margin(const Context& ctx) {
+  return 5 * ctx.opt.chord_tolerance + 4 * poly::kResolution;
+}
+
 struct Play {
   Context& ctx;
   const Entry& entry;
+  // The operation's retract strategy (null: straight up) and what it asks for.
+  const Instance* retract_strategy;
+  const Entry& exit;
   const Areas& centres;
   std::vector<double> levels;
   double clear = 0;
@@ -609,17 +637,64 @@ Vec3 at(P p, double z) {
   return {p.x, p.y, z};
 }
 
-void emit_path(Context& ctx, const Path2& path, double z, double fit_tolerance) {
-  if (!path.fit) {
-    for (std::size_t k = 1; k < path.points.size(); ++k) ctx.feed(at(path.points[k], z));
-    return;
-  }
-  for (const Span2& s : fit_arcs(path.points, fit_tolerance)) {
+// A path as the spans it is played as: its points as feeds, or, for rings, with arcs fitted back.
+// Computed once per path, not per level: the fitting is most of what playing a ring costs.
+std::vector<Span2> spans_of(const Path2& path, double fit_tolerance) {
+  if (path.fit) return fit_arcs(path.points, fit_tolerance);
+  std::vector<Span2> spans;
+  spans.reserve(path.points.size());
+  for (std::size_t k = 1; k < path.points.size(); ++k) spans.push_back({path.points[k]});
+  return spans;
+}
+
+void emit_spans(Context& ctx, const std::vector<Span2>& spans, double z) {
+  for (const Span2& s : spans) {
     if (s.arc)
       ctx.arc(at(s.to, z), at(s.centre, z), s.ccw ? 1 : -1);
     else
       ctx.feed(at(s.to, z));
   }
+}
+
+// The operation's retract strategy from the floor at `z`: back across the machined floor to
+// where the last approach came down, and up the way it came (a helix about the same centre, a
+// ramp along the same line), as rectangular pockets do. `here` becomes where the tool ends.
+// False after reporting a retract that does not fit or cannot be made here.
+bool leave_pocket(const Play& p, const Site& site, const poly::Polygons& polygons, double z,
+                  P& here) {
+  Context& ctx = p.ctx;
+  const Instance& strategy = *p.retract_strategy;
+  const std::string what = ctx.d(strategy) + " as the retract from " + ctx.d(ctx.feature());
+  if (p.exit.kind == Entry::Kind::Ramp && site.kind != Entry::Kind::Ramp)
+    return ctx.not_implemented(what +
+                               " after an approach that is not a ramp (the ramp out "
+                               "follows the approach's ramp line)");
+  const P from = site.kind == Entry::Kind::Ramp ? site.ramp_from : site.centre;
+  if ((from - here).length() > kEps && !polygons.segment_inside(here, from, p.centres))
+    return ctx.not_implemented(what + ": no straight way across the floor from " + at_text(here) +
+                               " back to where the approach came down, " + at_text(from));
+  Entry exit = p.exit;
+  Vec3 ramp_dir{1, 0, 0};
+  double length = 0;
+  if (exit.kind == Entry::Kind::Ramp) {
+    const P d = site.ramp_to - site.ramp_from;
+    length = d.length();
+    if (length > 0) ramp_dir = {d.x / length, d.y / length, 0};
+    if (exit.width > 0) length = std::min(length, exit.width);
+    if (length < 1e-3) return ctx.unfit(strategy, what + ": no room for a ramp");
+  } else {
+    const double room = poly::distance_to_boundary(p.centres, from) - margin(ctx);
+    if (exit.radius > room + kEps || exit.radius < 1e-3)
+      return ctx.unfit(strategy, what + ": a helix of radius " + fmt(exit.radius) +
+                                     " does not fit at " + at_text(from) + " (room " +
+                                     fmt(std::max(0.0, room)) + ")");
+  }
+  if (entry_too_long(ctx, exit, length, p.clear - z)) return ctx.limit_reached();
+  ctx.feed(at(from, z));
+  leave(ctx, exit, at(from, z), {1, 0, 0}, ramp_dir, length, p.ccw, z, p.clear);
+  const Vec3 end = ctx.path.moves.back().to;
+  here = {end.x, end.y};
+  return true;
 }
 
 bool play(const Play& p, const std::vector<Group>& groups) {
@@ -631,6 +706,9 @@ bool play(const Play& p, const std::vector<Group>& groups) {
   if (static_cast<double>(count) * static_cast<double>(p.levels.size()) >
       static_cast<double>(ctx.opt.max_moves))
     return ctx.limit_reached();
+  std::vector<std::vector<std::vector<Span2>>> spans(groups.size());
+  for (std::size_t gi = 0; gi < groups.size(); ++gi)
+    for (const Path2& path : groups[gi].paths) spans[gi].push_back(spans_of(path, p.fit_tolerance));
   double from_z = p.clear;
   P here{};
   bool started = false;
@@ -667,26 +745,24 @@ bool play(const Play& p, const std::vector<Group>& groups) {
         if ((site.start - end).length() > kEps) ctx.feed(at(site.start, z));
       }
       here = site.start;
-      for (const Path2& path : groups[gi].paths) {
+      for (std::size_t pi = 0; pi < groups[gi].paths.size(); ++pi) {
+        const Path2& path = groups[gi].paths[pi];
         if ((path.points.front() - here).length() > kEps) ctx.feed(at(path.points.front(), z));
-        emit_path(ctx, path, z, p.fit_tolerance);
+        emit_spans(ctx, spans[gi][pi], z);
         here = path.points.back();
       }
       if (ctx.too_many()) return ctx.limit_reached();
     }
     from_z = z;
   }
+  if (p.retract_strategy != nullptr && p.exit.kind != Entry::Kind::Plunge &&
+      !leave_pocket(p, groups.back().site, polygons, from_z, here))
+    return false;
   ctx.rapid(at(here, std::max(p.retract, p.clear)));
   return true;
 }
 
 // ---- pockets ------------------------------------------------------------------------------------
-
-// The margin by which every centre region is kept inside the exact one: the round joins' chords
-// (chord_tolerance), the arcs fitted back (three times that), Clipper's grid.
-double margin(const Context& ctx) {
-  return 5 * ctx.opt.chord_tolerance + 4 * poly::kResolution;
-}
 
 bool corner_checks(Context& ctx, const Outline& outline, const Tool& tool, const OperationData& o,
                    double corner_radius, bool material_outside) {
@@ -792,9 +868,12 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
   if (!z_levels || !check_edge(ctx, tool, *z_levels)) return false;
   Entry entry;
   if (!read_entry(ctx, o, tool, entry)) return false;
-  if (o.retract != nullptr && !ctx.is(o.retract, "plunge_toolaxis"))
-    ctx.note(*o.retract, ctx.d(*o.retract) + ": the tool leaves " + ctx.d(f) +
-                             " along its axis, from inside the machined pocket");
+  // Retract: the operation's strategy, the approach run backwards; straight up when unset.
+  Entry exit;
+  exit.kind = Entry::Kind::Plunge;
+  exit.radius = entry.radius;
+  exit.angle = entry.angle;
+  if (o.retract != nullptr && !read_plunge(ctx, *o.retract, "retract from", exit)) return false;
 
   Planner planner(ctx, tool, o, entry, region.centres, region.source, region.sharp, region.rho,
                   region.base, margin(ctx));
@@ -808,6 +887,8 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
   if (groups->empty()) return ctx.bad(f, ctx.d(f) + ": nothing to machine");
   Play p{ctx,
          entry,
+         o.retract,
+         exit,
          region.centres,
          *z_levels,
          ctx.opt.clearance,
@@ -1154,7 +1235,8 @@ bool general_outside_profile(Context& ctx, const Instance& boundary) {
     if (ring[k].x > ring[right].x) right = k;
   const Nearest start{ring[right], right, 0};
   const P lead = ring[right] + P{tool->radius + ctx.opt.clearance, 0};
-  const Path2 path{ring_path(ring, start, ccw), true};
+  const std::vector<Span2> spans =
+      spans_of({ring_path(ring, start, ccw), true}, ctx.opt.chord_tolerance);
   const double clear = ctx.opt.clearance;
   const double retract = o.retract_plane.value_or(clear);
   ctx.rapid(at(lead, std::max(retract, clear)));
@@ -1162,7 +1244,7 @@ bool general_outside_profile(Context& ctx, const Instance& boundary) {
   for (const double z : *z_levels) {
     ctx.feed(at(lead, z));
     ctx.feed(at(ring[right], z));
-    emit_path(ctx, path, z, ctx.opt.chord_tolerance);
+    emit_spans(ctx, spans, z);
     ctx.feed(at(lead, z));
     if (ctx.too_many()) return ctx.limit_reached();
   }
