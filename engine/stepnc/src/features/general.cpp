@@ -230,6 +230,19 @@ class Planner {
           out.ramp_to = b;
         }
       }
+      // Round the innermost ring the edges are short: a line from the sampled point with most
+      // room, as long as that room, stays inside the region too and is often much longer (a
+      // ramp's legs are its length; short legs make hundreds of them).
+      const P along = best > 0 ? (out.ramp_to - out.ramp_from) * (1 / best) : P{1, 0};
+      const std::size_t every = std::max<std::size_t>(1, candidates.size() / kSiteSamples);
+      for (std::size_t k = 0; k < candidates.size(); k += every) {
+        const double r = poly::distance_to_boundary(centres_, candidates[k]) - margin_;
+        if (r > best) {
+          best = r;
+          out.ramp_from = candidates[k];
+          out.ramp_to = candidates[k] + along * r;
+        }
+      }
       double length = best;
       if (entry_.width > 0) length = std::min(length, entry_.width);
       if (!(length >= 1e-3))
