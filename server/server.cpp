@@ -106,7 +106,7 @@ int Server::run() {
 
 void Server::accept() {
   acceptor_.async_accept(
-      net::make_strand(ioc_), [this](boost::system::error_code ec, tcp::socket socket) {
+      net::make_strand(ioc_), [this](boost::system::error_code ec, Session::Socket socket) {
         if (ec == net::error::operation_aborted || !acceptor_.is_open()) return;
         if (ec) {
           // Out of descriptors, say: log, wait a little, go on accepting.

@@ -113,7 +113,7 @@ class SessionExchange final : public Exchange {
 
 }  // namespace
 
-Session::Session(net::ip::tcp::socket socket, Server& server)
+Session::Session(Socket socket, Server& server)
     : server_(server),
       strand_(socket.get_executor()),
       socket_(std::move(socket)),
@@ -175,7 +175,7 @@ void Session::wait_request() {
   // may sit idle for the idle limit.
   arm_timer(first_request_ ? server_.config().read_timeout : server_.config().idle_timeout);
   if (buffer_.size() > 0) return read_header();
-  socket_.async_wait(net::ip::tcp::socket::wait_read,
+  socket_.async_wait(Socket::wait_read,
                      net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec) {
                        if (self->phase_ != Phase::Idle) return;
                        if (ec) return self->close();
@@ -426,7 +426,7 @@ void Session::dispatch_job(const Route& route, std::string id) {
 void Session::watch_client() {
   if (watch_pending_ || phase_ == Phase::Closed) return;
   watch_pending_ = true;
-  socket_.async_wait(net::ip::tcp::socket::wait_read,
+  socket_.async_wait(Socket::wait_read,
                      net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec) {
                        self->watch_pending_ = false;
                        if (!self->job_running_ || self->phase_ == Phase::Closed) return;
@@ -711,7 +711,7 @@ void Session::finish_request(bool complete) {
 void Session::linger_close() {
   phase_ = Phase::Lingering;
   beast::error_code ec;
-  socket_.shutdown(net::ip::tcp::socket::shutdown_send, ec);
+  socket_.shutdown(Socket::shutdown_send, ec);
   arm_timer(std::chrono::duration_cast<std::chrono::milliseconds>(kLingerTime));
   auto drain = std::make_shared<std::function<void(std::size_t)>>();
   auto buffer = std::make_shared<std::array<char, 16384>>();
@@ -735,7 +735,7 @@ void Session::close() {
   if (!logged_ && bytes_in_ > 0) finish_request(false);
   phase_ = Phase::Closed;
   beast::error_code ec;
-  socket_.shutdown(net::ip::tcp::socket::shutdown_both, ec);
+  socket_.shutdown(Socket::shutdown_both, ec);
   socket_.close(ec);
   timer_.cancel();
   job_timer_.cancel();
