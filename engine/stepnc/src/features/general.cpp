@@ -881,12 +881,8 @@ bool machine_pocket(Context& ctx, const Tool& tool, const OperationData& o, Pock
   if (!z_levels || !check_edge(ctx, tool, *z_levels)) return false;
   Entry entry;
   if (!read_entry(ctx, o, tool, entry)) return false;
-  // Retract: the operation's strategy, the approach run backwards; straight up when unset.
   Entry exit;
-  exit.kind = Entry::Kind::Plunge;
-  exit.radius = entry.radius;
-  exit.angle = entry.angle;
-  if (o.retract != nullptr && !read_plunge(ctx, *o.retract, "retract from", exit)) return false;
+  if (!read_exit(ctx, o, entry, exit)) return false;
 
   Planner planner(ctx, tool, o, entry, region.centres, region.source, region.sharp, region.rho,
                   region.base, margin(ctx));

@@ -15,6 +15,10 @@ constexpr double kEps = 1e-9;
 // With no overlap in the strategy: half the diameter between neighbouring passes.
 constexpr double kDefaultOverlap = 0.5;
 
+double helix_rise_per_turn(const Entry& e) {
+  return 2 * std::numbers::pi * e.radius * std::tan(e.angle);
+}
+
 }  // namespace
 
 double radians(double degrees) {
@@ -248,7 +252,7 @@ void enter(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double 
       return;
     case Entry::Kind::Helix: {
       // Whole turns about p0, so the helix ends where it began; its descent is at most `angle`.
-      const double per_turn = 2 * std::numbers::pi * e.radius * std::tan(e.angle);
+      const double per_turn = helix_rise_per_turn(e);
       const int turns = std::max(1, static_cast<int>(std::ceil((from_z - to_z) / per_turn - 1e-9)));
       const Vec3 start = p0 + x * e.radius + Vec3{0, 0, to_z - p0.z};
       ctx.arc(start, {p0.x, p0.y, to_z}, ccw ? turns : -turns);
@@ -303,10 +307,17 @@ bool read_entry(Context& ctx, const OperationData& o, const Tool& tool, Entry& e
   return read_plunge(ctx, *o.approach, "approach into", entry);
 }
 
+bool read_exit(Context& ctx, const OperationData& o, const Entry& entry, Entry& exit) {
+  exit = Entry{};
+  exit.kind = Entry::Kind::Plunge;
+  exit.radius = entry.radius;
+  exit.angle = entry.angle;
+  return o.retract == nullptr || read_plunge(ctx, *o.retract, "retract from", exit);
+}
+
 bool entry_too_long(Context& ctx, const Entry& e, double ramp_length, double drop) {
   const auto limit = static_cast<double>(ctx.opt.max_moves);
-  if (e.kind == Entry::Kind::Helix)
-    return drop / (2 * std::numbers::pi * e.radius * std::tan(e.angle)) > limit;
+  if (e.kind == Entry::Kind::Helix) return drop / helix_rise_per_turn(e) > limit;
   if (e.kind == Entry::Kind::Ramp) return drop / (ramp_length * std::tan(e.angle)) > limit;
   return false;
 }
@@ -338,7 +349,7 @@ void leave(Context& ctx, const Entry& e, Vec3 p0, Vec3 x, Vec3 ramp_dir, double 
       return;
     case Entry::Kind::Helix: {
       // Out to the helix and whole turns up about p0 (the approach's helix, run backwards).
-      const double per_turn = 2 * std::numbers::pi * e.radius * std::tan(e.angle);
+      const double per_turn = helix_rise_per_turn(e);
       const int turns = std::max(1, static_cast<int>(std::ceil((to_z - from_z) / per_turn - 1e-9)));
       const Vec3 start{p0.x + x.x * e.radius, p0.y + x.y * e.radius, from_z};
       ctx.feed(start);
@@ -624,12 +635,8 @@ bool clear_region(Context& ctx, const Region& region) {
   Entry entry;
   if (!read_entry(ctx, o, *tool, entry)) return false;
   const bool explicit_entry = entry.explicit_entry;
-  // Retract: the operation's strategy, the approach run backwards; straight up when unset.
   Entry exit;
-  exit.kind = Entry::Kind::Plunge;
-  exit.radius = entry.radius;
-  exit.angle = entry.angle;
-  if (o.retract != nullptr && !read_plunge(ctx, *o.retract, "retract from", exit)) return false;
+  if (!read_exit(ctx, o, entry, exit)) return false;
   const Vec3 p0 = rings.start;
   Vec3 ramp_dir = rings.axis;
   double ramp_length = std::max(rings.line_length, room);

@@ -46,6 +46,9 @@ struct Entry {
 bool read_plunge(Context& ctx, const Instance& strategy, std::string_view role, Entry& e);
 // The operation's approach, else a helix of FeatureOptions' default size.
 bool read_entry(Context& ctx, const OperationData& o, const Tool& tool, Entry& entry);
+// The operation's retract: its strategy, taking the approach's radius and angle where it leaves
+// them unset (the approach run backwards); straight up when the operation names none.
+bool read_exit(Context& ctx, const OperationData& o, const Entry& entry, Entry& exit);
 
 // Down from `from_z` to `to_z` at p0. `x` is the profile's x axis: the helix starts at
 // p0 + radius · x, where the caller put the tool.
