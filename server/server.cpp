@@ -1,8 +1,8 @@
 #include "server.hpp"
 
 #include <boost/asio/bind_executor.hpp>
+#include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/post.hpp>
-#include <boost/asio/strand.hpp>
 #include <csignal>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -47,6 +47,8 @@ Server::Server(Config config, profile::ProfileStore& profiles,
   services_.openapi_file =
       c.openapi_file.value_or(std::filesystem::path(NCPOST_SOURCE_DIR) / "openapi/openapi.yaml");
   request_prefix_ = std::random_device{}();
+  for (unsigned i = 1; i < c.io_threads; ++i)
+    more_contexts_.push_back(std::make_unique<net::io_context>(1));
 
   const tcp::endpoint endpoint(net::ip::make_address(c.host), c.port);
   acceptor_.open(endpoint.protocol());
@@ -91,9 +93,16 @@ int Server::run() {
   watch_reload();
   accept();
 
+  // The other IO threads wait for connections until the listener's context is done (the drain
+  // ended); then each finishes what its own connections still do.
+  std::vector<net::executor_work_guard<net::io_context::executor_type>> keep_running;
   std::vector<std::thread> threads;
-  for (unsigned i = 1; i < config().io_threads; ++i) threads.emplace_back([this] { ioc_.run(); });
+  for (auto& context : more_contexts_) {
+    keep_running.push_back(net::make_work_guard(*context));
+    threads.emplace_back([&context = *context] { context.run(); });
+  }
   ioc_.run();
+  keep_running.clear();
   for (auto& t : threads) t.join();
   // Jobs that outlived the drain deadline were cancelled; wait for them to notice.
   pool_.join();
@@ -104,9 +113,14 @@ int Server::run() {
   return 0;
 }
 
+net::io_context& Server::next_context() {
+  const auto i = next_context_++ % (more_contexts_.size() + 1);
+  return i == 0 ? ioc_ : *more_contexts_[i - 1];
+}
+
 void Server::accept() {
   acceptor_.async_accept(
-      net::make_strand(ioc_), [this](boost::system::error_code ec, Session::Socket socket) {
+      next_context(), [this](boost::system::error_code ec, Session::Socket socket) {
         if (ec == net::error::operation_aborted || !acceptor_.is_open()) return;
         if (ec) {
           // Out of descriptors, say: log, wait a little, go on accepting.

@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "config.hpp"
 #include "handlers.hpp"
@@ -58,6 +59,7 @@ class Server {
 
  private:
   void accept();
+  [[nodiscard]] boost::asio::io_context& next_context();
   void on_signal(int signal);
   void begin_shutdown();
   void force_close_all();
@@ -74,7 +76,12 @@ class Server {
   bool shutdown_armed_ = false;  // guarded by sessions_mutex_
   // Before pool_: pool tasks hold stream-read slots until they end.
   std::atomic<unsigned> stream_reads_{0};
-  boost::asio::io_context ioc_;
+  // The listener, signals and timers, and the first IO thread's connections.
+  boost::asio::io_context ioc_{1};
+  // One more io_context per further IO thread: a connection lives on one of them (round robin)
+  // and so needs no strand.
+  std::vector<std::unique_ptr<boost::asio::io_context>> more_contexts_;
+  std::size_t next_context_ = 0;  // the acceptor's handler only
   boost::asio::thread_pool pool_;
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::signal_set stop_signals_;

@@ -28,6 +28,8 @@ constexpr auto kLingerTime = std::chrono::seconds(2);
 constexpr std::size_t kLingerBytes = std::size_t{8} << 20;
 // At the shutdown deadline, how long a cancelled stream has to write its error marker.
 constexpr auto kForcedStreamGrace = std::chrono::seconds(2);
+// What an idle connection's read asks for: a small post's header and body in one read.
+constexpr std::size_t kFirstRead = 16384;
 
 Response error_response(unsigned status, diag::Code code, std::string_view title,
                         std::string detail) {
@@ -43,7 +45,7 @@ bool valid_request_id(std::string_view id) {
   return true;
 }
 
-// The handler's view of its request, from a worker thread (or inline on the strand).
+// The handler's view of its request, from a worker thread (or inline on the IO thread).
 class SessionExchange final : public Exchange {
  public:
   SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<RequestState> state)
@@ -57,7 +59,7 @@ class SessionExchange final : public Exchange {
       state_->answered = true;
       state_->profile = profile;
     }
-    session_->post_response(state_, std::move(response));
+    session_->hand_over(state_, std::move(response));
   }
 
   bool begin_stream(StreamHead head) override {
@@ -70,7 +72,7 @@ class SessionExchange final : public Exchange {
       state_->profile = profile;
     }
     // Nothing is posted yet: the head goes out with the first write() or end_stream(), whose
-    // pump finds it (one hop to the strand instead of two).
+    // pump finds it (one hop to the IO thread instead of two).
     return true;
   }
 
@@ -115,10 +117,10 @@ class SessionExchange final : public Exchange {
 
 Session::Session(Socket socket, Server& server)
     : server_(server),
-      strand_(socket.get_executor()),
+      executor_(socket.get_executor()),
       socket_(std::move(socket)),
-      timer_(strand_),
-      job_timer_(strand_),
+      timer_(executor_),
+      job_timer_(executor_),
       id_(server.next_session_id()) {
   beast::error_code ec;
   const auto endpoint = socket_.remote_endpoint(ec);
@@ -133,18 +135,18 @@ Session::~Session() {
 
 void Session::start() {
   server_.add_session(id_, shared_from_this());
-  net::post(strand_, [self = shared_from_this()] { self->wait_request(); });
+  net::post(executor_, [self = shared_from_this()] { self->wait_request(); });
 }
 
 void Session::drain() {
-  net::post(strand_, [self = shared_from_this()] {
+  net::post(executor_, [self = shared_from_this()] {
     if (self->phase_ == Phase::Idle) self->close();
     // Otherwise keep_alive is false for the response in progress (server draining).
   });
 }
 
 void Session::force_close() {
-  net::post(strand_, [self = shared_from_this()] {
+  net::post(executor_, [self = shared_from_this()] {
     if (self->phase_ == Phase::Closed) return;
     // A stream under way is cancelled and given a moment to end with the profile's error
     // marker, so that the cut shows in the program text as well as in the transfer. A second
@@ -175,12 +177,16 @@ void Session::wait_request() {
   // may sit idle for the idle limit.
   arm_timer(first_request_ ? server_.config().read_timeout : server_.config().idle_timeout);
   if (buffer_.size() > 0) return read_header();
-  socket_.async_wait(Socket::wait_read,
-                     net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec) {
-                       if (self->phase_ != Phase::Idle) return;
-                       if (ec) return self->close();
-                       self->read_header();
-                     }));
+  // A read rather than a wait for readability: the socket tries it at once (the next request
+  // is often there already), and a wait would change the socket's epoll registration each time.
+  socket_.async_read_some(buffer_.prepare(kFirstRead),
+                          net::bind_executor(executor_, [self = shared_from_this()](
+                                                            beast::error_code ec, std::size_t n) {
+                            if (self->phase_ != Phase::Idle) return;
+                            if (ec) return self->close();
+                            self->buffer_.commit(n);
+                            self->read_header();
+                          }));
 }
 
 void Session::read_header() {
@@ -203,11 +209,29 @@ void Session::read_header() {
   parser_.emplace();
   parser_->header_limit(server_.config().max_header);
   parser_->body_limit(server_.config().max_body);
-  http::async_read_header(
-      socket_, buffer_, *parser_,
-      net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec, std::size_t n) {
-        self->on_header(ec, n);
-      }));
+  // A header already in the buffer is parsed here: Beast's read would only hand it over through
+  // one more queued completion.
+  beast::error_code ec;
+  const std::size_t used = parse_buffered(*parser_, ec, true);
+  if (ec || parser_->is_header_done()) return on_header(ec, used);
+  http::async_read_header(socket_, buffer_, *parser_,
+                          net::bind_executor(executor_, [self = shared_from_this(), used](
+                                                            beast::error_code e, std::size_t n) {
+                            self->on_header(e, used + n);
+                          }));
+}
+
+template <class Parser>
+std::size_t Session::parse_buffered(Parser& parser, beast::error_code& ec, bool header_only) {
+  std::size_t used = 0;
+  while (buffer_.size() > 0 && !parser.is_done() && !(header_only && parser.is_header_done())) {
+    const std::size_t n = parser.put(buffer_.data(), ec);
+    buffer_.consume(n);
+    used += n;
+    if (ec == http::error::need_more) ec = {};
+    if (ec || n == 0) break;
+  }
+  return used;
 }
 
 void Session::on_header(beast::error_code ec, std::size_t bytes) {
@@ -226,12 +250,12 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
   if (beast::iequals(header[http::field::expect], "100-continue")) {
     static constexpr std::string_view kContinue = "HTTP/1.1 100 Continue\r\n\r\n";
     net::async_write(socket_, net::buffer(kContinue.data(), kContinue.size()),
-                     net::bind_executor(
-                         strand_, [self = shared_from_this()](beast::error_code e, std::size_t n) {
-                           self->bytes_out_ += n;
-                           if (e) return self->close();
-                           self->read_body();
-                         }));
+                     net::bind_executor(executor_, [self = shared_from_this()](beast::error_code e,
+                                                                               std::size_t n) {
+                       self->bytes_out_ += n;
+                       if (e) return self->close();
+                       self->read_body();
+                     }));
     return;
   }
   read_body();
@@ -267,19 +291,29 @@ void Session::take_upload_as_it_arrives() {
 }
 
 void Session::read_body() {
-  const auto done = [self = shared_from_this()](beast::error_code ec, std::size_t n) {
-    self->on_body(ec, n);
-  };
-  if (upload_parser_)
-    http::async_read(socket_, buffer_, *upload_parser_, net::bind_executor(strand_, done));
-  else
-    http::async_read(socket_, buffer_, *parser_, net::bind_executor(strand_, done));
+  if (upload_parser_) {
+    return http::async_read(socket_, buffer_, *upload_parser_,
+                            net::bind_executor(executor_, [self = shared_from_this()](
+                                                              beast::error_code ec, std::size_t n) {
+                              self->on_body(ec, n);
+                            }));
+  }
+  // No body, or all of it in the buffer (a small post usually comes in one segment with its
+  // header): done here, without a queued completion.
+  beast::error_code ec;
+  const std::size_t used = parse_buffered(*parser_, ec, false);
+  if (ec || parser_->is_done()) return on_body(ec, used);
+  http::async_read(socket_, buffer_, *parser_,
+                   net::bind_executor(executor_, [self = shared_from_this(), used](
+                                                     beast::error_code e, std::size_t n) {
+                     self->on_body(e, used + n);
+                   }));
 }
 
 void Session::on_body(beast::error_code ec, std::size_t bytes) {
   bytes_in_ += bytes;
   if (ec) return read_failed(ec);
-  timer_.cancel();
+  disarm_timer();
   received_ = Clock::now();
   handle_request();
 }
@@ -355,7 +389,7 @@ void Session::handle_request() {
     } catch (const std::exception& e) {
       exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
     }
-    return;  // the response was posted to this strand
+    return;  // the handler's respond() started the write
   }
   if (!server_.try_admit()) {
     upload_.reset();
@@ -380,7 +414,7 @@ void Session::dispatch_job(const Route& route, std::string id) {
   metrics.queued++;
   job_timer_.expires_after(server_.config().job_timeout);
   job_timer_.async_wait(
-      net::bind_executor(strand_, [self = shared_from_this(), state](beast::error_code ec) {
+      net::bind_executor(executor_, [self = shared_from_this(), state](beast::error_code ec) {
         if (!ec) self->on_job_timeout(state);
       }));
   watch_client();
@@ -426,23 +460,24 @@ void Session::dispatch_job(const Route& route, std::string id) {
 void Session::watch_client() {
   if (watch_pending_ || phase_ == Phase::Closed) return;
   watch_pending_ = true;
-  socket_.async_wait(Socket::wait_read,
-                     net::bind_executor(strand_, [self = shared_from_this()](beast::error_code ec) {
-                       self->watch_pending_ = false;
-                       if (!self->job_running_ || self->phase_ == Phase::Closed) return;
-                       beast::error_code e;
-                       const std::size_t available = self->socket_.available(e);
-                       if (ec || e || available == 0) return self->client_gone(self->state_);
-                       // Pipelined bytes: keep them for the next request, bounded by the header
-                       // limit.
-                       if (self->buffer_.size() + available > self->server_.config().max_header)
-                         return;  // stop watching; the next read enforces the limits
-                       auto buffers = self->buffer_.prepare(available);
-                       const std::size_t n = self->socket_.read_some(buffers, e);
-                       self->buffer_.commit(n);
-                       if (e) return self->client_gone(self->state_);
-                       self->watch_client();
-                     }));
+  socket_.async_wait(
+      Socket::wait_read,
+      net::bind_executor(executor_, [self = shared_from_this()](beast::error_code ec) {
+        self->watch_pending_ = false;
+        if (!self->job_running_ || self->phase_ == Phase::Closed) return;
+        beast::error_code e;
+        const std::size_t available = self->socket_.available(e);
+        if (ec || e || available == 0) return self->client_gone(self->state_);
+        // Pipelined bytes: keep them for the next request, bounded by the header
+        // limit.
+        if (self->buffer_.size() + available > self->server_.config().max_header)
+          return;  // stop watching; the next read enforces the limits
+        auto buffers = self->buffer_.prepare(available);
+        const std::size_t n = self->socket_.read_some(buffers, e);
+        self->buffer_.commit(n);
+        if (e) return self->client_gone(self->state_);
+        self->watch_client();
+      }));
 }
 
 void Session::on_job_timeout(const std::shared_ptr<RequestState>& state) {
@@ -467,7 +502,7 @@ void Session::on_job_timeout(const std::shared_ptr<RequestState>& state) {
 }
 
 void Session::post_job_finished(std::shared_ptr<RequestState> state) {
-  net::post(strand_, [self = shared_from_this(), state = std::move(state)] {
+  net::post(executor_, [self = shared_from_this(), state = std::move(state)] {
     {
       std::lock_guard lock(state->mutex);
       state->finished = true;
@@ -482,9 +517,11 @@ void Session::post_job_finished(std::shared_ptr<RequestState> state) {
 
 // ---- buffered responses ---------------------------------------------------------------------
 
-void Session::post_response(std::shared_ptr<RequestState> state, Response response) {
-  net::post(strand_, [self = shared_from_this(), state = std::move(state),
-                      response = std::move(response)]() mutable {
+void Session::hand_over(std::shared_ptr<RequestState> state, Response response) {
+  // An inline handler answers on the IO thread already: no hop.
+  if (executor_.running_in_this_thread()) return deliver(state, std::move(response));
+  net::post(executor_, [self = shared_from_this(), state = std::move(state),
+                        response = std::move(response)]() mutable {
     self->deliver(state, std::move(response));
   });
 }
@@ -514,8 +551,8 @@ void Session::send(Response response, bool then_linger) {
   response_ = std::make_shared<Response>(std::move(response));
   arm_timer(server_.config().write_timeout);
   http::async_write(socket_, *response_,
-                    net::bind_executor(strand_, [self = shared_from_this(), then_linger](
-                                                    beast::error_code ec, std::size_t n) {
+                    net::bind_executor(executor_, [self = shared_from_this(), then_linger](
+                                                      beast::error_code ec, std::size_t n) {
                       self->on_write(ec, n, then_linger);
                     }));
 }
@@ -546,7 +583,7 @@ void Session::after_response() {
 // ---- streamed responses ---------------------------------------------------------------------
 
 void Session::post_pump(std::shared_ptr<RequestState> state) {
-  net::post(strand_, [self = shared_from_this(), state = std::move(state)] {
+  net::post(executor_, [self = shared_from_this(), state = std::move(state)] {
     if (!self->streaming_ && self->current(state)) {
       bool head = false;
       {
@@ -643,8 +680,8 @@ void Session::pump(const std::shared_ptr<RequestState>& state) {
     writing_ = true;
     if (!forced_) arm_timer(server_.config().write_timeout);
     net::async_write(socket_, out_buffers_,
-                     net::bind_executor(strand_, [self = shared_from_this(), state, last](
-                                                     beast::error_code ec, std::size_t n) {
+                     net::bind_executor(executor_, [self = shared_from_this(), state, last](
+                                                       beast::error_code ec, std::size_t n) {
                        self->on_stream_written(state, ec, n, last);
                      }));
     return;
@@ -718,14 +755,15 @@ void Session::linger_close() {
   *drain = [self = shared_from_this(), drain, buffer](std::size_t total) {
     self->socket_.async_read_some(
         net::buffer(*buffer),
-        net::bind_executor(self->strand_, [self, drain, total](beast::error_code e, std::size_t n) {
-          if (e || total + n > kLingerBytes || self->phase_ != Phase::Lingering) {
-            self->close();
-            *drain = nullptr;  // break the cycle
-            return;
-          }
-          (*drain)(total + n);
-        }));
+        net::bind_executor(
+            self->executor_, [self, drain, total](beast::error_code e, std::size_t n) {
+              if (e || total + n > kLingerBytes || self->phase_ != Phase::Lingering) {
+                self->close();
+                *drain = nullptr;  // break the cycle
+                return;
+              }
+              (*drain)(total + n);
+            }));
   };
   (*drain)(0);
 }
@@ -747,15 +785,34 @@ void Session::close() {
   }
 }
 
+// The connection's one deadline (read, idle or write, whichever phase it is in) is a time kept
+// here; the timer's wait is only moved when it would fire too late. Each request moves the
+// deadline three or four times, and moving the wait each time meant cancelling one (a queued
+// completion) and a timer queue update: a fifth of a small request's cost. A wait that fires
+// before the deadline waits again.
 void Session::arm_timer(std::chrono::milliseconds duration) {
-  timer_.expires_after(duration);
+  deadline_ = Clock::now() + duration;
+  if (timer_waiting_ && timer_.expiry() <= deadline_) return;
+  wait_for_deadline();
+}
+
+void Session::disarm_timer() {
+  deadline_ = Clock::time_point::max();
+}
+
+void Session::wait_for_deadline() {
+  timer_waiting_ = true;
+  timer_.expires_at(deadline_);  // cancels a wait that was later, whose completion is ignored
   timer_.async_wait(net::bind_executor(
-      strand_, [self = shared_from_this()](beast::error_code ec) { self->on_timer(ec); }));
+      executor_, [self = shared_from_this()](beast::error_code ec) { self->on_timer(ec); }));
 }
 
 void Session::on_timer(beast::error_code ec) {
-  if (ec || phase_ == Phase::Closed) return;
-  if (timer_.expiry() > Clock::now()) return;  // re-armed meanwhile
+  if (ec == net::error::operation_aborted) return;  // moved earlier, or the connection closed
+  timer_waiting_ = false;
+  if (phase_ == Phase::Closed) return;
+  if (deadline_ == Clock::time_point::max()) return;  // disarmed: the next arm_timer waits
+  if (deadline_ > Clock::now()) return wait_for_deadline();
   switch (phase_) {
     case Phase::Reading:
       // The read's completion answers 408.

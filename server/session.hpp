@@ -2,15 +2,13 @@
 // One HTTP/1.1 connection. The session does I/O only: it reads a request under the header,
 // body and time limits, hands it to its handler (inline, or on the worker pool), and writes
 // what the handler produces, streaming chunks as the worker hands them over. Everything runs
-// on the connection's strand; workers reach the session only through posted completions and
-// the mutex-guarded RequestState.
+// on the one IO thread that owns the connection's io_context; workers reach the session only
+// through completions posted there and the mutex-guarded RequestState.
 
 #include <atomic>
-#include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <boost/asio/strand.hpp>
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/http.hpp>
 #include <chrono>
@@ -42,18 +40,19 @@ struct RequestState {
   bool complete = false;            // its argument
   bool pump_posted = false;
   std::string pending;             // stream bytes not yet handed to the socket
-  std::optional<StreamHead> head;  // from begin_stream() until the strand takes it
+  std::optional<StreamHead> head;  // from begin_stream() until the IO thread takes it
   http::fields trailer;            // after the last chunk of a complete stream
   std::string profile;             // for the access log, copied when the answer is handed over
 };
 
 class Session : public std::enable_shared_from_this<Session> {
  public:
-  // The socket's executor: a strand made for this connection when it was accepted. Its own type,
-  // not any_io_executor: every completion of a request goes through it, and the type-erased
-  // executor's copies and indirect calls were a sixth of what a /healthz request cost.
-  using Strand = boost::asio::strand<boost::asio::io_context::executor_type>;
-  using Socket = boost::asio::basic_stream_socket<boost::asio::ip::tcp, Strand>;
+  // The socket's executor: the io_context of one IO thread (Server gives each IO thread its
+  // own), so the connection's handlers never run concurrently without a strand. A strand put
+  // one more queued hop in front of every completion, and the type-erased any_io_executor
+  // indirect calls and copies: together half of what a /healthz request cost.
+  using Executor = boost::asio::io_context::executor_type;
+  using Socket = boost::asio::basic_stream_socket<boost::asio::ip::tcp, Executor>;
   Session(Socket socket, Server& server);
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -65,8 +64,8 @@ class Session : public std::enable_shared_from_this<Session> {
   // Shutdown deadline passed: cancel the job and close.
   void force_close();
 
-  // ---- called by SessionExchange, from a worker or from the strand ----
-  void post_response(std::shared_ptr<RequestState> state, Response response);
+  // ---- called by SessionExchange, from a worker or from the IO thread ----
+  void hand_over(std::shared_ptr<RequestState> state, Response response);
   void post_pump(std::shared_ptr<RequestState> state);
   void post_job_finished(std::shared_ptr<RequestState> state);
 
@@ -78,6 +77,10 @@ class Session : public std::enable_shared_from_this<Session> {
   void on_header(boost::beast::error_code ec, std::size_t bytes);
   void take_upload_as_it_arrives();
   void read_body();
+  // Feeds what buffer_ holds to the parser (up to the end of the header, or of the message) and
+  // returns the bytes it took; a short buffer is not an error.
+  template <class Parser>
+  std::size_t parse_buffered(Parser& parser, boost::beast::error_code& ec, bool header_only);
   void on_body(boost::beast::error_code ec, std::size_t bytes);
   void read_failed(boost::beast::error_code ec);
   void handle_request();
@@ -97,13 +100,15 @@ class Session : public std::enable_shared_from_this<Session> {
   void linger_close();
   void close();
   void arm_timer(std::chrono::milliseconds duration);
+  void disarm_timer();
+  void wait_for_deadline();
   void on_timer(boost::beast::error_code ec);
   [[nodiscard]] bool current(const std::shared_ptr<RequestState>& state) const {
     return state && state == state_ && phase_ != Phase::Closed;
   }
 
   Server& server_;
-  Strand strand_;
+  Executor executor_;
   Socket socket_;
   boost::asio::steady_timer timer_;
   boost::asio::steady_timer job_timer_;
@@ -127,6 +132,8 @@ class Session : public std::enable_shared_from_this<Session> {
   std::string remote_;
   std::uint64_t id_ = 0;
   Phase phase_ = Phase::Idle;
+  std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
+  bool timer_waiting_ = false;
   bool first_request_ = true;
   bool read_timed_out_ = false;
   bool keep_alive_ = true;

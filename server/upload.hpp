@@ -1,12 +1,12 @@
 #pragma once
 // A large raw upload to a route that reads a model, taken in as it arrives (docs/server.md,
 // "Large uploads"). The session appends each piece the socket gives (UploadBody below, on the
-// connection's strand); the piece is hashed for the ETag at once, and whenever enough new text
+// connection's IO thread); the piece is hashed for the ETag at once, and whenever enough new text
 // has come a slice of P21 reading (p21::StreamReader) runs on the worker pool. When the last
 // byte arrives the job finds the hash done and most of the file read: only the last piece, the
 // reference resolution and the schema check are left.
 //
-// Threads: append() and complete() on the strand; slices on the pool, one at a time; the job
+// Threads: append() and complete() on the IO thread; slices on the pool, one at a time; the job
 // calls reader() once the body is complete, which waits for a slice still running. The reader's
 // cancel flag is the request's, so a client that leaves, or a job out of time, stops a slice
 // within a few thousand tokens.
@@ -42,7 +42,7 @@ class StreamedUpload : public std::enable_shared_from_this<StreamedUpload> {
 
   [[nodiscard]] std::size_t size() const { return reader_.size(); }
 
-  // ---- the strand ----
+  // ---- the IO thread ----
   // False (nothing stored) beyond the announced size.
   bool append(std::string_view bytes);
   // The last byte arrived: no slice starts after this one.
@@ -64,7 +64,7 @@ class StreamedUpload : public std::enable_shared_from_this<StreamedUpload> {
   std::shared_ptr<const std::atomic<bool>> cancel_;
   std::shared_ptr<void> slot_;
   p21::StreamReader reader_;
-  BodyHash hash_;  // strand only until complete()
+  BodyHash hash_;  // IO thread only until complete()
   std::mutex mutex_;
   std::condition_variable idle_;
   std::size_t arrived_ = 0;  // guarded: bytes appended, as the slices may see them
