@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ncpostd benchmarks on loopback (docs/benchmarks.md, "HTTP service"). Builds a Release tree in
 # build-bench-server/ (BUILD_DIR overrides), starts ncpostd on a free port, and runs:
-#   1. wrk GET /healthz
+#   1. wrk GET /healthz, in alternating rounds with bench/server/minimal_beast.cpp (a Beast
+#      server that only answers: the machine's ceiling, which issue 7 states its target against)
 #   2. wrk POST /v1/posts?profile=fanuc-0i of nist_toolkit_ex1.stp and nist_toolkit_ex1E.stp,
 #      16 connections, with latency percentiles
 #   3. the batch baseline (batch_baseline.sh): the same posts as loops of processes,
@@ -24,7 +25,7 @@ THREADS=${THREADS:-2}
 cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DNCPOST_BUILD_TESTS=OFF \
   -DNCPOST_BUILD_BENCH=ON >/dev/null
 cmake --build "$BUILD_DIR" -j2 --target ncpostd ncpost make_large_stepnc render_bench \
-  upload_stages >/dev/null
+  upload_stages minimal_beast >/dev/null
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(git rev-parse --short HEAD 2>/dev/null || true)"
 lscpu | grep -E '^(Model name|CPU\(s\)|Thread|Core)' | sed 's/^/# /'
@@ -41,8 +42,21 @@ for _ in $(seq 100); do
 done
 url=http://127.0.0.1:$port
 
-echo "## GET /healthz"
-wrk -t"$THREADS" -c64 -d"$DURATION" --latency "$url/healthz" | grep -E 'Requests/sec|50%|99%|Socket'
+minimal_port=$(mktemp)
+"$BUILD_DIR/bin/minimal_beast" >"$minimal_port" &
+minimal=$!
+trap 'kill $pid $minimal 2>/dev/null || true; rm -f "$log" "$minimal_port"' EXIT
+for _ in $(seq 100); do [[ -s $minimal_port ]] && break; sleep 0.05; done
+for round in 1 2 3; do
+  for server in minimal_beast ncpostd; do
+    target=$url
+    [[ $server == minimal_beast ]] && target=http://127.0.0.1:$(cat "$minimal_port")
+    echo "## GET /healthz, 64 connections, round $round: $server"
+    wrk -t"$THREADS" -c64 -d"$DURATION" --latency "$target/healthz" |
+      grep -E 'Requests/sec|50%|99%|Socket'
+  done
+done
+kill $minimal
 
 for f in nist_toolkit_ex1.stp nist_toolkit_ex1E.stp; do
   file=$CORPUS/p21/$f

@@ -35,14 +35,44 @@ std::optional<std::size_t> Entity::attribute_index(std::string_view wanted_name)
   return std::nullopt;
 }
 
+namespace {
+
+// A name in lower case, for a look-up: on the stack unless it is longer than any name the
+// real schemas use.
+class LowerName {
+ public:
+  explicit LowerName(std::string_view name) {
+    if (name.size() > sizeof short_) {
+      long_ = to_lower(name);
+      view_ = long_;
+      return;
+    }
+    for (std::size_t i = 0; i < name.size(); ++i) {
+      const char c = name[i];
+      short_[i] = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+    }
+    view_ = std::string_view(short_, name.size());
+  }
+  LowerName(const LowerName&) = delete;
+  LowerName& operator=(const LowerName&) = delete;
+  [[nodiscard]] std::string_view view() const noexcept { return view_; }
+
+ private:
+  char short_[96];
+  std::string long_;
+  std::string_view view_;
+};
+
+}  // namespace
+
 const Entity* Schema::find_entity(std::string_view entity_name) const {
-  const auto it = declarations.find(to_lower(entity_name));
+  const auto it = declarations.find(LowerName(entity_name).view());
   if (it == declarations.end() || it->second.kind != DeclKind::Entity) return nullptr;
   return &entities[it->second.index];
 }
 
 const TypeDecl* Schema::find_type(std::string_view type_name) const {
-  const auto it = declarations.find(to_lower(type_name));
+  const auto it = declarations.find(LowerName(type_name).view());
   if (it == declarations.end() || it->second.kind != DeclKind::Type) return nullptr;
   return &types[it->second.index];
 }
@@ -71,7 +101,7 @@ const TypeDecl* SchemaSet::find_type(std::string_view name) const {
 
 std::optional<DeclRef> SchemaSet::resolve(std::uint32_t schema, std::string_view name) const {
   if (schema >= visible_.size()) return std::nullopt;
-  const auto it = visible_[schema].find(to_lower(name));
+  const auto it = visible_[schema].find(LowerName(name).view());
   if (it == visible_[schema].end()) return std::nullopt;
   return it->second;
 }

@@ -282,10 +282,7 @@ void Renderer::forward(const canon::Call& call) {
 
 void Renderer::render_chunk(const canon::ChunkView& chunk) {
   if (failed_) return;
-  // The first chunk (the program start) goes alone so the first text leaves at once; without
-  // batching every chunk does.
-  if (batch_bytes_ == 0 || !first_rendered_) {
-    first_rendered_ = true;
+  if (batch_bytes_ == 0) {
     transform_chunk(chunk);
     return;
   }

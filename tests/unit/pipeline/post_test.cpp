@@ -100,6 +100,9 @@ TEST_F(PostJobTest, CancelledMidStreamEndsWithTheMarker) {
   std::atomic<bool> cancel{false};
   PostOptions options;
   options.cancel = &cancel;
+  // One transform per chunk, so that text comes out before the program's end (batched, this
+  // small program is one piece at its end, after which there is nothing left to cancel).
+  options.render.batch_bytes = 0;
   std::string text;
   const PostResult result = post(
       loaded, *p,

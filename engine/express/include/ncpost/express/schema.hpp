@@ -195,6 +195,16 @@ struct Interface {
   std::vector<InterfaceItem> items;  // empty: everything the schema declares or imports
 };
 
+// Declarations by lower-case name; looked up with a string_view, so that a look-up builds no
+// string (the schema check looks names up for every kind of instance of every model).
+struct NameHash {
+  using is_transparent = void;
+  [[nodiscard]] std::size_t operator()(std::string_view name) const noexcept {
+    return std::hash<std::string_view>{}(name);
+  }
+};
+using DeclMap = std::unordered_map<std::string, DeclRef, NameHash, std::equal_to<>>;
+
 struct Schema {
   std::string name;
   std::string version;  // the optional schema_version_id string, as written (without quotes)
@@ -205,7 +215,7 @@ struct Schema {
   std::vector<Entity> entities;
   std::vector<Algorithm> algorithms;
   // Declarations made in this schema (imports excluded), by lower-case name.
-  std::unordered_map<std::string, DeclRef> declarations;
+  DeclMap declarations;
 
   // Declarations of this schema only, case-insensitive.
   [[nodiscard]] const Entity* find_entity(std::string_view name) const;
@@ -254,7 +264,7 @@ class SchemaSet {
  private:
   friend class detail::Linker;
   std::vector<Schema> schemas_;
-  std::vector<std::unordered_map<std::string, DeclRef>> visible_;  // per schema, see resolve
+  std::vector<DeclMap> visible_;  // per schema, see resolve
 };
 
 }  // namespace ncpost::express

@@ -41,7 +41,8 @@ struct RenderOptions {
   // until their XML reaches `batch_bytes`; checked after each chunk, so a batch holds at most
   // one chunk beyond it. Per-transform costs (parsing set-up, transform context, extension
   // set-up) are then paid per batch, not per workingstep. 0: one transform per chunk.
-  // The program's first chunk always goes alone, so the first text leaves at once.
+  // The program's first chunk opens the first batch like any other: rendered alone it cost a
+  // transform of its own, a twentieth of a small program's post (docs/render.md).
   std::size_t batch_bytes = std::size_t{64} << 10;
   // A batch is also rendered at the first chunk boundary after it has been open this long, so
   // text keeps flowing while a slow interpretation fills it. 0: no time limit.
@@ -116,7 +117,6 @@ class Renderer final : public canon::Sink {
   canon::XmlChunkWriter batch_writer_;
   std::int32_t batch_tool_ = 0;
   std::chrono::steady_clock::time_point batch_started_{};
-  bool first_rendered_ = false;
   bool in_batch_ = false;  // render_batch() is running
   bool failed_ = false;
   bool started_ = false;
