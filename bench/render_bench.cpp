@@ -10,11 +10,12 @@
 //   render_bench cache PROFILE FILE [RUNS]
 //       time per post of a small program: the profile's cached compiled stylesheet against
 //       xslt::compile of post.xsl for every post (interpretation done once, outside the timing).
-//   render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES]
-//       `ncpost post` without the output: load → interpret → render to a sink that drops the
-//       text; MB/s of P21 in, time to the first text, pieces of text handed on, and peak RSS
-//       (after the load, after the render). BATCH_BYTES sets RenderOptions::batch_bytes
-//       (0: one transform per chunk, as before batching); default: the renderer's default.
+//   render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES] [RENDER_THREAD_MIN]
+//       `ncpost post` without the output: pipeline::load, then pipeline::post to a sink that
+//       drops the text; MB/s of P21 in, time to the first text, pieces of text handed on, and
+//       peak RSS (after the load, after the render). BATCH_BYTES sets RenderOptions::batch_bytes
+//       (0: one transform per chunk, as before batching; default: the renderer's default);
+//       RENDER_THREAD_MIN sets PostOptions::render_thread_min_instances (0: one thread).
 
 #include <algorithm>
 #include <chrono>
@@ -29,6 +30,7 @@
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
+#include "ncpost/pipeline/post.hpp"
 #include "ncpost/profile/profile.hpp"
 #include "ncpost/render/render.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
@@ -231,7 +233,7 @@ int cache(const std::string& id, const std::string& file, int runs) {
 }
 
 int pipeline(const std::string& id, const std::string& file, int runs,
-             std::optional<std::size_t> batch_bytes) {
+             std::optional<std::size_t> batch_bytes, std::optional<std::size_t> render_thread_min) {
   const auto loaded = load_profile(id);
   if (!loaded) return 1;
   const ncpost::express::SchemaRegistry registry;
@@ -241,40 +243,41 @@ int pipeline(const std::string& id, const std::string& file, int runs,
   std::vector<double> first_text;
   std::size_t out_bytes = 0;
   std::size_t pieces = 0;
-  ncpost::render::RenderOptions render_options;
-  if (batch_bytes) render_options.batch_bytes = *batch_bytes;
+  ncpost::pipeline::PostOptions options;
+  if (batch_bytes) options.render.batch_bytes = *batch_bytes;
+  if (render_thread_min) options.render_thread_min_instances = *render_thread_min;
   for (int i = 0; i < runs; ++i) {
     std::string bytes = ncpost::bench::slurp(file);
     mb = static_cast<double>(bytes.size()) / 1e6;
     const auto start = Clock::now();
     auto model = ncpost::pipeline::load(std::move(bytes), registry);
     if (i == 0) rss_after_load = ncpost::bench::peak_rss_mib();
-    const ncpost::stepnc::AttributeReader attributes(model.model, *model.schema);
+    if (!model.ok()) {
+      std::cerr << "the program did not load\n";
+      return 1;
+    }
     out_bytes = 0;
     pieces = 0;
-    ncpost::render::Renderer renderer(
-        *loaded,
+    const auto result = ncpost::pipeline::post(
+        model, *loaded,
         [&](std::string_view s) {
           if (pieces++ == 0) first_text.push_back(seconds_since(start));
           out_bytes += s.size();
         },
-        render_options);
-    ncpost::stepnc::InterpretOptions options;
-    options.stop_at_first_error = true;
-    const auto result = ncpost::stepnc::interpret(model.model, attributes, renderer, options);
-    renderer.finish();
+        options);
     times.push_back(seconds_since(start));
-    if (!result.ok() || renderer.failed()) {
-      print(renderer.diagnostics());
+    if (!result.ok) {
+      print(result.diagnostics);
       std::cerr << "post failed\n";
       return 1;
     }
   }
   const Stats s = stats(times);
   const Stats f = stats(first_text);
-  std::cout << "profile=" << id << " batch_bytes=" << render_options.batch_bytes
-            << " file_mb=" << mb << " out_bytes=" << out_bytes << " pieces=" << pieces
-            << " runs=" << runs << " post_best_s=" << s.best << " post_median_s=" << s.median
+  std::cout << "profile=" << id << " batch_bytes=" << options.render.batch_bytes
+            << " render_thread_min=" << options.render_thread_min_instances << " file_mb=" << mb
+            << " out_bytes=" << out_bytes << " pieces=" << pieces << " runs=" << runs
+            << " post_best_s=" << s.best << " post_median_s=" << s.median
             << " mb_per_s_median=" << mb / s.median << " mb_per_s_best=" << mb / s.best
             << " first_text_median_s=" << f.median << " peak_rss_after_load_mib=" << rss_after_load
             << " peak_rss_after_post_mib=" << ncpost::bench::peak_rss_mib() << '\n';
@@ -290,7 +293,8 @@ int main(int argc, char** argv) {
     std::cerr << "usage: render_bench plain-xsl OUT.xsl\n"
                  "       render_bench transform XSL|PROFILE XML [RUNS]\n"
                  "       render_bench cache PROFILE FILE [RUNS]\n"
-                 "       render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES]\n";
+                 "       render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES] "
+                 "[RENDER_THREAD_MIN]\n";
     return 2;
   }
   ncpost::xslt::initialise();
@@ -300,7 +304,8 @@ int main(int argc, char** argv) {
   if (args[0] == "pipeline")
     return pipeline(
         args[1], args[2], runs,
-        args.size() > 4 ? std::optional<std::size_t>(std::stoull(args[4])) : std::nullopt);
+        args.size() > 4 ? std::optional<std::size_t>(std::stoull(args[4])) : std::nullopt,
+        args.size() > 5 ? std::optional<std::size_t>(std::stoull(args[5])) : std::nullopt);
   std::cerr << "render_bench: unknown mode " << args[0] << '\n';
   return 2;
 }

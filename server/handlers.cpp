@@ -572,6 +572,9 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   pipeline::PostOptions options;
   options.input_name = name;
   options.cancel = exchange.cancel_flag();
+  // One thread per job: --workers bounds the threads doing CPU work, which a render thread of
+  // the job's own would not respect (docs/architecture.md, "Two threads in a post").
+  options.render_thread_min_instances = 0;
   const auto render_started = Clock::now();
   const auto begin = [&] {
     std::string timing;

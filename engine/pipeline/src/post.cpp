@@ -1,5 +1,12 @@
 #include "ncpost/pipeline/post.hpp"
 
+#include <algorithm>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
+
 #include "ncpost/render/raw.hpp"
 
 namespace ncpost::pipeline {
@@ -22,6 +29,117 @@ class CancellableSink final : public canon::Sink {
  private:
   canon::Sink& next_;
   const std::atomic<bool>* cancel_;
+};
+
+// The renderer on a thread of its own: the interpreter's calls are handed over in batches
+// through a bounded queue, so interpretation and rendering of a large program share two cores
+// (each was about a quarter and a third of a post's time). The renderer sees the same calls in
+// the same order, so its text is the same; the queue holds at most kMaxBatches batches, so
+// memory stays bounded by the model plus a few thousand calls.
+class RenderThread final : public canon::Sink {
+ public:
+  RenderThread(render::Renderer& renderer, const std::atomic<bool>* cancel, std::size_t batch)
+      : renderer_(renderer),
+        cancel_(cancel),
+        batch_calls_(std::max<std::size_t>(1, batch)),
+        thread_([this] { run(); }) {
+    batch_.reserve(batch_calls_);
+  }
+  RenderThread(const RenderThread&) = delete;
+  RenderThread& operator=(const RenderThread&) = delete;
+  // An interpreter that threw: the thread is stopped, nothing is rethrown.
+  ~RenderThread() override { stop(false); }
+
+  void call(const canon::Call& call) override {
+    batch_.push_back(call);
+    if (batch_.size() >= batch_calls_) hand_over();
+  }
+
+  // Renders what is still to come and then, when `complete`, calls Renderer::finish(); joins.
+  // True when the renderer was finished (false: not complete, or the job was cancelled
+  // meanwhile). A renderer that threw has its exception rethrown here, on the caller's thread.
+  [[nodiscard]] bool finish(bool complete) {
+    stop(complete);
+    if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+    return finished_;
+  }
+
+ private:
+  static constexpr std::size_t kMaxBatches = 4;
+
+  void stop(bool complete) {
+    if (!thread_.joinable()) return;
+    if (complete) hand_over();
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+      finish_renderer_ = complete;
+    }
+    ready_.notify_one();
+    thread_.join();
+  }
+
+  [[nodiscard]] bool cancelled() const {
+    return cancel_ != nullptr && cancel_->load(std::memory_order_relaxed);
+  }
+
+  void hand_over() {
+    if (batch_.empty()) return;
+    {
+      std::unique_lock lock(mutex_);
+      space_.wait(lock, [&] { return queue_.size() < kMaxBatches; });
+      queue_.push_back(std::move(batch_));
+    }
+    ready_.notify_one();
+    batch_ = {};
+    batch_.reserve(batch_calls_);
+  }
+
+  void run() {
+    bool finish_renderer = false;
+    for (;;) {
+      std::vector<canon::Call> batch;
+      {
+        std::unique_lock lock(mutex_);
+        ready_.wait(lock, [&] { return !queue_.empty() || done_; });
+        if (queue_.empty()) {
+          finish_renderer = finish_renderer_;
+          break;
+        }
+        batch = std::move(queue_.front());
+        queue_.pop_front();
+      }
+      space_.notify_one();
+      // After a failure, or once the job is cancelled, the rest is only drained.
+      if (failure_ || cancelled()) continue;
+      try {
+        for (const auto& call : batch) renderer_.call(call);
+      } catch (...) {
+        failure_ = std::current_exception();
+      }
+    }
+    if (!finish_renderer || failure_ || cancelled()) return;
+    try {
+      renderer_.finish();
+      finished_ = true;
+    } catch (...) {
+      failure_ = std::current_exception();
+    }
+  }
+
+  render::Renderer& renderer_;
+  const std::atomic<bool>* cancel_;
+  const std::size_t batch_calls_;
+  std::vector<canon::Call> batch_;  // the interpreter's thread only
+  std::mutex mutex_;
+  std::condition_variable ready_;  // a batch was queued, or done_
+  std::condition_variable space_;  // a batch was taken
+  std::deque<std::vector<canon::Call>> queue_;
+  bool done_ = false;
+  bool finish_renderer_ = false;
+  std::exception_ptr failure_;  // the render thread's until joined
+  bool finished_ = false;       // likewise
+  std::thread thread_;          // last: started once everything above exists
 };
 
 std::string first_error(const std::vector<xslt::FileDiagnostic>& diagnostics) {
@@ -70,11 +188,22 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
 
   const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
   render::Renderer renderer(profile, out, options.render, options.input_name);
-  CancellableSink sink(renderer, options.cancel);
+  const bool two_threads = options.render_thread_min_instances > 0 &&
+                           loaded.model.instances().size() >= options.render_thread_min_instances;
+  std::optional<RenderThread> render_thread;
+  if (two_threads) render_thread.emplace(renderer, options.cancel, options.render_thread_batch);
+  CancellableSink sink(
+      two_threads ? static_cast<canon::Sink&>(*render_thread) : static_cast<canon::Sink&>(renderer),
+      options.cancel);
   const stepnc::InterpretResult interpreted =
       stepnc::interpret(loaded.model, attributes, sink, interpret_options);
   result.cancelled = sink.cancelled();
-  if (!result.cancelled) renderer.finish();
+  if (render_thread) {
+    // Cancelled while the last batches were rendered: they were skipped, and so is finish().
+    result.cancelled = !render_thread->finish(!result.cancelled);
+  } else if (!result.cancelled) {
+    renderer.finish();
+  }
   result.calls = interpreted.calls;
 
   for (const auto& d : interpreted.diagnostics)

@@ -1,5 +1,6 @@
 // The post job shared by `ncpost post` and ncpostd: the same text as the renderer alone, the
-// error marker after a failure that comes once output has started, and cancellation.
+// error marker after a failure that comes once output has started, cancellation, and the same
+// of all with the renderer on a thread of its own.
 
 #include "ncpost/pipeline/post.hpp"
 
@@ -113,6 +114,76 @@ TEST_F(PostJobTest, CancelledMidStreamEndsWithTheMarker) {
       options);
   EXPECT_TRUE(result.cancelled);
   EXPECT_TRUE(result.started);
+  const std::string_view tail = "(ERROR: the job was cancelled - the program is incomplete)\n";
+  ASSERT_GE(text.size(), tail.size());
+  EXPECT_EQ(text.substr(text.size() - tail.size()), tail);
+  const std::string whole = run(loaded, *p).text;
+  EXPECT_LT(text.size() - tail.size(), whole.size());
+  EXPECT_EQ(whole.compare(0, text.size() - tail.size(), text, 0, text.size() - tail.size()), 0);
+}
+
+// A large program is rendered on a second thread (PostOptions::render_thread_min_instances).
+// Forced here for small programs, with batches of a few calls so that the bounded queue fills
+// and the interpreter waits: text, diagnostics and flags are those of one thread, for programs
+// that succeed, that fail part-way, and for every built-in profile that posts ex1E.
+TEST_F(PostJobTest, RenderThreadGivesTheSameResult) {
+  std::vector<std::pair<std::string, LoadedModel>> programs;
+  for (const char* name : {"curves", "errors", "executables"})
+    programs.emplace_back(name, load_case(name));
+  if (const auto corpus = test::corpus_dir()) {
+    static const express::SchemaRegistry registry;
+    programs.emplace_back(
+        "ex1E", load(test::read_file(*corpus / "p21" / "nist_toolkit_ex1E.stp"), registry));
+  } else if (test::corpus_required()) {
+    FAIL() << "NCPOST_REQUIRE_CORPUS is set and the corpus is missing";
+  }
+  std::size_t compared = 0;
+  for (const char* id : {"linuxcnc", "fanuc-0i", "heidenhain-tnc640"}) {
+    const auto p = builtin(id);
+    ASSERT_TRUE(p);
+    for (const auto& [name, loaded] : programs) {
+      PostOptions one;
+      one.render_thread_min_instances = 0;
+      PostOptions two;
+      two.render_thread_min_instances = 1;
+      two.render_thread_batch = 3;
+      const Posted a = run(loaded, *p, one);
+      const Posted b = run(loaded, *p, two);
+      EXPECT_EQ(a.text, b.text) << id << " " << name;
+      EXPECT_EQ(a.result.ok, b.result.ok) << id << " " << name;
+      EXPECT_EQ(a.result.started, b.result.started) << id << " " << name;
+      EXPECT_EQ(a.result.calls, b.result.calls) << id << " " << name;
+      ASSERT_EQ(a.result.diagnostics.size(), b.result.diagnostics.size()) << id << " " << name;
+      for (std::size_t i = 0; i < a.result.diagnostics.size(); ++i)
+        EXPECT_EQ(xslt::format(a.result.diagnostics[i]), xslt::format(b.result.diagnostics[i]));
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 9u);
+}
+
+// Cancelled from the output callback, which then runs on the render thread: the interpreter
+// stops, the queued calls are dropped, and the text ends with the marker.
+TEST_F(PostJobTest, RenderThreadCancelledMidStreamEndsWithTheMarker) {
+  const auto p = builtin("linuxcnc");
+  ASSERT_TRUE(p);
+  const auto loaded = load_case("executables");
+  std::atomic<bool> cancel{false};
+  PostOptions options;
+  options.cancel = &cancel;
+  options.render.batch_bytes = 0;
+  options.render_thread_min_instances = 1;
+  options.render_thread_batch = 2;
+  std::string text;
+  const PostResult result = post(
+      loaded, *p,
+      [&](std::string_view piece) {
+        text += piece;
+        cancel = true;
+      },
+      options);
+  EXPECT_TRUE(result.cancelled);
+  EXPECT_FALSE(result.ok);
   const std::string_view tail = "(ERROR: the job was cancelled - the program is incomplete)\n";
   ASSERT_GE(text.size(), tail.size());
   EXPECT_EQ(text.substr(text.size() - tail.size()), tail);

@@ -25,6 +25,13 @@ struct PostOptions {
   // Set by another thread to stop the job (client gone, time limit): checked between
   // executables and before each chunk is handed on. Null: never cancelled.
   const std::atomic<bool>* cancel = nullptr;
+  // A model of at least this many instances is rendered on a second thread while it is
+  // interpreted (docs/architecture.md, "Two threads in a post"): `out` is then called from
+  // that thread, one piece at a time and in order as always. Below it, or 0, one thread does
+  // both: for a small program a thread costs more than it saves.
+  std::size_t render_thread_min_instances = 50000;
+  // Calls handed to the render thread at a time (at most four such batches wait).
+  std::size_t render_thread_batch = 4096;
 };
 
 struct PostResult {
