@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
     std::atomic<bool> stop{false};
     ncpost::pipeline::PostOptions options;
     options.cancel = &stop;
+    options.render_thread_min_instances = 0;  // as ncpostd runs a post: one thread per job
     double first_ms = -1;
     (void)ncpost::pipeline::post(
         loaded, *profile,

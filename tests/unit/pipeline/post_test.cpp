@@ -43,6 +43,35 @@ class PostJobTest : public ::testing::Test {
         loaded, p, [&](std::string_view piece) { out.text += piece; }, options);
     return out;
   }
+  // Posts "executables" with linuxcnc and cancels from the output callback at the first text:
+  // the result is cancelled, the text is a prefix of the whole program followed by the marker.
+  static void expect_cut_mid_stream(PostOptions options) {
+    const auto p = builtin("linuxcnc");
+    ASSERT_TRUE(p);
+    const auto loaded = load_case("executables");
+    std::atomic<bool> cancel{false};
+    options.cancel = &cancel;
+    // One transform per chunk, so that text comes out before the program's end (batched, this
+    // small program is one piece at its end, after which there is nothing left to cancel).
+    options.render.batch_bytes = 0;
+    std::string text;
+    const PostResult result = post(
+        loaded, *p,
+        [&](std::string_view piece) {
+          text += piece;
+          cancel = true;
+        },
+        options);
+    EXPECT_TRUE(result.cancelled);
+    EXPECT_TRUE(result.started);
+    EXPECT_FALSE(result.ok);
+    const std::string_view tail = "(ERROR: the job was cancelled - the program is incomplete)\n";
+    ASSERT_GE(text.size(), tail.size());
+    EXPECT_EQ(text.substr(text.size() - tail.size()), tail);
+    const std::string whole = run(loaded, *p).text;
+    EXPECT_LT(text.size() - tail.size(), whole.size());
+    EXPECT_EQ(whole.compare(0, text.size() - tail.size(), text, 0, text.size() - tail.size()), 0);
+  }
 };
 
 TEST_F(PostJobTest, SameTextAsTheGoldenPost) {
@@ -95,31 +124,7 @@ TEST_F(PostJobTest, CancelledBeforeTheFirstExecutable) {
 // Cancelled from the output callback, that is after text went out (what the server does when
 // the client goes away mid-stream).
 TEST_F(PostJobTest, CancelledMidStreamEndsWithTheMarker) {
-  const auto p = builtin("linuxcnc");
-  ASSERT_TRUE(p);
-  const auto loaded = load_case("executables");
-  std::atomic<bool> cancel{false};
-  PostOptions options;
-  options.cancel = &cancel;
-  // One transform per chunk, so that text comes out before the program's end (batched, this
-  // small program is one piece at its end, after which there is nothing left to cancel).
-  options.render.batch_bytes = 0;
-  std::string text;
-  const PostResult result = post(
-      loaded, *p,
-      [&](std::string_view piece) {
-        text += piece;
-        cancel = true;
-      },
-      options);
-  EXPECT_TRUE(result.cancelled);
-  EXPECT_TRUE(result.started);
-  const std::string_view tail = "(ERROR: the job was cancelled - the program is incomplete)\n";
-  ASSERT_GE(text.size(), tail.size());
-  EXPECT_EQ(text.substr(text.size() - tail.size()), tail);
-  const std::string whole = run(loaded, *p).text;
-  EXPECT_LT(text.size() - tail.size(), whole.size());
-  EXPECT_EQ(whole.compare(0, text.size() - tail.size(), text, 0, text.size() - tail.size()), 0);
+  expect_cut_mid_stream(PostOptions{});
 }
 
 // A large program is rendered on a second thread (PostOptions::render_thread_min_instances).
@@ -165,31 +170,10 @@ TEST_F(PostJobTest, RenderThreadGivesTheSameResult) {
 // Cancelled from the output callback, which then runs on the render thread: the interpreter
 // stops, the queued calls are dropped, and the text ends with the marker.
 TEST_F(PostJobTest, RenderThreadCancelledMidStreamEndsWithTheMarker) {
-  const auto p = builtin("linuxcnc");
-  ASSERT_TRUE(p);
-  const auto loaded = load_case("executables");
-  std::atomic<bool> cancel{false};
   PostOptions options;
-  options.cancel = &cancel;
-  options.render.batch_bytes = 0;
   options.render_thread_min_instances = 1;
   options.render_thread_batch = 2;
-  std::string text;
-  const PostResult result = post(
-      loaded, *p,
-      [&](std::string_view piece) {
-        text += piece;
-        cancel = true;
-      },
-      options);
-  EXPECT_TRUE(result.cancelled);
-  EXPECT_FALSE(result.ok);
-  const std::string_view tail = "(ERROR: the job was cancelled - the program is incomplete)\n";
-  ASSERT_GE(text.size(), tail.size());
-  EXPECT_EQ(text.substr(text.size() - tail.size()), tail);
-  const std::string whole = run(loaded, *p).text;
-  EXPECT_LT(text.size() - tail.size(), whole.size());
-  EXPECT_EQ(whole.compare(0, text.size() - tail.size(), text, 0, text.size() - tail.size()), 0);
+  expect_cut_mid_stream(options);
 }
 
 TEST(ErrorMarker, UsesTheProfileSyntaxAndSanitisesTheMessage) {
