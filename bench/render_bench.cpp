@@ -10,12 +10,14 @@
 //   render_bench cache PROFILE FILE [RUNS]
 //       time per post of a small program: the profile's cached compiled stylesheet against
 //       xslt::compile of post.xsl for every post (interpretation done once, outside the timing).
-//   render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES] [RENDER_THREAD_MIN]
+//   render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES] [RENDER_THREAD_MIN] [LOAD_HELPERS]
 //       `ncpost post` without the output: pipeline::load, then pipeline::post to a sink that
 //       drops the text; MB/s of P21 in, time to the first text, pieces of text handed on, and
 //       peak RSS (after the load, after the render). BATCH_BYTES sets RenderOptions::batch_bytes
 //       (0: one transform per chunk, as before batching; default: the renderer's default);
-//       RENDER_THREAD_MIN sets PostOptions::render_thread_min_instances (0: one thread).
+//       RENDER_THREAD_MIN sets PostOptions::render_thread_min_instances (0: one thread);
+//       LOAD_HELPERS threads read and check the file in pieces (default: one fewer than the
+//       cores, as `ncpost post`; 0: in order).
 
 #include <algorithm>
 #include <chrono>
@@ -29,6 +31,7 @@
 #include "bench_support.hpp"
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/express/registry.hpp"
+#include "ncpost/parallel/pieces.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/pipeline/post.hpp"
 #include "ncpost/profile/profile.hpp"
@@ -233,7 +236,8 @@ int cache(const std::string& id, const std::string& file, int runs) {
 }
 
 int pipeline(const std::string& id, const std::string& file, int runs,
-             std::optional<std::size_t> batch_bytes, std::optional<std::size_t> render_thread_min) {
+             std::optional<std::size_t> batch_bytes, std::optional<std::size_t> render_thread_min,
+             std::size_t load_helpers) {
   const auto loaded = load_profile(id);
   if (!loaded) return 1;
   const ncpost::express::SchemaRegistry registry;
@@ -246,11 +250,14 @@ int pipeline(const std::string& id, const std::string& file, int runs,
   ncpost::pipeline::PostOptions options;
   if (batch_bytes) options.render.batch_bytes = *batch_bytes;
   if (render_thread_min) options.render_thread_min_instances = *render_thread_min;
+  const ncpost::parallel::ThreadGroup helpers(load_helpers);
+  ncpost::pipeline::LoadOptions load_options;
+  load_options.helpers = &helpers.helpers();
   for (int i = 0; i < runs; ++i) {
     std::string bytes = ncpost::bench::slurp(file);
     mb = static_cast<double>(bytes.size()) / 1e6;
     const auto start = Clock::now();
-    auto model = ncpost::pipeline::load(std::move(bytes), registry);
+    auto model = ncpost::pipeline::load(std::move(bytes), registry, load_options);
     if (i == 0) rss_after_load = ncpost::bench::peak_rss_mib();
     if (!model.ok()) {
       std::cerr << "the program did not load\n";
@@ -275,11 +282,12 @@ int pipeline(const std::string& id, const std::string& file, int runs,
   const Stats s = stats(times);
   const Stats f = stats(first_text);
   std::cout << "profile=" << id << " batch_bytes=" << options.render.batch_bytes
-            << " render_thread_min=" << options.render_thread_min_instances << " file_mb=" << mb
-            << " out_bytes=" << out_bytes << " pieces=" << pieces << " runs=" << runs
-            << " post_best_s=" << s.best << " post_median_s=" << s.median
-            << " mb_per_s_median=" << mb / s.median << " mb_per_s_best=" << mb / s.best
-            << " first_text_median_s=" << f.median << " peak_rss_after_load_mib=" << rss_after_load
+            << " render_thread_min=" << options.render_thread_min_instances
+            << " load_helpers=" << load_helpers << " file_mb=" << mb << " out_bytes=" << out_bytes
+            << " pieces=" << pieces << " runs=" << runs << " post_best_s=" << s.best
+            << " post_median_s=" << s.median << " mb_per_s_median=" << mb / s.median
+            << " mb_per_s_best=" << mb / s.best << " first_text_median_s=" << f.median
+            << " peak_rss_after_load_mib=" << rss_after_load
             << " peak_rss_after_post_mib=" << ncpost::bench::peak_rss_mib() << '\n';
   return 0;
 }
@@ -294,7 +302,7 @@ int main(int argc, char** argv) {
                  "       render_bench transform XSL|PROFILE XML [RUNS]\n"
                  "       render_bench cache PROFILE FILE [RUNS]\n"
                  "       render_bench pipeline PROFILE FILE [RUNS] [BATCH_BYTES] "
-                 "[RENDER_THREAD_MIN]\n";
+                 "[RENDER_THREAD_MIN] [LOAD_HELPERS]\n";
     return 2;
   }
   ncpost::xslt::initialise();
@@ -305,7 +313,8 @@ int main(int argc, char** argv) {
     return pipeline(
         args[1], args[2], runs,
         args.size() > 4 ? std::optional<std::size_t>(std::stoull(args[4])) : std::nullopt,
-        args.size() > 5 ? std::optional<std::size_t>(std::stoull(args[5])) : std::nullopt);
+        args.size() > 5 ? std::optional<std::size_t>(std::stoull(args[5])) : std::nullopt,
+        args.size() > 6 ? std::stoull(args[6]) : ncpost::parallel::spare_cores());
   std::cerr << "render_bench: unknown mode " << args[0] << '\n';
   return 2;
 }

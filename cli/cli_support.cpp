@@ -121,6 +121,15 @@ void add_builtin_report(LoadedSchemas& schemas, const pipeline::LoadedModel& loa
   if (!problems.empty()) schemas.reports.push_back({builtin.origin, std::move(problems)});
 }
 
+pipeline::LoadedModel load_on_all_cores(std::string bytes, const express::SchemaRegistry& schemas,
+                                        bool validate) {
+  const parallel::ThreadGroup threads(parallel::spare_cores());
+  pipeline::LoadOptions options;
+  options.validate = validate;
+  options.helpers = &threads.helpers();
+  return pipeline::load(std::move(bytes), schemas, options);
+}
+
 std::optional<ProgramJob> load_program_job(const Options& options) {
   ProgramJob job;
   job.schemas = load_schemas(options.value("schemas"));
@@ -138,7 +147,7 @@ std::optional<ProgramJob> load_program_job(const Options& options) {
     return std::nullopt;
   }
   job.name = input->name;
-  job.loaded = pipeline::load(std::move(input->bytes), job.schemas.registry);
+  job.loaded = load_on_all_cores(std::move(input->bytes), job.schemas.registry);
   add_builtin_report(job.schemas, job.loaded);
   print_schema_reports(job.schemas.reports);
   // A schema directory that cannot be read, or a broken built-in, stops the job as inspect does.

@@ -58,6 +58,10 @@ struct LoadedSchemas {
 // When the model's schema is the built-in, its own problems (EXP-054: a build problem) are added
 // to the reports.
 void add_builtin_report(LoadedSchemas& schemas, const pipeline::LoadedModel& loaded);
+// pipeline::load, reading and checking a large file on every core (the result is the same).
+[[nodiscard]] pipeline::LoadedModel load_on_all_cores(std::string bytes,
+                                                      const express::SchemaRegistry& schemas,
+                                                      bool validate = true);
 // Prints each report's diagnostics with its file name.
 void print_schema_reports(const std::vector<express::SchemaFileReport>& reports);
 [[nodiscard]] bool has_errors(const std::vector<express::SchemaFileReport>& reports);

@@ -39,7 +39,8 @@ int run_convert(Args args) {
 
   // Conversion is lossless whatever the schema says of the data, so the model is not checked
   // against it here (`ncpost inspect` does that).
-  pipeline::LoadedModel loaded = pipeline::load(std::move(input->bytes), schemas.registry, false);
+  pipeline::LoadedModel loaded =
+      load_on_all_cores(std::move(input->bytes), schemas.registry, false);
   std::vector<diag::Diagnostic> diagnostics = std::move(loaded.diagnostics);
   // A rejected input produces no output: a partial program must never look like a whole one.
   if (has_errors(diagnostics)) {

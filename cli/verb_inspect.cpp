@@ -32,7 +32,7 @@ int run_inspect(Args args) {
   }
   const std::string name = input->name;
 
-  pipeline::LoadedModel loaded = pipeline::load(std::move(input->bytes), schemas.registry);
+  pipeline::LoadedModel loaded = load_on_all_cores(std::move(input->bytes), schemas.registry);
   add_builtin_report(schemas, loaded);
   std::vector<diag::Diagnostic> diagnostics = std::move(loaded.diagnostics);
   const auto append = [&](std::vector<diag::Diagnostic> more) {

@@ -169,6 +169,7 @@ pipeline::LoadedModel load_model(Upload& upload, Services& services, Exchange& e
   pipeline::LoadOptions options;
   options.validate = validate;
   options.cancel = exchange.cancel_flag();
+  options.helpers = &services.helpers;
   pipeline::LoadedModel loaded =
       upload.streamed ? pipeline::load(upload.streamed->reader(), *services.schemas, options)
                       : pipeline::load(std::move(upload.bytes), *services.schemas, options);

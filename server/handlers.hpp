@@ -42,6 +42,9 @@ struct Services {
   std::filesystem::path openapi_file;
   std::function<bool()> saturated;  // the job queue is full (readyz)
   std::string engine_version;
+  // The worker pool lent to a job for reading and checking a large upload in pieces: a piece
+  // waits behind queued jobs, and the job does it itself if no worker is free first.
+  parallel::Helpers helpers;
 };
 
 // The handler's side of one request. A handler either calls respond() once, or

@@ -42,6 +42,10 @@ Server::Server(Config config, profile::ProfileStore& profiles,
   services_.admin_token = std::move(admin_token);
   services_.engine_version = NCPOST_VERSION;
   services_.saturated = [this] { return saturated(); };
+  services_.helpers.start = [pool = pool_.get_executor()](parallel::Task task) {
+    net::post(pool, std::move(task));
+  };
+  services_.helpers.threads = services_.config.workers > 1 ? services_.config.workers - 1 : 0;
   const Config& c = services_.config;
   services_.web_root = c.web_root.value_or(std::filesystem::path(NCPOST_SOURCE_DIR) / "web");
   services_.openapi_file =

@@ -283,7 +283,8 @@ void Session::take_upload_as_it_arrives() {
   upload_ = std::make_shared<StreamedUpload>(
       static_cast<std::size_t>(*length), static_cast<std::size_t>(slice_step),
       server_.pool().get_executor(),
-      std::shared_ptr<const std::atomic<bool>>(state_, &state_->cancel), std::move(slot));
+      std::shared_ptr<const std::atomic<bool>>(state_, &state_->cancel), std::move(slot),
+      &server_.services().helpers);
   upload_parser_.emplace(std::move(*parser_));
   parser_.reset();
   upload_parser_->body_limit(config.max_body);

@@ -6,9 +6,10 @@
 namespace ncpost::server {
 namespace {
 
-p21::ReadOptions read_options(const std::atomic<bool>* cancel) {
+p21::ReadOptions read_options(const std::atomic<bool>* cancel, const parallel::Helpers* helpers) {
   p21::ReadOptions options;
   options.cancel = cancel;
+  options.helpers = helpers;
   return options;
 }
 
@@ -17,12 +18,12 @@ p21::ReadOptions read_options(const std::atomic<bool>* cancel) {
 StreamedUpload::StreamedUpload(std::size_t size, std::size_t slice_step,
                                boost::asio::thread_pool::executor_type pool,
                                std::shared_ptr<const std::atomic<bool>> cancel,
-                               std::shared_ptr<void> slot)
+                               std::shared_ptr<void> slot, const parallel::Helpers* helpers)
     : slice_step_(std::max<std::size_t>(1, slice_step)),
       pool_(std::move(pool)),
       cancel_(std::move(cancel)),
       slot_(std::move(slot)),
-      reader_(size, read_options(cancel_.get())) {}
+      reader_(size, read_options(cancel_.get(), helpers)) {}
 
 bool StreamedUpload::append(std::string_view bytes) {
   if (!reader_.append(bytes)) return false;

@@ -35,10 +35,12 @@ class StreamedUpload : public std::enable_shared_from_this<StreamedUpload> {
   static constexpr std::size_t kSliceMax = std::size_t{8} << 20;
 
   // A slice starts once `slice_step` bytes arrived unread. `slot`: held while the upload lives
-  // (the server bounds how many are read this way).
+  // (the server bounds how many are read this way). `helpers`: lent to read what is left at the
+  // end in pieces (outlives the upload).
   StreamedUpload(std::size_t size, std::size_t slice_step,
                  boost::asio::thread_pool::executor_type pool,
-                 std::shared_ptr<const std::atomic<bool>> cancel, std::shared_ptr<void> slot);
+                 std::shared_ptr<const std::atomic<bool>> cancel, std::shared_ptr<void> slot,
+                 const parallel::Helpers* helpers);
 
   [[nodiscard]] std::size_t size() const { return reader_.size(); }
 

@@ -1,7 +1,9 @@
-// upload_stages FILE PROFILE [RUNS]: the work a POST /v1/posts does after the last body byte
-// arrived, stage by stage, for one program (bench/server/run.sh runs it on the ~100 MB file):
-// the upload copy, the whole-input hash, P21 read, schema selection and check, then
+// upload_stages FILE PROFILE [RUNS] [HELPERS]: the work a POST /v1/posts does after the last
+// body byte arrived, stage by stage, for one program (bench/server/run.sh runs it on the ~100 MB
+// file): the upload copy, the whole-input hash, P21 read, schema selection and check, then
 // interpretation and rendering up to the first piece of controller text. Median ms per stage.
+// HELPERS (default 1: a two-worker ncpostd with one worker free) threads are lent to the read
+// and the check, as ncpostd lends its idle workers; 0 reads and checks in order.
 
 #include <algorithm>
 #include <atomic>
@@ -15,6 +17,7 @@
 #include "ncpost/express/registry.hpp"
 #include "ncpost/express/validate.hpp"
 #include "ncpost/p21/reader.hpp"
+#include "ncpost/parallel/pieces.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/pipeline/post.hpp"
 #include "ncpost/profile/profile.hpp"
@@ -37,10 +40,11 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::cerr << "usage: upload_stages FILE PROFILE [RUNS]\n";
+    std::cerr << "usage: upload_stages FILE PROFILE [RUNS] [HELPERS]\n";
     return 2;
   }
   const int runs = argc > 3 ? std::max(1, std::atoi(argv[3])) : 3;
+  const ncpost::parallel::ThreadGroup helpers(argc > 4 ? std::stoul(argv[4]) : 1);
   ncpost::xslt::initialise();
   ncpost::profile::ProfileStore store;
   std::vector<ncpost::xslt::FileDiagnostic> profile_diagnostics;
@@ -61,14 +65,18 @@ int main(int argc, char** argv) {
     sink = sink + std::hash<std::string_view>{}(bytes);
     hash.push_back(ms_since(t));
     t = Clock::now();
-    auto result = ncpost::p21::read(std::move(bytes));
+    ncpost::p21::ReadOptions read_options;
+    read_options.helpers = &helpers.helpers();
+    auto result = ncpost::p21::read(std::move(bytes), read_options);
     read.push_back(ms_since(t));
     t = Clock::now();
     ncpost::pipeline::LoadedModel loaded;
     loaded.model = std::move(result.model);
     auto selection = registry.select_or_builtin(loaded.model);
     loaded.schema = selection.set();
-    auto checked = ncpost::express::validate(loaded.model, *loaded.schema);
+    ncpost::express::ValidateOptions validate_options;
+    validate_options.helpers = &helpers.helpers();
+    auto checked = ncpost::express::validate(loaded.model, *loaded.schema, validate_options);
     check.push_back(ms_since(t));
     if (!checked.empty()) std::cerr << checked.size() << " schema diagnostics\n";
     t = Clock::now();

@@ -1,7 +1,8 @@
 // libFuzzer target for the ISO 10303-21 reader: any input must give a model and diagnostics,
-// never a crash, a hang or a sanitizer report. Read in pieces by p21::StreamReader it must give
-// the same diagnostics and model. After a clean read, writing the model and reading it again
-// must succeed with an equal model (the writer's contract).
+// never a crash, a hang or a sanitizer report. Read in pieces by p21::StreamReader, and read in
+// pieces side by side (ReadOptions::helpers, pieces of 16 bytes or more, the helper's pieces run
+// first), it must give the same diagnostics and model. After a clean read, writing the model and
+// reading it again must succeed with an equal model (the writer's contract).
 
 #include <cstddef>
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/p21/stream_reader.hpp"
 #include "ncpost/p21/writer.hpp"
+#include "ncpost/parallel/pieces.hpp"
 
 namespace {
 
@@ -29,6 +31,17 @@ ncpost::p21::ReadResult read_in_pieces(std::string_view text) {
   return reader.finish();
 }
 
+// Side by side: every piece a helper is offered runs at once, before the reader's own piece,
+// which is the order most likely to expose state shared between the pieces.
+ncpost::p21::ReadResult read_side_by_side(std::string text) {
+  static const ncpost::parallel::Helpers at_once{[](const ncpost::parallel::Task& task) { task(); },
+                                                 3};
+  ncpost::p21::ReadOptions options;
+  options.helpers = &at_once;
+  options.min_piece_bytes = 16;
+  return ncpost::p21::read(std::move(text), options);
+}
+
 bool same_diagnostics(const ncpost::p21::ReadResult& a, const ncpost::p21::ReadResult& b) {
   if (a.diagnostics.size() != b.diagnostics.size()) return false;
   for (std::size_t i = 0; i < a.diagnostics.size(); ++i) {
@@ -45,10 +58,12 @@ bool same_diagnostics(const ncpost::p21::ReadResult& a, const ncpost::p21::ReadR
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
   const auto streamed = read_in_pieces(text);
+  const auto side_by_side = read_side_by_side(text);
   const auto first = ncpost::p21::read(std::move(text));
-  if (!same_diagnostics(first, streamed) ||
-      ncpost::p21::first_difference(first.model, streamed.model))
-    __builtin_trap();
+  for (const auto* other : {&streamed, &side_by_side})
+    if (!same_diagnostics(first, *other) ||
+        ncpost::p21::first_difference(first.model, other->model))
+      __builtin_trap();
   // Decode every string: decoding must cope with whatever the reader let through.
   std::size_t total = 0;
   for (ncpost::p21::Value v : first.model.all_values())

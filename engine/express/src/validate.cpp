@@ -103,15 +103,23 @@ class Validator {
     for (const Schema& schema : set.schemas()) type_count_ += schema.types.size();
   }
 
-  std::vector<diag::Diagnostic> run() {
+  // What checking some of the instances found, to be merged with what the other pieces of a
+  // parallel check found (merge()).
+  struct Found {
+    std::vector<diag::Diagnostic> diagnostics;
+    // The EXP-060s, given once per entity name: which diagnostic, for which keyword.
+    std::vector<std::pair<std::size_t, p21::KeywordId>> unknown_entities;
+    bool stopped = false;  // more than max_diagnostics
+  };
+
+  Found check(std::span<const Instance> instances) {
     constexpr std::size_t kCancelPollInstances = 4096;
     std::size_t until_poll = kCancelPollInstances;
-    for (const Instance& instance : model_.instances()) {
+    for (const Instance& instance : instances) {
       if (muted()) break;
       if (--until_poll == 0) {
         until_poll = kCancelPollInstances;
-        if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed))
-          return std::move(diagnostics_);
+        if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed)) break;
       }
       if (instance.keyword == Model::kExternalKeyword) continue;
       if (model_.is_complex(instance))
@@ -119,12 +127,7 @@ class Validator {
       else
         check_simple(instance);
     }
-    if (stopped_)
-      diagnostics_.push_back(diag::make(diag::Code::ExpTooManyProblems, 0, 0,
-                                        "validation stopped after " +
-                                            std::to_string(options_.max_diagnostics) +
-                                            " diagnostics; the rest of the file was not checked"));
-    return std::move(diagnostics_);
+    return {std::move(diagnostics_), std::move(unknown_entities_), stopped_};
   }
 
  private:
@@ -183,8 +186,9 @@ class Validator {
 
   std::string describe(Value v) const {
     const auto quoted = [&](std::string_view text) {
-      if (text.size() > 40) return std::string(text.substr(0, 37)) + "...";
-      return std::string(text);
+      std::string out(text.substr(0, text.size() > 40 ? 37 : text.size()));
+      if (text.size() > 40) out += "...";
+      return out;
     };
     switch (v.kind()) {
       case ValueKind::Omitted:
@@ -669,6 +673,7 @@ class Validator {
     EntityInfo& info = entity_info(keyword);
     if (info.reported) return;
     info.reported = true;
+    if (!stopped_) unknown_entities_.emplace_back(diagnostics_.size(), keyword);
     const std::string_view name = model_.keyword(keyword);
     std::string message = instance_name(instance, name, partial_record) + ": entity " +
                           std::string(name) + " is not in the schema";
@@ -813,14 +818,59 @@ class Validator {
   std::optional<p21::LineIndex> lines_;  // built at the first diagnostic
   Where where_;
   std::vector<diag::Diagnostic> diagnostics_;
+  std::vector<std::pair<std::size_t, p21::KeywordId>> unknown_entities_;
   bool stopped_ = false;
 };
+
+// The pieces' findings in instance order, as one check over all of them would give them: an
+// entity name unknown in several pieces is reported in the first only, and the limit applies
+// to the whole. (A piece that stopped at the limit has more than enough for what is kept of it:
+// it lacks at most one diagnostic per EXP-060 it repeats from earlier pieces, and each of those
+// was kept from an earlier piece.)
+std::vector<diag::Diagnostic> merge(std::vector<Validator::Found> pieces, std::size_t keywords,
+                                    const ValidateOptions& options) {
+  std::vector<diag::Diagnostic> out;
+  std::vector<bool> unknown_reported(keywords, false);
+  bool stopped = false;
+  for (auto& piece : pieces) {
+    stopped = stopped || piece.stopped;
+    auto unknown = piece.unknown_entities.begin();
+    for (std::size_t i = 0; i < piece.diagnostics.size(); ++i) {
+      if (unknown != piece.unknown_entities.end() && unknown->first == i) {
+        const p21::KeywordId keyword = (unknown++)->second;
+        if (unknown_reported[keyword]) continue;
+        unknown_reported[keyword] = true;
+      }
+      if (out.size() == options.max_diagnostics) {
+        stopped = true;
+        break;
+      }
+      out.push_back(std::move(piece.diagnostics[i]));
+    }
+  }
+  if (stopped)
+    out.push_back(diag::make(diag::Code::ExpTooManyProblems, 0, 0,
+                             "validation stopped after " + std::to_string(options.max_diagnostics) +
+                                 " diagnostics; the rest of the file was not checked"));
+  return out;
+}
 
 }  // namespace
 
 std::vector<diag::Diagnostic> validate(const p21::Model& model, const SchemaSet& schema,
                                        const ValidateOptions& options) {
-  return Validator(model, schema, options).run();
+  const auto instances = model.instances();
+  const std::size_t pieces = std::max<std::size_t>(
+      1, std::min(parallel::max_pieces(options.helpers),
+                  instances.size() / std::max<std::size_t>(options.min_piece_instances, 1)));
+  std::vector<Validator::Found> found(pieces);
+  const auto check_piece = [&](std::size_t i) {
+    const std::size_t first = instances.size() * i / pieces;
+    const std::size_t end = instances.size() * (i + 1) / pieces;
+    found[i] = Validator(model, schema, options).check(instances.subspan(first, end - first));
+  };
+  parallel::run_pieces(pieces, check_piece, options.helpers);
+  return merge(std::move(found), model.keyword_count(), options);
 }
 
 }  // namespace ncpost::express

@@ -67,6 +67,9 @@ class Lexer {
   // `text` is what may be lexed now: the whole file, or (p21::StreamReader) the part of it that
   // has arrived, cut after a ';' outside any literal or comment. Its end gives Tok::Eof.
   Lexer(std::string_view text, diag::DiagnosticList& diagnostics);
+  // Lexes `text` from `from` on (a piece of a file read in parallel; `from` is just after a ';'
+  // outside any literal or comment, or the piece's result is not used).
+  Lexer(std::string_view text, std::size_t from, diag::DiagnosticList& diagnostics);
 
   [[nodiscard]] Token next();
   // While quiet, lexical errors are not reported: used while skipping the rest of a broken
@@ -82,6 +85,12 @@ class Lexer {
     p_ = text + (p_ - begin_);
     begin_ = text;
     end_ = text + length;
+  }
+  // Goes on at `offset`, with `length` bytes available: another reader has read what lies in
+  // between (a piece of a file read in parallel).
+  void jump(std::size_t offset, std::size_t length) {
+    p_ = begin_ + offset;
+    end_ = begin_ + length;
   }
   // Stops lexing here: every later token is Tok::Eof (a cancelled read unwinds this way).
   void cut() { end_ = p_; }

@@ -184,6 +184,27 @@ std::uint32_t ModelBuilder::push_values(std::span<const Value> values) {
   return first;
 }
 
+void ModelBuilder::append(Model&& part) {
+  auto& m = model_;
+  std::vector<KeywordId> keyword_of(part.keywords_.size());
+  for (std::size_t k = 0; k < keyword_of.size(); ++k) keyword_of[k] = intern(part.keywords_[k]);
+  const auto base = static_cast<std::uint32_t>(m.values_.size());
+  for (Value v : part.values_) {
+    if (v.kind() == ValueKind::List)
+      v = Value::list(v.first() + base, v.count());
+    else if (v.kind() == ValueKind::Typed)
+      v = Value::typed(keyword_of[v.keyword_id()], v.child() + base);
+    m.values_.push_back(v);
+  }
+  part.values_ = {};  // the memory back before the instances are copied: peak is one piece
+  for (Instance instance : part.instances_) {
+    instance.first += base;
+    instance.keyword = keyword_of[instance.keyword];
+    m.instances_.push_back(instance);
+  }
+  note_depth(part.max_depth_);
+}
+
 std::vector<ModelBuilder::DuplicateId> ModelBuilder::build_indexes() {
   std::vector<DuplicateId> duplicates;
   auto& m = model_;

@@ -9,6 +9,7 @@
 #include "cut_finder.hpp"
 #include "lexer.hpp"
 #include "ncpost/p21/stream_reader.hpp"
+#include "ncpost/parallel/pieces.hpp"
 
 namespace ncpost::p21 {
 namespace {
@@ -92,6 +93,22 @@ class Parser {
     advance();
   }
 
+  // A piece from the middle of a DATA section: the instances in [from, available) of `text`,
+  // read into a builder of its own (see read_pieces()).
+  struct DataPiece {};
+  Parser(DataPiece, ModelBuilder& builder, std::string_view text, std::size_t from,
+         std::size_t available, diag::DiagnosticList& diagnostics, const ReadOptions& options)
+      : builder_(builder),
+        text_(text),
+        lexer_(text.substr(0, available), from, diagnostics),
+        diagnostics_(diagnostics),
+        options_(options),
+        final_(false) {
+    stage_ = Stage::Data;
+    seen_data_ = true;
+    advance();
+  }
+
   // Reads on. False: it stopped where the available text ends, at an instance or section
   // boundary, and extend() lets it go on; true: the file has been read to its end.
   bool run();
@@ -105,6 +122,14 @@ class Parser {
   }
   // Whether run() stopped cleanly at the end of the available text, so extend() may follow.
   [[nodiscard]] bool suspended() const { return suspended_ && !has_peeked_; }
+  // Suspended between two instances of a DATA section.
+  [[nodiscard]] bool suspended_in_data() const { return suspended() && stage_ == Stage::Data; }
+  // When suspended_in_data(): the instances up to `offset` were read by another parser (and
+  // appended to the builder), so this one goes on from there. extend() makes more available.
+  void resume_at(std::size_t offset) {
+    lexer_.jump(offset, offset);
+    current_ = lexer_.next();  // Tok::Eof: nothing past `offset` is available yet
+  }
   [[nodiscard]] bool cancelled() const { return cancelled_; }
 
  private:
@@ -825,7 +850,10 @@ void Parser::parse_instance() {
     return;
   }
   builder_.add_instance(instance);
-  expect_semicolon(what());
+  if (current_.kind == Tok::Semicolon)
+    advance();
+  else
+    expect_semicolon(what());
 }
 
 ReadResult cancelled_result() {
@@ -917,6 +945,100 @@ bool resolve(ModelBuilder& builder, diag::DiagnosticList& diagnostics, const Rea
   return true;
 }
 
+// ---- a large file in pieces ------------------------------------------------------------------
+
+// Whether the line before the one starting at `line_start` ends an instance: its last byte other
+// than blanks is ';'.
+bool after_instance_end(std::string_view text, std::size_t line_start) {
+  std::size_t i = line_start - 1;  // the '\n'
+  while (i > 0 && (text[i - 1] == ' ' || text[i - 1] == '\t' || text[i - 1] == '\r')) --i;
+  return i > 0 && text[i - 1] == ';';
+}
+
+// Where a text may be cut for reading in pieces: the start of a line that begins an instance
+// ('#') after a line that ended one (';'). Something inside a string or a comment can look like
+// this; the piece before such a cut then ends in an open literal, which its parser reports, and
+// the file is read again in one piece. So a bad cut costs time, never a different result.
+std::size_t cut_at_or_after(std::string_view text, std::size_t from) {
+  for (std::size_t at = text.find("\n#", from); at != std::string_view::npos;
+       at = text.find("\n#", at + 1))
+    if (after_instance_end(text, at + 1)) return at + 1;
+  return std::string_view::npos;
+}
+
+std::size_t last_cut_after(std::string_view text, std::size_t after) {
+  for (std::size_t at = text.rfind("\n#"); at != std::string_view::npos && at + 1 > after;
+       at = at == 0 ? std::string_view::npos : text.rfind("\n#", at - 1))
+    if (after_instance_end(text, at + 1)) return at + 1;
+  return std::string_view::npos;
+}
+
+// The cuts for reading text[from, end) in pieces: one parser reads [from, cuts[0]), helpers read
+// [cuts[i], cuts[i + 1]), and the first parser goes on from cuts.back() to the end (the last
+// instances, ENDSEC and the rest). Empty: not worth it, or no cut found.
+std::vector<std::size_t> plan_cuts(std::string_view text, std::size_t from,
+                                   const ReadOptions& options) {
+  const std::size_t length = text.size() - from;
+  const std::size_t pieces = std::min(parallel::max_pieces(options.helpers),
+                                      length / std::max<std::size_t>(options.min_piece_bytes, 1));
+  std::vector<std::size_t> cuts;
+  if (pieces < 2) return cuts;
+  for (std::size_t i = 1; i < pieces; ++i) {
+    const std::size_t cut = cut_at_or_after(text, from + length / pieces * i);
+    if (cut == std::string_view::npos || (!cuts.empty() && cut <= cuts.back())) break;
+    cuts.push_back(cut);
+  }
+  if (cuts.empty()) return cuts;
+  const std::size_t end = last_cut_after(text, cuts.back());
+  if (end == std::string_view::npos) return {};
+  cuts.push_back(end);
+  return cuts;
+}
+
+// `main` has text[0, cuts[0]) available and reads it while helpers read the pieces between the
+// cuts into models of their own; each clean piece is then appended in order, and `main` resumes
+// after it. A piece with anything to report is left for `main` to read itself, so that
+// diagnostics come out exactly as from one parser. False: `main` did not end its piece cleanly
+// between two instances (a cut inside a literal, an error before the cut, a cancel): the pieces
+// are of no use and the text must be read again in one piece (0). Otherwise `main` can go on
+// from wherever it stands, once extend() gives it the rest of the text; the pieces read apart
+// and appended are counted, `main`'s own first one included.
+std::size_t read_pieces(Parser& main, ModelBuilder& builder, std::string_view text,
+                        const std::vector<std::size_t>& cuts,
+                        const diag::DiagnosticList& diagnostics, const ReadOptions& options) {
+  struct Piece {
+    std::unique_ptr<ModelBuilder> builder;
+    bool clean = false;
+  };
+  std::vector<Piece> pieces(cuts.size() - 1);
+  const auto read_piece = [&](std::size_t index) {
+    if (index == 0) {
+      (void)main.run();
+      return;
+    }
+    Piece& piece = pieces[index - 1];
+    const std::size_t from = cuts[index - 1];
+    const std::size_t to = cuts[index];
+    piece.builder =
+        std::make_unique<ModelBuilder>(std::string{}, (to - from) / 2 + 16, (to - from) / 6 + 16);
+    diag::DiagnosticList found(options.max_errors);
+    Parser parser(Parser::DataPiece{}, *piece.builder, text, from, to, found, options);
+    // Ending in a DATA section is not enough: it has to be the one the piece began in.
+    piece.clean = !parser.run() && parser.suspended_in_data() && found.items().empty() &&
+                  piece.builder->model().sections().empty();
+    if (!piece.clean) piece.builder.reset();
+  };
+  parallel::run_pieces(cuts.size(), read_piece, options.helpers);
+  if (!main.suspended_in_data() || !diagnostics.items().empty()) return 0;
+  std::size_t appended = 0;
+  for (; appended < pieces.size() && pieces[appended].clean; ++appended) {
+    builder.append(std::move(*pieces[appended].builder).finish());
+    pieces[appended].builder.reset();
+    main.resume_at(cuts[appended + 1]);
+  }
+  return appended + 1;
+}
+
 }  // namespace
 
 bool ReadResult::ok() const {
@@ -925,22 +1047,56 @@ bool ReadResult::ok() const {
   });
 }
 
-ReadResult read(std::string text, const ReadOptions& options) {
+namespace {
+
+// Upper bounds: every value takes at least two bytes of text ("1,"), every instance six
+// ("#1=A();"). Reserving them avoids any reallocation copy while reading.
+std::unique_ptr<ModelBuilder> builder_for(std::string text, std::size_t size) {
+  return std::make_unique<ModelBuilder>(std::move(text), size / 2 + 16, size / 6 + 16);
+}
+
+// The rest of the text, now all there, read by `parser` (and helpers), then the references.
+ReadResult read_to_end(Parser& parser, ModelBuilder& builder, std::string text,
+                       diag::DiagnosticList& diagnostics, const ReadOptions& options) {
+  builder.set_text(std::move(text));
+  const std::string_view whole = builder.text();
+  parser.extend(whole, whole.size(), true);
+  (void)parser.run();
+  if (parser.cancelled() || !resolve(builder, diagnostics, options)) return cancelled_result();
+  return {std::move(builder).finish(), std::move(diagnostics).take()};
+}
+
+ReadResult read_in_one_piece(std::string text, const ReadOptions& options) {
   diag::DiagnosticList diagnostics(options.max_errors);
+  const std::size_t size = text.size();
+  const auto builder = builder_for(std::move(text), size);
+  Parser parser(*builder, builder->text(), size, true, diagnostics, options);
+  (void)parser.run();
+  if (parser.cancelled() || !resolve(*builder, diagnostics, options)) return cancelled_result();
+  return {std::move(*builder).finish(), std::move(diagnostics).take()};
+}
+
+}  // namespace
+
+ReadResult read(std::string text, const ReadOptions& options) {
   if (text.size() >= std::numeric_limits<std::uint32_t>::max()) {
+    diag::DiagnosticList diagnostics(options.max_errors);
     diagnostics.add(Code::P21FileTooLarge, 0, 0,
                     "input of " + std::to_string(text.size()) +
                         " bytes is larger than the reader's 4 GiB limit");
     return {Model{}, std::move(diagnostics).take()};
   }
-  // Upper bounds: every value takes at least two bytes of text ("1,"), every instance six
-  // ("#1=A();"). Reserving them avoids any reallocation copy while reading.
-  const std::size_t size = text.size();
-  ModelBuilder builder(std::move(text), size / 2 + 16, size / 6 + 16);
-  Parser parser(builder, builder.text(), size, true, diagnostics, options);
-  (void)parser.run();
-  if (parser.cancelled() || !resolve(builder, diagnostics, options)) return cancelled_result();
-  return {std::move(builder).finish(), std::move(diagnostics).take()};
+  const auto cuts = plan_cuts(text, 0, options);
+  if (cuts.empty()) return read_in_one_piece(std::move(text), options);
+  diag::DiagnosticList diagnostics(options.max_errors);
+  const auto builder = builder_for(std::string{}, text.size());
+  Parser parser(*builder, text, cuts.front(), false, diagnostics, options);
+  const std::size_t pieces = read_pieces(parser, *builder, text, cuts, diagnostics, options);
+  if (cancel_requested(options)) return cancelled_result();
+  if (pieces == 0) return read_in_one_piece(std::move(text), options);
+  ReadResult result = read_to_end(parser, *builder, std::move(text), diagnostics, options);
+  if (!result.cancelled) result.pieces = pieces;
+  return result;
 }
 
 // ---- StreamReader -----------------------------------------------------------------------------
@@ -1035,14 +1191,22 @@ ReadResult StreamReader::finish() {
     m.builder.reset();
     return read(std::move(m.text), m.options);
   }
-  m.builder->set_text(std::move(m.text));
-  const std::string_view whole = m.builder->text();
-  m.parser->extend(whole, whole.size(), true);
-  (void)m.parser->run();
-  if (m.parser->cancelled() || !resolve(*m.builder, m.diagnostics, m.options))
-    return cancelled_result();
-  m.parser.reset();
-  return {std::move(*m.builder).finish(), std::move(m.diagnostics).take()};
+  // What has not been read while it arrived is read in pieces when it is large enough.
+  const std::string_view arrived = m.text;
+  std::size_t pieces = 1;
+  if (const auto cuts = plan_cuts(arrived, m.window, m.options); !cuts.empty()) {
+    m.parser->extend(arrived, cuts.front(), false);
+    pieces = read_pieces(*m.parser, *m.builder, arrived, cuts, m.diagnostics, m.options);
+    if (cancel_requested(m.options)) return cancelled_result();
+    if (pieces == 0) {
+      m.give_up();
+      return read_in_one_piece(std::move(m.text), m.options);
+    }
+  }
+  ReadResult result =
+      read_to_end(*m.parser, *m.builder, std::move(m.text), m.diagnostics, m.options);
+  if (!result.cancelled) result.pieces = pieces;
+  return result;
 }
 
 std::string StreamReader::take_text() {

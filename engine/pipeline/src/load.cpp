@@ -24,6 +24,7 @@ void check(LoadedModel& out, const express::SchemaRegistry& schemas, const LoadO
   if (options.validate && !selection.fallback && out.schema != nullptr) {
     express::ValidateOptions validate_options;
     validate_options.cancel = options.cancel;
+    validate_options.helpers = options.helpers;
     auto checked = express::validate(out.model, *out.schema, validate_options);
     out.diagnostics.insert(out.diagnostics.end(), std::make_move_iterator(checked.begin()),
                            std::make_move_iterator(checked.end()));
@@ -61,6 +62,7 @@ LoadedModel load(std::string bytes, const express::SchemaRegistry& schemas,
   } else {
     p21::ReadOptions p21_options;
     p21_options.cancel = options.cancel;
+    p21_options.helpers = options.helpers;
     take(out, p21::read(std::move(bytes), p21_options));
   }
   out.read_time = Clock::now() - started;

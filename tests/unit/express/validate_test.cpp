@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "ncpost/express/parse.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/p21/reader.hpp"
+#include "ncpost/parallel/pieces.hpp"
 #include "test_support.hpp"
 
 namespace ncpost::express {
@@ -299,6 +301,46 @@ TEST(express_validate, ACancelFlagStopsTheCheck) {
   options.cancel = &cancel;
   // The flag is looked at every 4096 instances: the check stops at the first look.
   EXPECT_LT(run(program(data), test_schema(), options).size(), 4096u);
+}
+
+// A check in pieces (ValidateOptions::helpers) says what one check in order says: an unknown
+// entity is reported once, at its first instance, whichever piece that falls in; the limit
+// counts over all pieces.
+TEST(express_validate, PiecesGiveTheSameDiagnostics) {
+  std::string data;
+  for (int i = 1; i <= 400; ++i) {
+    const std::string n = std::to_string(i);
+    if (i % 50 == 0)
+      data += "#" + n + "=FROB(1);\n";  // in every piece
+    else if (i == 77 || i == 390)
+      data += "#" + n + "=WIDGET(2);\n";  // in the first and last
+    else if (i % 9 == 0)
+      data += "#" + n + "=POINT($,(0.));\n";
+    else if (i % 13 == 0)
+      data += "#" + n + "=(ITEM('t')POINT((1.))WIDGET(1));\n";
+    else
+      data += "#" + n + "=POINT('p',(0.,1.));\n";
+  }
+  const parallel::ThreadGroup threads(3);
+  std::atomic<int> offered{0};  // pieces the check offered to `never`: it did split
+  const parallel::Helpers never{[&](const parallel::Task&) { ++offered; }, 3};
+  for (const std::size_t limit : {std::size_t{1000}, std::size_t{1}, std::size_t{2}, std::size_t{5},
+                                  std::size_t{30}, std::size_t{47}}) {
+    ValidateOptions in_order;
+    in_order.max_diagnostics = limit;
+    const Strings expected = run(program(data), test_schema(), in_order);
+    ASSERT_FALSE(expected.empty());
+    for (const auto* helpers : {&threads.helpers(), &never})
+      for (const std::size_t piece : {std::size_t{1}, std::size_t{60}, std::size_t{150}}) {
+        SCOPED_TRACE("limit " + std::to_string(limit) + ", pieces of " + std::to_string(piece));
+        ValidateOptions in_pieces = in_order;
+        in_pieces.helpers = helpers;
+        in_pieces.min_piece_instances = piece;
+        EXPECT_EQ(join(run(program(data), test_schema(), in_pieces)), join(expected));
+      }
+  }
+  // Per limit: pieces of 1 and of 60 instances make 4 pieces (3 offered), of 150 two (1).
+  EXPECT_EQ(offered.load(), 6 * (3 + 3 + 1));
 }
 
 TEST(express_validate, DeepValuesAreBoundedByTheReader) {

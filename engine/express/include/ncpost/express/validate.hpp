@@ -37,6 +37,7 @@
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/express/schema.hpp"
 #include "ncpost/p21/model.hpp"
+#include "ncpost/parallel/pieces.hpp"
 
 namespace ncpost::express {
 
@@ -49,6 +50,11 @@ struct ValidateOptions {
   // thousand instances. A cancelled check returns what it found so far, which is no verdict;
   // the caller knows that it cancelled. Null: never cancelled.
   const std::atomic<bool>* cancel = nullptr;
+  // Threads lent to check a large model in pieces (null: one thread); the diagnostics are the
+  // same either way.
+  const parallel::Helpers* helpers = nullptr;
+  // No piece has fewer instances than this: below it, starting threads costs more than it saves.
+  std::size_t min_piece_instances = 50000;
 };
 
 [[nodiscard]] std::vector<diag::Diagnostic> validate(const p21::Model& model,

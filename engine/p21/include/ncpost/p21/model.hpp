@@ -187,6 +187,10 @@ class ModelBuilder {
   [[nodiscard]] std::uint32_t instance_count() const {
     return static_cast<std::uint32_t>(model_.instances_.size());
   }
+  // Appends the instances of `part`, a model read from the piece of the same text that follows
+  // (a file read in parallel), with its values renumbered into this arena and its keywords
+  // into this table. `part` has instances only: no header, sections or anchors.
+  void append(Model&& part);
   void add_section(const DataSection& section) { model_.sections_.push_back(section); }
   void add_anchor(const Anchor& anchor) { model_.anchors_.push_back(anchor); }
   void note_depth(std::uint32_t depth) {

@@ -14,6 +14,7 @@
 
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/p21/model.hpp"
+#include "ncpost/parallel/pieces.hpp"
 
 namespace ncpost::p21 {
 
@@ -27,6 +28,11 @@ struct ReadOptions {
   // Set by another thread to stop reading (a client that went away, a job out of time): looked
   // at every few thousand tokens and instances. Null: never cancelled.
   const std::atomic<bool>* cancel = nullptr;
+  // Threads lent to read a large file in pieces (null: one thread). The result is the same
+  // either way, diagnostics included: a piece with anything to report is read again in order.
+  const parallel::Helpers* helpers = nullptr;
+  // No piece is smaller than this: below it, starting threads costs more than it saves.
+  std::size_t min_piece_bytes = std::size_t{4} << 20;
 };
 
 struct ReadResult {
@@ -34,6 +40,8 @@ struct ReadResult {
   std::vector<diag::Diagnostic> diagnostics;
   // Stopped by ReadOptions::cancel: the model and diagnostics are empty, not a verdict.
   bool cancelled = false;
+  // How many pieces were read side by side (ReadOptions::helpers); 1: the text was read in order.
+  std::size_t pieces = 1;
 
   [[nodiscard]] bool ok() const;
 };

@@ -10,6 +10,7 @@
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/p21/model.hpp"
+#include "ncpost/parallel/pieces.hpp"
 #include "ncpost/pipeline/detect.hpp"
 
 namespace ncpost::p21 {
@@ -24,6 +25,9 @@ struct LoadOptions {
   bool validate = true;
   // Set by another thread to stop the job: passed to the P21 reader and the schema check.
   const std::atomic<bool>* cancel = nullptr;
+  // Threads lent to read and check a large file in pieces (null: one thread); the result is the
+  // same either way.
+  const parallel::Helpers* helpers = nullptr;
 };
 
 struct LoadedModel {
