@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <thread>
 
 #include "cut_finder.hpp"
 #include "lexer.hpp"
@@ -973,19 +974,27 @@ std::size_t last_cut_after(std::string_view text, std::size_t after) {
   return std::string_view::npos;
 }
 
-// The cuts for reading text[from, end) in pieces: one parser reads [from, cuts[0]), helpers read
-// [cuts[i], cuts[i + 1]), and the first parser goes on from cuts.back() to the end (the last
-// instances, ENDSEC and the rest). Empty: not worth it, or no cut found.
+// The cuts for reading text[from, end) in pieces: piece 0 is [from, cuts[0]), piece i is
+// [cuts[i - 1], cuts[i]), and the first parser reads from cuts.back() to the end (the last
+// instances, ENDSEC and the rest). At least one piece per thread, each at least min_piece_bytes,
+// and more pieces of at most max_piece_bytes when the text is long: a piece read apart is held
+// twice while it is appended, so small pieces keep that extra memory small. Empty: not worth
+// it, or no cut found.
 std::vector<std::size_t> plan_cuts(std::string_view text, std::size_t from,
                                    const ReadOptions& options) {
+  constexpr std::size_t kMaxPieces = 4096;
   const std::size_t length = text.size() - from;
-  const std::size_t pieces = std::min(parallel::max_pieces(options.helpers),
-                                      length / std::max<std::size_t>(options.min_piece_bytes, 1));
+  const std::size_t threads = parallel::max_pieces(options.helpers);
+  const std::size_t by_size = length / std::max<std::size_t>(options.min_piece_bytes, 1);
   std::vector<std::size_t> cuts;
-  if (pieces < 2) return cuts;
+  if (threads < 2 || by_size < 2) return cuts;
+  const std::size_t pieces =
+      std::min(kMaxPieces, std::max(std::min(threads, by_size),
+                                    length / std::max<std::size_t>(options.max_piece_bytes, 1)));
   for (std::size_t i = 1; i < pieces; ++i) {
     const std::size_t cut = cut_at_or_after(text, from + length / pieces * i);
-    if (cut == std::string_view::npos || (!cuts.empty() && cut <= cuts.back())) break;
+    if (cut == std::string_view::npos) break;
+    if (!cuts.empty() && cut <= cuts.back()) continue;
     cuts.push_back(cut);
   }
   if (cuts.empty()) return cuts;
@@ -995,14 +1004,15 @@ std::vector<std::size_t> plan_cuts(std::string_view text, std::size_t from,
   return cuts;
 }
 
-// `main` has text[0, cuts[0]) available and reads it while helpers read the pieces between the
-// cuts into models of their own; each clean piece is then appended in order, and `main` resumes
-// after it. A piece with anything to report is left for `main` to read itself, so that
-// diagnostics come out exactly as from one parser. False: `main` did not end its piece cleanly
-// between two instances (a cut inside a literal, an error before the cut, a cancel): the pieces
-// are of no use and the text must be read again in one piece (0). Otherwise `main` can go on
-// from wherever it stands, once extend() gives it the rest of the text; the pieces read apart
-// and appended are counted, `main`'s own first one included.
+// `main` has text[0, cuts[0]) available and reads it; the other pieces are read by whichever
+// thread takes them (parallel::run_pieces). The reading thread reads a piece with `main` itself
+// when `main` has read every piece before it; any other piece gets a parser and a model of its
+// own, and the clean ones are then appended in order, `main` resuming after each. A piece with
+// anything to report is left for `main` to read itself, so that diagnostics come out exactly as
+// from one parser. 0: `main` did not end its part cleanly between two instances (a cut inside
+// a literal, an error before the cut, a cancel), so the text must be read again in one piece.
+// Otherwise `main` can go on from wherever it stands once extend() gives it the rest; the
+// count is 1 + the pieces read apart and appended.
 std::size_t read_pieces(Parser& main, ModelBuilder& builder, std::string_view text,
                         const std::vector<std::size_t>& cuts,
                         const diag::DiagnosticList& diagnostics, const ReadOptions& options) {
@@ -1010,13 +1020,20 @@ std::size_t read_pieces(Parser& main, ModelBuilder& builder, std::string_view te
     std::unique_ptr<ModelBuilder> builder;
     bool clean = false;
   };
-  std::vector<Piece> pieces(cuts.size() - 1);
+  std::vector<Piece> pieces(cuts.size());  // [0] is main's
+  const auto reading_thread = std::this_thread::get_id();
+  std::size_t read_by_main = 0;  // the reading thread's: main has read pieces [0, read_by_main)
   const auto read_piece = [&](std::size_t index) {
-    if (index == 0) {
+    if (std::this_thread::get_id() == reading_thread && index == read_by_main) {
+      if (index > 0) {
+        if (!main.suspended_in_data() || !diagnostics.items().empty()) return;  // no use now
+        main.extend(text, cuts[index], false);
+      }
       (void)main.run();
+      ++read_by_main;
       return;
     }
-    Piece& piece = pieces[index - 1];
+    Piece& piece = pieces[index];
     const std::size_t from = cuts[index - 1];
     const std::size_t to = cuts[index];
     piece.builder =
@@ -1031,10 +1048,10 @@ std::size_t read_pieces(Parser& main, ModelBuilder& builder, std::string_view te
   parallel::run_pieces(cuts.size(), read_piece, options.helpers);
   if (!main.suspended_in_data() || !diagnostics.items().empty()) return 0;
   std::size_t appended = 0;
-  for (; appended < pieces.size() && pieces[appended].clean; ++appended) {
-    builder.append(std::move(*pieces[appended].builder).finish());
-    pieces[appended].builder.reset();
-    main.resume_at(cuts[appended + 1]);
+  for (std::size_t i = read_by_main; i < pieces.size() && pieces[i].clean; ++i, ++appended) {
+    builder.append(std::move(*pieces[i].builder).finish());
+    pieces[i].builder.reset();
+    main.resume_at(cuts[i]);
   }
   return appended + 1;
 }

@@ -1,5 +1,6 @@
 #include "ncpost/parallel/pieces.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <exception>
@@ -8,14 +9,14 @@
 namespace ncpost::parallel {
 namespace {
 
-// Outlives run_pieces(): a task the caller claimed first may still sit in a pool's queue, and
-// when it runs at last it only finds its piece taken.
+// Outlives run_pieces(): a helper's task may still sit in a pool's queue when the caller has
+// done every piece, and when it runs at last it finds nothing left to take.
 struct Claims {
-  explicit Claims(std::size_t count)
-      : claimed(std::make_unique<std::atomic<bool>[]>(count)), unfinished(count) {}
+  Claims(std::size_t count_, const std::function<void(std::size_t)>& piece_)
+      : count(count_), piece(&piece_), unfinished(count_) {}
 
-  // True for exactly one caller per piece.
-  bool claim(std::size_t index) { return !claimed[index].exchange(true); }
+  // The next piece no thread has taken, or `count` once all are taken.
+  std::size_t take() { return next.fetch_add(1); }
 
   void run(std::size_t index) {
     try {
@@ -28,9 +29,14 @@ struct Claims {
     if (--unfinished == 0) all_done.notify_all();
   }
 
-  std::unique_ptr<std::atomic<bool>[]> claimed;
-  // Valid while run_pieces() waits, which is whenever a claimed piece is running.
-  const std::function<void(std::size_t)>* piece = nullptr;
+  void run_what_is_left() {
+    for (std::size_t index = take(); index < count; index = take()) run(index);
+  }
+
+  const std::size_t count;
+  std::atomic<std::size_t> next{0};
+  // Valid while run_pieces() waits, which is whenever a taken piece is running.
+  const std::function<void(std::size_t)>* piece;
   std::mutex mutex;
   std::condition_variable all_done;
   std::size_t unfinished;
@@ -41,26 +47,21 @@ struct Claims {
 
 void run_pieces(std::size_t count, const std::function<void(std::size_t)>& piece,
                 const Helpers* helpers) {
-  if (count == 0) return;
-  if (max_pieces(helpers) == 1 || count == 1) {
+  if (max_pieces(helpers) == 1 || count <= 1) {
     for (std::size_t i = 0; i < count; ++i) piece(i);
     return;
   }
-  auto claims = std::make_shared<Claims>(count);
-  claims->piece = &piece;
-  for (std::size_t i = 1; i < count; ++i) {
+  auto claims = std::make_shared<Claims>(count, piece);
+  const std::size_t first = claims->take();  // 0, taken before any helper can start
+  const std::size_t helper_tasks = std::min(helpers->threads, count - 1);
+  for (std::size_t i = 0; i < helper_tasks; ++i) {
     try {
-      helpers->start([claims, i] {
-        if (claims->claim(i)) claims->run(i);
-      });
-    } catch (...) {  // no thread to be had (std::system_error): the piece is done here
+      helpers->start([claims] { claims->run_what_is_left(); });
+    } catch (...) {  // no thread to be had (std::system_error): the caller does more
     }
   }
-  (void)claims->claim(0);
-  claims->run(0);
-  // What no helper has started yet is done here; the helpers' pieces are already running.
-  for (std::size_t i = 1; i < count; ++i)
-    if (claims->claim(i)) claims->run(i);
+  claims->run(first);
+  claims->run_what_is_left();
   std::unique_lock lock(claims->mutex);
   claims->all_done.wait(lock, [&] { return claims->unfinished == 0; });
   if (claims->error) std::rethrow_exception(claims->error);

@@ -33,6 +33,9 @@ struct ReadOptions {
   const parallel::Helpers* helpers = nullptr;
   // No piece is smaller than this: below it, starting threads costs more than it saves.
   std::size_t min_piece_bytes = std::size_t{4} << 20;
+  // A longer text is cut into more pieces than threads, none longer than this: a piece read on
+  // another thread is held twice while it is joined to the rest.
+  std::size_t max_piece_bytes = std::size_t{8} << 20;
 };
 
 struct ReadResult {
@@ -40,7 +43,8 @@ struct ReadResult {
   std::vector<diag::Diagnostic> diagnostics;
   // Stopped by ReadOptions::cancel: the model and diagnostics are empty, not a verdict.
   bool cancelled = false;
-  // How many pieces were read side by side (ReadOptions::helpers); 1: the text was read in order.
+  // 1 + how many pieces other threads read apart and were joined (ReadOptions::helpers); 1: the
+  // text was read in order by one parser.
   std::size_t pieces = 1;
 
   [[nodiscard]] bool ok() const;

@@ -3,10 +3,10 @@
 //
 // The engine keeps no thread pool: whoever runs the job says how to start a task elsewhere
 // (`Helpers`): the CLI gives each task a thread of its own (ThreadGroup), ncpostd posts it to its
-// worker pool. A piece offered to a helper is run by whichever thread claims it first, the
-// helper or the caller once its own piece is done. So the caller never waits for a piece that no
-// thread has started: on a busy pool, where the helper's task waits in the queue behind other
-// jobs, the job is as fast as it is alone, not slower, and it cannot deadlock.
+// worker pool. The pieces are taken in order from one counter by the caller and by whichever
+// helpers have started, so the caller never waits for a piece that no thread has started: on a
+// busy pool, where the helpers' tasks wait in the queue behind other jobs, the caller does every
+// piece itself, and a helper that starts after the last piece was taken finds nothing to do.
 
 #include <cstddef>
 #include <functional>
@@ -32,8 +32,9 @@ struct Helpers {
 }
 
 // Runs piece(0) .. piece(count - 1), each exactly once, and returns when every one has finished.
-// Piece 0 runs on the calling thread first; the others are offered to `helpers` (null: all run
-// here, in order). An exception from any piece is rethrown here once all have finished.
+// Piece 0 runs on the calling thread; the others are taken in index order by the calling thread
+// and by up to helpers->threads helpers (null: all run here, in order). There may be more pieces
+// than threads. An exception from any piece is rethrown here once all have finished.
 void run_pieces(std::size_t count, const std::function<void(std::size_t)>& piece,
                 const Helpers* helpers);
 
