@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "ncpost/p21/strings.hpp"
 
@@ -13,6 +18,23 @@ constexpr std::uint32_t kNoInstance = 0xFFFFFFFFu;
 
 char upper(char c) {
   return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
+
+// The arenas of a large file are reserved at their upper bound and filled front to back: with
+// 2 MB pages that is one page fault where there were 512 (a fifth of a 100 MB read was the
+// kernel clearing 4 kB pages). Only whole 2 MB pages inside the reservation are advised; the
+// kernel's transparent huge pages in "madvise" mode (Debian's default) act on it, and where it
+// cannot, nothing changes.
+void advise_huge_pages(const void* data, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHugePage - 1) & ~(kHugePage - 1);
+  const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHugePage - 1);
+  if (end > begin) (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+  (void)data;
+  (void)bytes;
+#endif
 }
 
 }  // namespace
@@ -157,6 +179,8 @@ ModelBuilder::ModelBuilder(std::string text, std::size_t expected_values,
   // peak memory is not doubled by a copy; pages that are never touched cost no memory.
   model_.values_.reserve(expected_values);
   model_.instances_.reserve(expected_instances);
+  advise_huge_pages(model_.values_.data(), model_.values_.capacity() * sizeof(Value));
+  advise_huge_pages(model_.instances_.data(), model_.instances_.capacity() * sizeof(Instance));
   intern("(complex)");
   intern("(external reference)");
 }
