@@ -62,11 +62,6 @@ Lexer::Lexer(std::string_view text, diag::DiagnosticList& diagnostics)
       end_(text.data() + text.size()),
       diagnostics_(diagnostics) {}
 
-Lexer::Lexer(std::string_view text, std::size_t from, diag::DiagnosticList& diagnostics)
-    : Lexer(text, diagnostics) {
-  p_ = begin_ + from;
-}
-
 LineIndex::Position Lexer::position(std::uint32_t offset) {
   if (!lines_) lines_.emplace(std::string_view(begin_, static_cast<std::size_t>(end_ - begin_)));
   return lines_->at(offset);

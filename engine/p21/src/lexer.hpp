@@ -67,9 +67,6 @@ class Lexer {
   // `text` is what may be lexed now: the whole file, or (p21::StreamReader) the part of it that
   // has arrived, cut after a ';' outside any literal or comment. Its end gives Tok::Eof.
   Lexer(std::string_view text, diag::DiagnosticList& diagnostics);
-  // Lexes `text` from `from` on (a piece of a file read in parallel; `from` is just after a ';'
-  // outside any literal or comment, or the piece's result is not used).
-  Lexer(std::string_view text, std::size_t from, diag::DiagnosticList& diagnostics);
 
   [[nodiscard]] Token next();
   // While quiet, lexical errors are not reported: used while skipping the rest of a broken

@@ -101,10 +101,11 @@ class Parser {
          std::size_t available, diag::DiagnosticList& diagnostics, const ReadOptions& options)
       : builder_(builder),
         text_(text),
-        lexer_(text.substr(0, available), from, diagnostics),
+        lexer_(text.substr(0, available), diagnostics),
         diagnostics_(diagnostics),
         options_(options),
         final_(false) {
+    lexer_.jump(from, available);
     stage_ = Stage::Data;
     seen_data_ = true;
     advance();
@@ -1093,6 +1094,29 @@ ReadResult read_in_one_piece(std::string text, const ReadOptions& options) {
   return {std::move(*builder).finish(), std::move(diagnostics).take()};
 }
 
+// `parser` has read what lies before `cuts.front()` (or before the end, when there are no cuts)
+// into `builder`; the rest is read in the pieces that `cuts` plans, then to the end. When the
+// pieces cannot be used, both are released before the whole text is read again in one piece,
+// so that two models are never held at once.
+ReadResult read_rest(std::unique_ptr<Parser>& parser, std::unique_ptr<ModelBuilder>& builder,
+                     std::string text, const std::vector<std::size_t>& cuts,
+                     diag::DiagnosticList& diagnostics, const ReadOptions& options) {
+  std::size_t pieces = 1;
+  if (!cuts.empty()) {
+    parser->extend(text, cuts.front(), false);
+    pieces = read_pieces(*parser, *builder, text, cuts, diagnostics, options);
+    if (cancel_requested(options)) return cancelled_result();
+    if (pieces == 0) {
+      parser.reset();
+      builder.reset();
+      return read_in_one_piece(std::move(text), options);
+    }
+  }
+  ReadResult result = read_to_end(*parser, *builder, std::move(text), diagnostics, options);
+  if (!result.cancelled) result.pieces = pieces;
+  return result;
+}
+
 }  // namespace
 
 ReadResult read(std::string text, const ReadOptions& options) {
@@ -1106,14 +1130,9 @@ ReadResult read(std::string text, const ReadOptions& options) {
   const auto cuts = plan_cuts(text, 0, options);
   if (cuts.empty()) return read_in_one_piece(std::move(text), options);
   diag::DiagnosticList diagnostics(options.max_errors);
-  const auto builder = builder_for(std::string{}, text.size());
-  Parser parser(*builder, text, cuts.front(), false, diagnostics, options);
-  const std::size_t pieces = read_pieces(parser, *builder, text, cuts, diagnostics, options);
-  if (cancel_requested(options)) return cancelled_result();
-  if (pieces == 0) return read_in_one_piece(std::move(text), options);
-  ReadResult result = read_to_end(parser, *builder, std::move(text), diagnostics, options);
-  if (!result.cancelled) result.pieces = pieces;
-  return result;
+  auto builder = builder_for(std::string{}, text.size());
+  auto parser = std::make_unique<Parser>(*builder, text, 0, false, diagnostics, options);
+  return read_rest(parser, builder, std::move(text), cuts, diagnostics, options);
 }
 
 // ---- StreamReader -----------------------------------------------------------------------------
@@ -1209,21 +1228,8 @@ ReadResult StreamReader::finish() {
     return read(std::move(m.text), m.options);
   }
   // What has not been read while it arrived is read in pieces when it is large enough.
-  const std::string_view arrived = m.text;
-  std::size_t pieces = 1;
-  if (const auto cuts = plan_cuts(arrived, m.window, m.options); !cuts.empty()) {
-    m.parser->extend(arrived, cuts.front(), false);
-    pieces = read_pieces(*m.parser, *m.builder, arrived, cuts, m.diagnostics, m.options);
-    if (cancel_requested(m.options)) return cancelled_result();
-    if (pieces == 0) {
-      m.give_up();
-      return read_in_one_piece(std::move(m.text), m.options);
-    }
-  }
-  ReadResult result =
-      read_to_end(*m.parser, *m.builder, std::move(m.text), m.diagnostics, m.options);
-  if (!result.cancelled) result.pieces = pieces;
-  return result;
+  const auto cuts = plan_cuts(m.text, m.window, m.options);
+  return read_rest(m.parser, m.builder, std::move(m.text), cuts, m.diagnostics, m.options);
 }
 
 std::string StreamReader::take_text() {
