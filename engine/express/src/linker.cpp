@@ -325,6 +325,7 @@ void Linker::flatten(Entity& e) {
         same->optional = inherited.optional;
         same->name = inherited.name;
         same->redeclared_by = inherited.redeclared_by;
+        same->schema = inherited.schema;
       }
     }
   }
@@ -333,8 +334,14 @@ void Linker::flatten(Entity& e) {
     if (attribute.redeclares) {
       apply_explicit_redeclaration(e, attribute);
     } else {
-      list.push_back(FlatAttribute{
-          attribute.name, e.name, attribute.name, attribute.type, attribute.optional, false, {}});
+      list.push_back(FlatAttribute{attribute.name,
+                                   e.name,
+                                   attribute.name,
+                                   attribute.type,
+                                   attribute.optional,
+                                   false,
+                                   {},
+                                   e.schema});
     }
   }
   for (const DerivedAttribute& attribute : e.derived_attributes)
@@ -386,6 +393,7 @@ void Linker::apply_explicit_redeclaration(Entity& e, const ExplicitAttribute& at
   target->type = attribute.type;
   target->optional = attribute.optional;
   target->redeclared_by = e.name;
+  target->schema = e.schema;
 }
 
 void Linker::apply_derived_redeclaration(Entity& e, const DerivedAttribute& attribute) {
@@ -399,6 +407,7 @@ void Linker::apply_derived_redeclaration(Entity& e, const DerivedAttribute& attr
     target->type = attribute.type;
     target->derived_redeclared = true;
     target->redeclared_by = e.name;
+    target->schema = e.schema;
     return;
   }
   // Re-deriving an attribute that a supertype already derives does not touch the P21 layout.

@@ -101,6 +101,9 @@ class Validator {
   Validator(const Model& model, const SchemaSet& set, const ValidateOptions& options)
       : model_(model), set_(set), options_(options), entities_(model.keyword_count()) {
     for (const Schema& schema : set.schemas()) type_count_ += schema.types.size();
+    // A program uses some tens of the schema's types: growing the table step by step cost
+    // more than the look-ups themselves on a small file.
+    resolved_.reserve(128);
   }
 
   // What checking some of the instances found, to be merged with what the other pieces of a
@@ -135,7 +138,6 @@ class Validator {
     bool looked_up = false;
     bool reported = false;  // EXP-060 given for this keyword
     const Entity* entity = nullptr;
-    std::vector<std::uint32_t> contexts;  // per flattened attribute: where its type is resolved
   };
 
   // ---- reporting ----------------------------------------------------------------------------
@@ -269,15 +271,6 @@ class Validator {
 
   // ---- schema look-ups, cached --------------------------------------------------------------
 
-  std::uint32_t context_of(const Entity& e, const FlatAttribute& a) const {
-    const std::string& declarer = a.redeclared_by.empty() ? a.owner : a.redeclared_by;
-    if (declarer == e.name) return e.schema;
-    if (const auto ref = set_.resolve(e.schema, declarer); ref && ref->kind == DeclKind::Entity)
-      return set_.entity(*ref).schema;
-    if (const Entity* other = set_.find_entity(declarer)) return other->schema;
-    return e.schema;
-  }
-
   // Keyword ids are below model_.keyword_count(), the size of entities_, which never changes:
   // references into it stay valid for the whole pass.
   EntityInfo& entity_info(p21::KeywordId keyword) {
@@ -286,9 +279,6 @@ class Validator {
     if (!info.looked_up) {
       info.looked_up = true;
       info.entity = set_.find_entity(model_.keyword(keyword));
-      if (info.entity != nullptr)
-        for (const FlatAttribute& a : info.entity->attributes)
-          info.contexts.push_back(context_of(*info.entity, a));
     }
     return info;
   }
@@ -722,8 +712,8 @@ class Validator {
     w.params = params;
     for (std::size_t i = 0; i < params.size() && !muted(); ++i) {
       const FlatAttribute& a = e.attributes[i];
-      AttributeView view{
-          a.name, &a.type, info.contexts[i], a.optional, a.derived_redeclared, a.redeclared_by};
+      AttributeView view{a.name,         &a.type, a.schema, a.optional, a.derived_redeclared,
+                         a.redeclared_by};
       check_attribute(w, view, params[i]);
     }
   }
@@ -773,12 +763,9 @@ class Validator {
         };
         const auto base = std::find_if(e.attributes.begin(), e.attributes.end(), same);
         if (base == e.attributes.end()) continue;
-        AttributeView view{base->name,
-                           &base->type,
-                           context_of(e, *base),
-                           base->optional,
-                           base->derived_redeclared,
-                           base->redeclared_by};
+        AttributeView view{
+            base->name,         &base->type, base->schema, base->optional, base->derived_redeclared,
+            base->redeclared_by};
         std::size_t depth_of_choice = e.ancestors.size();
         for (const auto& [other_record, other] : records) {
           if (other == entity || !set_.is_subtype_of(*other, e)) continue;
@@ -791,7 +778,7 @@ class Validator {
             depth_of_choice = other->ancestors.size();
             view.type = &f->type;
             view.optional = f->optional;
-            view.schema = context_of(*other, *f);
+            view.schema = f->schema;
           }
         }
         check_attribute(w, view, values[k]);
@@ -810,7 +797,7 @@ class Validator {
   const ValidateOptions& options_;
   std::size_t type_count_ = 0;
   std::vector<EntityInfo> entities_;  // by keyword id
-  EntityInfo no_entity_{true, true, nullptr, {}};
+  EntityInfo no_entity_{true, true, nullptr};
   std::unordered_map<const TypeSpec*, Resolved> resolved_;
   std::unordered_map<const TypeDecl*, SelectInfo> selects_;
   std::unordered_map<const TypeDecl*, std::vector<std::string>> enumerations_;

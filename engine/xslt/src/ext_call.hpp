@@ -13,6 +13,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <new>
 #include <optional>
 #include <span>
 #include <string>
@@ -113,10 +115,15 @@ class Call {
                          std::string("ext:") + name_ + ": " + message);
   }
 
+  // The string is copied once, by length: xmlXPathNewString would measure it byte by byte
+  // first, and a motion run's blocks are kilobytes.
   void push_string(const std::string& s) {
     if (pushed_) return;
+    auto* copy = static_cast<xmlChar*>(xmlMalloc(s.size() + 1));
+    if (copy == nullptr) throw std::bad_alloc();  // guarded() stops the transform
+    std::memcpy(copy, s.c_str(), s.size() + 1);
     pushed_ = true;
-    valuePush(x_, xmlXPathNewString(reinterpret_cast<const xmlChar*>(s.c_str())));
+    valuePush(x_, xmlXPathWrapString(copy));
   }
   // Pushes argument n back as the result when it is a string already (no copy).
   void push_argument(std::size_t n) {
@@ -247,19 +254,30 @@ inline void check_line_length(Call& call, std::string_view text) {
   }
 }
 
-// Appends `text` as one block: "N<next> text" when the profile numbers its blocks
-// (ext:block-line), checked against the line length; no newline.
-inline void append_block_line(Call& call, std::string& out, std::string_view text, bool numbered) {
+// A block written in place into `out`: begin_block_line() writes the N word when the profile
+// numbers its blocks ("N<next> ") and returns where the block starts; the caller appends the
+// words; end_block_line() checks the block against the line length. No newline.
+inline std::size_t begin_block_line(Call& call, std::string& out, bool numbered) {
   const std::size_t start = out.size();
   if (numbered) {
-    char number[24];
-    const auto done = std::to_chars(number, number + sizeof number, next_block_number(call.job()));
-    out += 'N';
-    out.append(number, done.ptr);
-    out += ' ';
+    char word[24];
+    word[0] = 'N';
+    char* end = std::to_chars(word + 1, word + sizeof word - 1, next_block_number(call.job())).ptr;
+    *end++ = ' ';
+    out.append(word, end);
   }
-  out += text;
+  return start;
+}
+
+inline void end_block_line(Call& call, const std::string& out, std::size_t start) {
   check_line_length(call, std::string_view(out).substr(start));
+}
+
+// Appends `text` as one block (ext:block-line).
+inline void append_block_line(Call& call, std::string& out, std::string_view text, bool numbered) {
+  const std::size_t start = begin_block_line(call, out, numbered);
+  out += text;
+  end_block_line(call, out, start);
 }
 
 }  // namespace ncpost::xslt::detail

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numbers>
 
 namespace ncpost::xslt::detail {
@@ -41,26 +42,28 @@ std::size_t sequence_length(std::string_view s) {
 namespace {
 
 constexpr double kPowers[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12};
-constexpr std::uint64_t kIntegerPowers[] = {
-    1,        10,        100,        1000,        10000,        100000,       1000000,
-    10000000, 100000000, 1000000000, 10000000000, 100000000000, 1000000000000};
 
 // |value| * 10^decimals rounded as printf rounds the exact binary value, when integers can
 // tell. Below 1e12 the product is within 2^-14 of the exact one (powers of ten up to 1e22 are
-// exact doubles; one rounding of at most half an ulp, which is 2^-13 there), and floor and the
-// subtraction are exact. So when the fraction is further than 1e-3 from one half, the exact
+// exact doubles; one rounding of at most half an ulp, which is 2^-13 there), and truncation and
+// the subtraction are exact. So when the fraction is further than 1e-3 from one half, the exact
 // value rounds the same way. Nothing near a tie, or for huge or non-finite values.
 std::optional<std::uint64_t> rounded_scaled(double value, int decimals) {
   const double scaled = std::abs(value) * kPowers[decimals];
-  if (!(scaled < 1e12)) return std::nullopt;  // also NaN
-  const double whole = std::floor(scaled);
-  const double fraction = scaled - whole;
+  if (!(scaled < 1e12)) return std::nullopt;              // also NaN
+  const auto whole = static_cast<std::uint64_t>(scaled);  // floor: scaled is not negative
+  const double fraction = scaled - static_cast<double>(whole);
   if (std::abs(fraction - 0.5) <= 1e-3) return std::nullopt;
-  return static_cast<std::uint64_t>(whole) + (fraction > 0.5 ? 1 : 0);
+  return whole + (fraction > 0.5 ? 1 : 0);
 }
 
-// The format's rules applied to printf-style fixed text ("-12.500"), appended to `out`.
-void append_trimmed(std::string& out, char* buffer, std::size_t end, const NumberFormat& format) {
+char* write_bytes(char* at, const char* bytes, std::size_t length) {
+  std::memcpy(at, bytes, length);
+  return at + length;
+}
+
+// The format's rules applied to printf-style fixed text ("-12.500"), written at `at`.
+char* write_trimmed(char* at, char* buffer, std::size_t end, const NumberFormat& format) {
   std::size_t begin = 0;
   const std::string_view text(buffer, end);
   // Anything that rounds to zero is "0", never "-0".
@@ -84,11 +87,10 @@ void append_trimmed(std::string& out, char* buffer, std::size_t end, const Numbe
   if (!format.leading_zero && has_point && buffer[first] == '0' && buffer[first + 1] == '.' &&
       first + 2 < end) {
     // "0.5" -> ".5", "-0.5" -> "-.5"
-    if (negative) out += '-';
-    out.append(buffer + first + 1, end - first - 1);
-    return;
+    if (negative) *at++ = '-';
+    return write_bytes(at, buffer + first + 1, end - first - 1);
   }
-  out.append(buffer + begin, end - begin);
+  return write_bytes(at, buffer + begin, end - begin);
 }
 
 }  // namespace
@@ -117,42 +119,48 @@ std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t s
   return done.ec == std::errc() ? static_cast<std::size_t>(done.ptr - buffer) : 0;
 }
 
-void append_number(std::string& out, double value, const NumberFormat& format) {
+char* write_number(char* at, double value, const NumberFormat& format) {
   const int decimals = std::clamp(format.decimals, 0, 12);
   const std::optional<std::uint64_t> rounded = rounded_scaled(value, decimals);
   if (!rounded) {
-    char buffer[400];  // DBL_MAX in fixed notation with 12 decimals fits
+    char buffer[kNumberRoom];
     const std::size_t end = fixed_digits(value, decimals, buffer, sizeof buffer - 1);
-    if (end > 0) append_trimmed(out, buffer, end, format);
-    return;
+    return end > 0 ? write_trimmed(at, buffer, end, format) : at;
   }
-  // The same rules on integers: no text to trim afterwards. Written into a local buffer and
-  // appended once (this runs for every coordinate of every block).
-  const std::uint64_t whole = *rounded / kIntegerPowers[decimals];
-  std::uint64_t fraction = *rounded % kIntegerPowers[decimals];
+  // The same rules on the integer, its digits written from the right (this runs for every
+  // coordinate of every block): the fraction without its trailing zeros unless the format
+  // keeps them, the point, the whole part unless the format drops a lone leading zero, the
+  // sign unless the value rounds to zero.
+  std::uint64_t n = *rounded;
   int fraction_digits = decimals;
   if (!format.trailing_zeros) {
-    while (fraction_digits > 0 && fraction % 10 == 0) {
-      fraction /= 10;
+    while (fraction_digits > 0 && n % 10 == 0) {
+      n /= 10;
       --fraction_digits;
     }
   }
-  char text[48];
-  char* at = text;
-  if (*rounded != 0 && std::signbit(value)) *at++ = '-';
-  if (whole != 0 || format.leading_zero || fraction_digits == 0)
-    at = std::to_chars(at, text + 20, whole).ptr;  // below 1e12: 12 digits at most
-  if (fraction_digits > 0) {
-    *at = '.';
-    for (int i = fraction_digits; i >= 1; --i) {
-      at[i] = static_cast<char>('0' + fraction % 10);
-      fraction /= 10;
-    }
-    at += fraction_digits + 1;
-  } else if (format.decimal_point) {
-    *at++ = '.';
+  char text[32];  // below 1e12: 13 digits, the point and the sign at most
+  char* const end = text + sizeof text;
+  char* p = end;
+  if (fraction_digits == 0 && format.decimal_point) *--p = '.';
+  for (int i = 0; i < fraction_digits; ++i) {
+    *--p = static_cast<char>('0' + n % 10);
+    n /= 10;
   }
-  out.append(text, static_cast<std::size_t>(at - text));
+  if (fraction_digits > 0) *--p = '.';
+  if (n != 0 || format.leading_zero || fraction_digits == 0) {
+    do {
+      *--p = static_cast<char>('0' + n % 10);
+      n /= 10;
+    } while (n != 0);
+  }
+  if (*rounded != 0 && std::signbit(value)) *--p = '-';
+  return write_bytes(at, p, static_cast<std::size_t>(end - p));
+}
+
+void append_number(std::string& out, double value, const NumberFormat& format) {
+  char text[kNumberRoom];
+  out.append(text, write_number(text, value, format));
 }
 
 std::string format_number(double value, const NumberFormat& format) {
@@ -170,8 +178,8 @@ std::optional<Quantity> quantity_named(std::string_view name) {
   return std::nullopt;
 }
 
-bool append_quantity(std::string& out, const JobConfig& config, double program_unit_mm,
-                     Quantity quantity, double value) {
+ScaledQuantity scale_quantity(const JobConfig& config, double program_unit_mm, Quantity quantity,
+                              double value) {
   const NumberFormat* format = nullptr;
   double scale = 1.0;
   switch (quantity) {
@@ -190,9 +198,14 @@ bool append_quantity(std::string& out, const JobConfig& config, double program_u
       format = &config.dwell;
       break;
   }
-  const double scaled = value * scale * format->scale;
-  if (!std::isfinite(scaled)) return false;
-  append_number(out, scaled, *format);
+  return {value * scale * format->scale, format};
+}
+
+bool append_quantity(std::string& out, const JobConfig& config, double program_unit_mm,
+                     Quantity quantity, double value) {
+  const ScaledQuantity scaled = scale_quantity(config, program_unit_mm, quantity, value);
+  if (!std::isfinite(scaled.value)) return false;
+  append_number(out, scaled.value, *scaled.format);
   return true;
 }
 

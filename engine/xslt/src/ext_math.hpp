@@ -15,6 +15,10 @@ namespace ncpost::xslt::detail {
 // `value` (finite, already scaled) written as `format` says; C locale.
 [[nodiscard]] std::string format_number(double value, const NumberFormat& format);
 void append_number(std::string& out, double value, const NumberFormat& format);
+// The room write_number() may need: DBL_MAX in fixed notation with 12 decimals fits.
+inline constexpr std::size_t kNumberRoom = 400;
+// append_number() into a buffer with kNumberRoom bytes free at `at`; returns the text's end.
+[[nodiscard]] char* write_number(char* at, double value, const NumberFormat& format);
 // `value` rounded to `decimals` (0..12) in fixed notation as printf rounds the exact binary
 // value ("-0.500" for -0.5 with 3), in `buffer`; returns the length (0 if it does not fit).
 [[nodiscard]] std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t size);
@@ -22,6 +26,14 @@ void append_number(std::string& out, double value, const NumberFormat& format);
 // The quantities ext:format knows, and their formats and scales.
 enum class Quantity { Length, Angle, Feed, Speed, Dwell };
 [[nodiscard]] std::optional<Quantity> quantity_named(std::string_view name);
+// ext:format's scaling: `value` in the program's unit (`program_unit_mm`, for lengths and
+// feeds) in the controller's unit and the format's own scale, and the format to write it with.
+struct ScaledQuantity {
+  double value;
+  const NumberFormat* format;
+};
+[[nodiscard]] ScaledQuantity scale_quantity(const JobConfig& config, double program_unit_mm,
+                                            Quantity quantity, double value);
 // ext:format: `value` in the program's unit (`program_unit_mm`, for lengths and feeds) scaled
 // to the controller's unit and the format's own scale, then appended to `out`; false when the
 // scaled value is not finite (then nothing is appended).

@@ -140,12 +140,17 @@ bool append_word(Call& call, std::string& out, char letter, Quantity quantity, d
     call.fail(std::string(1, static_cast<char>(std::tolower(letter))) + " is not a finite number");
     return false;
   }
-  out += ' ';
-  out += letter;
-  if (!append_quantity(out, call.config(), Access::program_unit_mm(call.job()), quantity, value)) {
+  const ScaledQuantity scaled =
+      scale_quantity(call.config(), Access::program_unit_mm(call.job()), quantity, value);
+  if (!std::isfinite(scaled.value)) {
     call.fail(std::string("the value of ") + letter + " is out of range");
     return false;
   }
+  // One append per word: this runs for every coordinate of every block.
+  char word[2 + kNumberRoom];
+  word[0] = ' ';
+  word[1] = letter;
+  out.append(word, write_number(word + 2, scaled.value, *scaled.format));
   return true;
 }
 
@@ -340,7 +345,6 @@ void fn_motion_run(xmlXPathParserContextPtr x, int nargs) {
   const bool numbered = call.config().block.numbered;
   std::string out;
   out.reserve((end - begin) * 40);
-  std::string words;
   for (std::size_t i = begin; i < end; ++i) {
     if (rendered[i] != 0) {
       call.fail("motion " + std::to_string(i) + " of the run was rendered before");
@@ -349,7 +353,6 @@ void fn_motion_run(xmlXPathParserContextPtr x, int nargs) {
     rendered[i] = 1;
     const RunMotion& r = motions[i];
     const MotionValues m = motion_of(r);
-    words.clear();
     if (r.kind == RunMotion::Kind::Arc) {
       const char* plane_word = r.plane == RunMotion::Plane::Yz   ? "G19"
                                : r.plane == RunMotion::Plane::Xz ? "G18"
@@ -360,14 +363,18 @@ void fn_motion_run(xmlXPathParserContextPtr x, int nargs) {
         append_block_line(call, out, plane_word, numbered);
         out += '\n';
       }
-      words = r.rotation > 0 ? ccw : cw;
-      if (!append_arc(call, words, form, m)) return;
+    }
+    // The block is written in place: its words go straight after its N word.
+    const std::size_t line = begin_block_line(call, out, numbered);
+    if (r.kind == RunMotion::Kind::Arc) {
+      out += r.rotation > 0 ? ccw : cw;
+      if (!append_arc(call, out, form, m)) return;
     } else {
-      words = r.kind == RunMotion::Kind::Traverse ? traverse : feed;
-      if (!append_end_point(call, words, m)) return;
+      out += r.kind == RunMotion::Kind::Traverse ? traverse : feed;
+      if (!append_end_point(call, out, m)) return;
       record_end_point(call, m);
     }
-    append_block_line(call, out, words, numbered);
+    end_block_line(call, out, line);
     out += '\n';
   }
   call.push_string(out);

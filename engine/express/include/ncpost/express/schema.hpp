@@ -109,6 +109,9 @@ struct FlatAttribute {
   // A subtype re-declares this attribute in DERIVE: an instance of the subtype holds `*` here.
   bool derived_redeclared = false;
   std::string redeclared_by;  // entity of the last redeclaration that applies; empty if none
+  // The schema (number in the set) in which `type` is resolved: that of the entity whose
+  // declaration `type` comes from (the owner, or the last redeclaring entity).
+  std::uint32_t schema = 0;
 };
 
 struct Entity {
