@@ -6,7 +6,8 @@
 #   wrk_compare.sh BEFORE_NCPOSTD AFTER_NCPOSTD [ROUNDS]
 #
 # Loads: GET /healthz at 64 connections; POST /v1/posts?profile=linuxcnc of a tiny program
-# (tests/golden/trace/cases/curves.stp: 34 canonical calls) at 16 connections.
+# (tests/golden/trace/cases/curves.stp: 34 canonical calls) at 16 connections; the issue's small
+# post, nist_toolkit_ex1.stp to fanuc-0i, at 16 connections (NCPOST_CORPUS: the corpus).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 before=${1:?usage: wrk_compare.sh BEFORE_NCPOSTD AFTER_NCPOSTD [ROUNDS]}
@@ -14,6 +15,7 @@ after=${2:?}
 rounds=${3:-3}
 duration=${DURATION:-5s}
 tiny=tests/golden/trace/cases/curves.stp
+small=${NCPOST_CORPUS:-../shared/corpus}/p21/nist_toolkit_ex1.stp
 logs=$(mktemp -d)
 pids=()
 trap 'kill "${pids[@]}" 2>/dev/null || true; rm -rf "$logs"' EXIT
@@ -40,5 +42,7 @@ for round in $(seq "$rounds"); do
     echo "round $round $name healthz: $(wrk -t2 -c64 -d"$duration" --latency "$url/healthz" | summary)"
     echo "round $round $name tiny post: $(NCPOST_BENCH_FILE=$tiny wrk -t2 -c16 -d"$duration" \
       --latency -s bench/server/post.lua "$url/v1/posts?profile=linuxcnc" | summary)"
+    echo "round $round $name ex1 post: $(NCPOST_BENCH_FILE=$small wrk -t2 -c16 -d"$duration" \
+      --latency -s bench/server/post.lua "$url/v1/posts?profile=fanuc-0i" | summary)"
   done
 done

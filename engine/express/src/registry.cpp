@@ -57,6 +57,11 @@ std::shared_ptr<const ParseResult> builtin_schema() {
   return parsed;
 }
 
+const CheckPlan& SchemaSource::check_plan() const {
+  std::call_once(plan_made_, [this] { plan_ = std::make_unique<const CheckPlan>(set()); });
+  return *plan_;
+}
+
 // ---------------------------------------------------------------------------------------------
 
 SchemaRegistry::SchemaRegistry() {

@@ -96,15 +96,189 @@ struct Where {
   std::span<const Value> params;    // and its parameters
 };
 
+// What the schema set says about its types, learnt as they are asked for: what a declared type
+// stands for, the members of a SELECT, the items of an ENUMERATION. A check learns them for the
+// types its model uses; a CheckPlan learns them for every type once, and is then read by any
+// number of checks at once.
+class TypeFacts {
+ public:
+  explicit TypeFacts(const SchemaSet& set) : set_(set) {
+    for (const Schema& schema : set.schemas()) type_count_ += schema.types.size();
+  }
+
+  // Follows defined types from `spec` (resolved in schema number `schema`) to what they stand
+  // for. `decl` is the TYPE whose underlying type `spec` is, if it is one (needed when `spec` is
+  // the SELECT or ENUMERATION itself). Loops, bounded by the number of types: cycles were
+  // reported by the parser and must not hang this.
+  const Resolved& resolve(const TypeSpec& spec, std::uint32_t schema,
+                          const TypeDecl* decl = nullptr) {
+    const auto cached = resolved_.find(&spec);
+    if (cached != resolved_.end()) return cached->second;
+    Resolved r;
+    const TypeSpec* current = &spec;
+    for (std::size_t steps = 0; steps <= type_count_ + 1; ++steps) {
+      switch (current->kind) {
+        case TypeKind::Integer:
+          r.shape = Shape::Integer;
+          break;
+        case TypeKind::Real:
+          r.shape = Shape::Real;
+          break;
+        case TypeKind::Number:
+          r.shape = Shape::Number;
+          break;
+        case TypeKind::String:
+          r.shape = Shape::String;
+          break;
+        case TypeKind::Binary:
+          r.shape = Shape::Binary;
+          break;
+        case TypeKind::Boolean:
+          r.shape = Shape::Boolean;
+          break;
+        case TypeKind::Logical:
+          r.shape = Shape::Logical;
+          break;
+        case TypeKind::Aggregate:
+          r.shape = current->element ? Shape::Aggregate : Shape::Any;
+          r.spec = current;
+          r.schema = schema;
+          break;
+        case TypeKind::Select:
+        case TypeKind::Enumeration:
+          if (decl != nullptr) {
+            r.shape = current->kind == TypeKind::Select ? Shape::Select : Shape::Enumeration;
+            r.decl = decl;
+          }
+          break;
+        case TypeKind::Named: {
+          std::optional<DeclRef> ref = set_.resolve(schema, current->name);
+          if (!ref) {  // the parser reported it; try any schema of the set
+            if (const Entity* e = set_.find_entity(current->name))
+              ref = set_.resolve(e->schema, e->name);
+            else if (const TypeDecl* t = set_.find_type(current->name))
+              ref = set_.resolve(t->schema, t->name);
+          }
+          if (!ref) break;
+          if (ref->kind == DeclKind::Entity) {
+            r.shape = Shape::Entity;
+            r.entity = &set_.entity(*ref);
+            break;
+          }
+          if (ref->kind != DeclKind::Type) break;
+          decl = &set_.type(*ref);
+          r.names.push_back(decl->name);
+          current = &decl->underlying;
+          schema = decl->schema;
+          continue;  // follow the defined type
+        }
+        default:  // GENERIC, GENERIC_ENTITY
+          break;
+      }
+      break;
+    }
+    return resolved_.emplace(&spec, std::move(r)).first->second;
+  }
+
+  const SelectInfo& select_info(const TypeDecl& select) {
+    const auto cached = selects_.find(&select);
+    if (cached != selects_.end()) return cached->second;
+    SelectInfo info;
+    info.any_entity = select.select.generic_entity;
+    for (const DeclRef leaf : set_.select_leaves(select)) {
+      if (leaf.kind == DeclKind::Entity)
+        info.entities.push_back(&set_.entity(leaf));
+      else if (leaf.kind == DeclKind::Type)
+        info.types.push_back(&set_.type(leaf));
+      else
+        continue;
+      if (!info.members.empty()) info.members += ", ";
+      info.members += set_.name_of(leaf);
+    }
+    return selects_.emplace(&select, std::move(info)).first->second;
+  }
+
+  const std::vector<std::string>& enumeration_items(const TypeDecl& enumeration) {
+    const auto cached = enumerations_.find(&enumeration);
+    if (cached != enumerations_.end()) return cached->second;
+    return enumerations_.emplace(&enumeration, set_.enumeration_items(enumeration)).first->second;
+  }
+
+  // Read only: what has been learnt already, or null.
+  [[nodiscard]] const Resolved* known(const TypeSpec& spec) const {
+    const auto found = resolved_.find(&spec);
+    return found != resolved_.end() ? &found->second : nullptr;
+  }
+  [[nodiscard]] const SelectInfo* known_select(const TypeDecl& select) const {
+    const auto found = selects_.find(&select);
+    return found != selects_.end() ? &found->second : nullptr;
+  }
+  [[nodiscard]] const std::vector<std::string>* known_enumeration(const TypeDecl& decl) const {
+    const auto found = enumerations_.find(&decl);
+    return found != enumerations_.end() ? &found->second : nullptr;
+  }
+
+ private:
+  const SchemaSet& set_;
+  std::size_t type_count_ = 0;
+  std::unordered_map<const TypeSpec*, Resolved> resolved_;
+  std::unordered_map<const TypeDecl*, SelectInfo> selects_;
+  std::unordered_map<const TypeDecl*, std::vector<std::string>> enumerations_;
+};
+
+}  // namespace
+
+// Every type of the set learnt in advance, in the ways a check asks for it: each flattened
+// attribute's type (in the schema of its declaring entity), each defined type's underlying type
+// (with the declaration), the elements of aggregates, every SELECT and ENUMERATION.
+class CheckPlan::Impl {
+ public:
+  explicit Impl(const SchemaSet& set) : set_(set), facts_(set) {
+    for (const Schema& schema : set.schemas()) {
+      for (const Entity& entity : schema.entities)
+        for (const FlatAttribute& attribute : entity.attributes)
+          learn(attribute.type, attribute.schema, nullptr);
+      for (const TypeDecl& type : schema.types) {
+        learn(type.underlying, type.schema, &type);
+        if (type.underlying.kind == TypeKind::Select) (void)facts_.select_info(type);
+        if (type.underlying.kind == TypeKind::Enumeration) (void)facts_.enumeration_items(type);
+      }
+    }
+  }
+  [[nodiscard]] const SchemaSet& set() const noexcept { return set_; }
+  [[nodiscard]] const TypeFacts& facts() const noexcept { return facts_; }
+
+ private:
+  // Aggregates of aggregates nest as deep as the schema writes them; the loop, not recursion,
+  // keeps a hostile schema from overflowing the stack.
+  void learn(const TypeSpec& spec, std::uint32_t schema, const TypeDecl* decl) {
+    const TypeSpec* current = &spec;
+    for (std::size_t depth = 0; current != nullptr && depth <= kMaxValueDepth; ++depth) {
+      const Resolved& r = facts_.resolve(*current, schema, decl);
+      if (r.shape != Shape::Aggregate || !r.spec->element) return;
+      current = r.spec->element.get();
+      schema = r.schema;
+      decl = nullptr;
+    }
+  }
+
+  const SchemaSet& set_;
+  TypeFacts facts_;
+};
+
+namespace {
+
 class Validator {
  public:
   Validator(const Model& model, const SchemaSet& set, const ValidateOptions& options)
-      : model_(model), set_(set), options_(options), entities_(model.keyword_count()) {
-    for (const Schema& schema : set.schemas()) type_count_ += schema.types.size();
-    // A program uses some tens of the schema's types: growing the table step by step cost
-    // more than the look-ups themselves on a small file.
-    resolved_.reserve(128);
-  }
+      : model_(model),
+        set_(set),
+        options_(options),
+        entities_(model.keyword_count()),
+        shared_(options.plan != nullptr && &options.plan->set() == &set
+                    ? &options.plan->impl().facts()
+                    : nullptr),
+        own_(set) {}
 
   // What checking some of the instances found, to be merged with what the other pieces of a
   // parallel check found (merge()).
@@ -283,102 +457,22 @@ class Validator {
     return info;
   }
 
-  // Follows defined types from `spec` (resolved in schema number `schema`) to what they stand
-  // for. `decl` is the TYPE whose underlying type `spec` is, if it is one (needed when `spec` is
-  // the SELECT or ENUMERATION itself). Loops, bounded by the number of types: cycles were
-  // reported by the parser and must not hang this.
+  // The schema's facts: from the plan when it has them, else learnt during this check.
   const Resolved& resolve(const TypeSpec& spec, std::uint32_t schema,
                           const TypeDecl* decl = nullptr) {
-    const auto cached = resolved_.find(&spec);
-    if (cached != resolved_.end()) return cached->second;
-    Resolved r;
-    const TypeSpec* current = &spec;
-    for (std::size_t steps = 0; steps <= type_count_ + 1; ++steps) {
-      switch (current->kind) {
-        case TypeKind::Integer:
-          r.shape = Shape::Integer;
-          break;
-        case TypeKind::Real:
-          r.shape = Shape::Real;
-          break;
-        case TypeKind::Number:
-          r.shape = Shape::Number;
-          break;
-        case TypeKind::String:
-          r.shape = Shape::String;
-          break;
-        case TypeKind::Binary:
-          r.shape = Shape::Binary;
-          break;
-        case TypeKind::Boolean:
-          r.shape = Shape::Boolean;
-          break;
-        case TypeKind::Logical:
-          r.shape = Shape::Logical;
-          break;
-        case TypeKind::Aggregate:
-          r.shape = current->element ? Shape::Aggregate : Shape::Any;
-          r.spec = current;
-          r.schema = schema;
-          break;
-        case TypeKind::Select:
-        case TypeKind::Enumeration:
-          if (decl != nullptr) {
-            r.shape = current->kind == TypeKind::Select ? Shape::Select : Shape::Enumeration;
-            r.decl = decl;
-          }
-          break;
-        case TypeKind::Named: {
-          std::optional<DeclRef> ref = set_.resolve(schema, current->name);
-          if (!ref) {  // the parser reported it; try any schema of the set
-            if (const Entity* e = set_.find_entity(current->name))
-              ref = set_.resolve(e->schema, e->name);
-            else if (const TypeDecl* t = set_.find_type(current->name))
-              ref = set_.resolve(t->schema, t->name);
-          }
-          if (!ref) break;
-          if (ref->kind == DeclKind::Entity) {
-            r.shape = Shape::Entity;
-            r.entity = &set_.entity(*ref);
-            break;
-          }
-          if (ref->kind != DeclKind::Type) break;
-          decl = &set_.type(*ref);
-          r.names.push_back(decl->name);
-          current = &decl->underlying;
-          schema = decl->schema;
-          continue;  // follow the defined type
-        }
-        default:  // GENERIC, GENERIC_ENTITY
-          break;
-      }
-      break;
-    }
-    return resolved_.emplace(&spec, std::move(r)).first->second;
+    if (shared_ != nullptr)
+      if (const Resolved* known = shared_->known(spec)) return *known;
+    return own_.resolve(spec, schema, decl);
   }
-
   const SelectInfo& select_info(const TypeDecl& select) {
-    const auto cached = selects_.find(&select);
-    if (cached != selects_.end()) return cached->second;
-    SelectInfo info;
-    info.any_entity = select.select.generic_entity;
-    for (const DeclRef leaf : set_.select_leaves(select)) {
-      if (leaf.kind == DeclKind::Entity)
-        info.entities.push_back(&set_.entity(leaf));
-      else if (leaf.kind == DeclKind::Type)
-        info.types.push_back(&set_.type(leaf));
-      else
-        continue;
-      if (!info.members.empty()) info.members += ", ";
-      info.members += set_.name_of(leaf);
-    }
-    return selects_.emplace(&select, std::move(info)).first->second;
+    if (shared_ != nullptr)
+      if (const SelectInfo* known = shared_->known_select(select)) return *known;
+    return own_.select_info(select);
   }
-
   const std::vector<std::string>& enumeration_items(const TypeDecl& enumeration) {
-    const auto cached = enumerations_.find(&enumeration);
-    if (cached != enumerations_.end()) return cached->second;
-    return enumerations_.emplace(&enumeration, set_.enumeration_items(enumeration)).first->second;
+    if (shared_ != nullptr)
+      if (const auto* known = shared_->known_enumeration(enumeration)) return *known;
+    return own_.enumeration_items(enumeration);
   }
 
   // Whether the instance `id` is an instance of an entity for which `fits` holds: for a complex
@@ -795,12 +889,10 @@ class Validator {
   const Model& model_;
   const SchemaSet& set_;
   const ValidateOptions& options_;
-  std::size_t type_count_ = 0;
   std::vector<EntityInfo> entities_;  // by keyword id
   EntityInfo no_entity_{true, true, nullptr};
-  std::unordered_map<const TypeSpec*, Resolved> resolved_;
-  std::unordered_map<const TypeDecl*, SelectInfo> selects_;
-  std::unordered_map<const TypeDecl*, std::vector<std::string>> enumerations_;
+  const TypeFacts* shared_;  // the plan's (options_.plan), read only; may be null
+  TypeFacts own_;            // what the plan lacks
   std::unordered_map<std::pair<const TypeDecl*, const Entity*>, bool, PairHash> select_fits_;
   std::optional<p21::LineIndex> lines_;  // built at the first diagnostic
   Where where_;
@@ -843,6 +935,13 @@ std::vector<diag::Diagnostic> merge(std::vector<Validator::Found> pieces, std::s
 }
 
 }  // namespace
+
+CheckPlan::CheckPlan(const SchemaSet& set) : impl_(std::make_unique<const Impl>(set)) {}
+CheckPlan::~CheckPlan() = default;
+
+const SchemaSet& CheckPlan::set() const noexcept {
+  return impl_->set();
+}
 
 std::vector<diag::Diagnostic> validate(const p21::Model& model, const SchemaSet& schema,
                                        const ValidateOptions& options) {

@@ -25,6 +25,7 @@ void check(LoadedModel& out, const express::SchemaRegistry& schemas, const LoadO
     express::ValidateOptions validate_options;
     validate_options.cancel = options.cancel;
     validate_options.helpers = options.helpers;
+    validate_options.plan = &selection.source->check_plan();
     auto checked = express::validate(out.model, *out.schema, validate_options);
     out.diagnostics.insert(out.diagnostics.end(), std::make_move_iterator(checked.begin()),
                            std::make_move_iterator(checked.end()));

@@ -6,7 +6,10 @@ namespace ncpost::stepnc::detail {
 
 namespace {
 constexpr double kUnitTolerance = 1e-9;
-}
+// An entity is asked for a few attributes (a placement: location, axis, ref_direction): room
+// for them at once instead of growing the list one allocation at a time.
+constexpr std::size_t kRememberedPerKeyword = 8;
+}  // namespace
 
 bool Frame::identity() const {
   const auto same = [](Vec3 a, Vec3 b) { return (a - b).length() < 1e-12; };
@@ -38,7 +41,11 @@ bool GeometryReader::is_a(const p21::Instance& instance, std::string_view entity
   if (it == entities_.end())
     it = entities_.emplace(entity, attributes_.schema().find_entity(entity)).first;
   const bool answer = attributes_.is_a(instance, it->second);
-  if (!model_.is_complex(instance)) kinds_[instance.keyword].emplace_back(entity.data(), answer);
+  if (!model_.is_complex(instance)) {
+    auto& answers = kinds_[instance.keyword];
+    if (answers.empty()) answers.reserve(kRememberedPerKeyword);
+    answers.emplace_back(entity.data(), answer);
+  }
   return answer;
 }
 
@@ -54,6 +61,7 @@ std::optional<p21::Value> GeometryReader::get(const p21::Instance& instance,
   if (position == -2) {
     const auto index = e->attribute_index(name);
     position = index ? static_cast<int>(*index) : -1;
+    if (known.empty()) known.reserve(kRememberedPerKeyword);
     known.emplace_back(name.data(), position);
   }
   const auto params = model_.params(instance);

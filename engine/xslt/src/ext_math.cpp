@@ -57,6 +57,43 @@ std::optional<std::uint64_t> rounded_scaled(double value, int decimals) {
   return whole + (fraction > 0.5 ? 1 : 0);
 }
 
+// Two digits per division: "00", "01", ... "99".
+constexpr char kDigitPairs[] =
+    "0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546"
+    "4748495051525354555657585960616263646566676869707172737475767778798081828384858687888990919293"
+    "949596979899";
+
+// The lowest `count` decimal digits of `n` written leftwards, ending just before `p`; they are
+// taken off `n`. Returns where they begin.
+char* low_digits_backwards(char* p, std::uint64_t& n, int count) {
+  for (; count >= 2; count -= 2) {
+    p -= 2;
+    std::memcpy(p, kDigitPairs + 2 * (n % 100), 2);
+    n /= 100;
+  }
+  if (count == 1) {
+    *--p = static_cast<char>('0' + n % 10);
+    n /= 10;
+  }
+  return p;
+}
+
+// All the digits of `n` ("0" for zero), likewise.
+char* all_digits_backwards(char* p, std::uint64_t n) {
+  while (n >= 100) {
+    p -= 2;
+    std::memcpy(p, kDigitPairs + 2 * (n % 100), 2);
+    n /= 100;
+  }
+  if (n >= 10) {
+    p -= 2;
+    std::memcpy(p, kDigitPairs + 2 * n, 2);
+    return p;
+  }
+  *--p = static_cast<char>('0' + n);
+  return p;
+}
+
 char* write_bytes(char* at, const char* bytes, std::size_t length) {
   std::memcpy(at, bytes, length);
   return at + length;
@@ -143,17 +180,9 @@ char* write_number(char* at, double value, const NumberFormat& format) {
   char* const end = text + sizeof text;
   char* p = end;
   if (fraction_digits == 0 && format.decimal_point) *--p = '.';
-  for (int i = 0; i < fraction_digits; ++i) {
-    *--p = static_cast<char>('0' + n % 10);
-    n /= 10;
-  }
+  p = low_digits_backwards(p, n, fraction_digits);
   if (fraction_digits > 0) *--p = '.';
-  if (n != 0 || format.leading_zero || fraction_digits == 0) {
-    do {
-      *--p = static_cast<char>('0' + n % 10);
-      n /= 10;
-    } while (n != 0);
-  }
+  if (n != 0 || format.leading_zero || fraction_digits == 0) p = all_digits_backwards(p, n);
   if (*rounded != 0 && std::signbit(value)) *--p = '-';
   return write_bytes(at, p, static_cast<std::size_t>(end - p));
 }

@@ -37,25 +37,41 @@ std::string program(const std::string& data, const std::string& schema = "VALIDA
          schema + "'));ENDSEC;DATA;\n" + data + "\nENDSEC;END-ISO-10303-21;\n";
 }
 
+std::string join(const Strings& items) {
+  std::string out;
+  for (const auto& i : items) out += i + "\n";
+  return out;
+}
+
 // "CODE@line:column message" per diagnostic.
-Strings run(const std::string& text, const SchemaSet& set, const ValidateOptions& options = {}) {
-  p21::ReadResult read = p21::read(text);
-  EXPECT_TRUE(read.ok()) << test::describe(read.diagnostics);
+Strings described(const std::vector<diag::Diagnostic>& diagnostics) {
   Strings out;
-  for (const auto& d : validate(read.model, set, options))
+  for (const auto& d : diagnostics)
     out.push_back(std::string(d.code_id()) + "@" + std::to_string(d.line) + ":" +
                   std::to_string(d.column) + " " + d.message);
   return out;
 }
 
-Strings check(const std::string& data) {
-  return run(program(data), test_schema());
+// The check as asked, then again with `plan` (every type of the set learnt in advance), which
+// must not change a word of what it says.
+Strings validated(const p21::Model& model, const SchemaSet& set, const ValidateOptions& options,
+                  const CheckPlan& plan) {
+  const Strings learning = described(validate(model, set, options));
+  ValidateOptions planned = options;
+  planned.plan = &plan;
+  EXPECT_EQ(join(described(validate(model, set, planned))), join(learning)) << "with a plan";
+  return learning;
 }
 
-std::string join(const Strings& items) {
-  std::string out;
-  for (const auto& i : items) out += i + "\n";
-  return out;
+Strings run(const std::string& text, const SchemaSet& set, const ValidateOptions& options = {}) {
+  p21::ReadResult read = p21::read(text);
+  EXPECT_TRUE(read.ok()) << test::describe(read.diagnostics);
+  const CheckPlan plan(set);
+  return validated(read.model, set, options, plan);
+}
+
+Strings check(const std::string& data) {
+  return run(program(data), test_schema());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -339,8 +355,9 @@ TEST(express_validate, PiecesGiveTheSameDiagnostics) {
         EXPECT_EQ(join(run(program(data), test_schema(), in_pieces)), join(expected));
       }
   }
-  // Per limit: pieces of 1 and of 60 instances make 4 pieces (3 offered), of 150 two (1).
-  EXPECT_EQ(offered.load(), 6 * (3 + 3 + 1));
+  // Per limit: pieces of 1 and of 60 instances make 4 pieces (3 offered), of 150 two (1); each
+  // check runs twice, without and with a plan (validated()).
+  EXPECT_EQ(offered.load(), 2 * 6 * (3 + 3 + 1));
 }
 
 TEST(express_validate, DeepValuesAreBoundedByTheReader) {
@@ -388,11 +405,7 @@ Strings run_corpus(const fs::path& corpus, const CorpusCase& c) {
   EXPECT_TRUE(selection.diagnostics.empty()) << test::describe(selection.diagnostics);
   if (selection.set() == nullptr) return {"no schema"};
   EXPECT_FALSE(selection.source->builtin);
-  Strings out;
-  for (const auto& d : validate(read.model, *selection.set()))
-    out.push_back(std::string(d.code_id()) + "@" + std::to_string(d.line) + ":" +
-                  std::to_string(d.column) + " " + d.message);
-  return out;
+  return validated(read.model, *selection.set(), {}, selection.source->check_plan());
 }
 
 // "attr 2 in inst 1 is wrong", says the file: #1 declares index_count 2 and gives 3 indices.
@@ -445,11 +458,7 @@ Strings run_builtin(const fs::path& file) {
   EXPECT_TRUE(selection.diagnostics.empty()) << test::describe(selection.diagnostics);
   EXPECT_EQ(selection.source, &registry.builtin());
   if (selection.set() == nullptr) return {"no schema"};
-  Strings out;
-  for (const auto& d : validate(read.model, *selection.set()))
-    out.push_back(std::string(d.code_id()) + "@" + std::to_string(d.line) + ":" +
-                  std::to_string(d.column) + " " + d.message);
-  return out;
+  return validated(read.model, *selection.set(), {}, selection.source->check_plan());
 }
 
 TEST(express_validate, NistExample1AgainstTheBuiltinSchema) {

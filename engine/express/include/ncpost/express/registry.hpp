@@ -15,6 +15,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/express/parse.hpp"
 #include "ncpost/express/schema_cache.hpp"
+#include "ncpost/express/validate.hpp"
 
 namespace ncpost::p21 {
 class Model;
@@ -41,6 +43,13 @@ struct SchemaSource {
   std::shared_ptr<const ParseResult> parsed;
   bool builtin = false;
   [[nodiscard]] const SchemaSet& set() const noexcept { return parsed->schemas; }
+  // What checks against set() learn about its types (validate.hpp), learnt once: made by the
+  // first call, from whichever thread; later calls wait for it or share it.
+  [[nodiscard]] const CheckPlan& check_plan() const;
+
+ private:
+  mutable std::once_flag plan_made_;
+  mutable std::unique_ptr<const CheckPlan> plan_;
 };
 
 // The diagnostics of one schema file, with positions in that file.
