@@ -11,7 +11,8 @@ template <class Integer>
 void append_integer(std::string& out, Integer value) {
   char buffer[24];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
+  out.append(buffer,
+             static_cast<std::size_t>(result.ptr - buffer));  // not (first, last): replace()
 }
 
 }  // namespace ncpost::canon::detail

@@ -264,7 +264,7 @@ inline std::size_t begin_block_line(Call& call, std::string& out, bool numbered)
     word[0] = 'N';
     char* end = std::to_chars(word + 1, word + sizeof word - 1, next_block_number(call.job())).ptr;
     *end++ = ' ';
-    out.append(word, end);
+    out.append(word, static_cast<std::size_t>(end - word));
   }
   return start;
 }

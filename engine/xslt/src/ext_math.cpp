@@ -189,7 +189,8 @@ char* write_number(char* at, double value, const NumberFormat& format) {
 
 void append_number(std::string& out, double value, const NumberFormat& format) {
   char text[kNumberRoom];
-  out.append(text, write_number(text, value, format));
+  const char* end = write_number(text, value, format);
+  out.append(text, static_cast<std::size_t>(end - text));  // (pointer, length): no replace()
 }
 
 std::string format_number(double value, const NumberFormat& format) {

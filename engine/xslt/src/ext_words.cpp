@@ -150,7 +150,8 @@ bool append_word(Call& call, std::string& out, char letter, Quantity quantity, d
   char word[2 + kNumberRoom];
   word[0] = ' ';
   word[1] = letter;
-  out.append(word, write_number(word + 2, scaled.value, *scaled.format));
+  const char* end = write_number(word + 2, scaled.value, *scaled.format);
+  out.append(word, static_cast<std::size_t>(end - word));  // (pointer, length): no replace()
   return true;
 }
 
