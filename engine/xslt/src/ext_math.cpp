@@ -1,6 +1,7 @@
 #include "ext_math.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -132,37 +133,17 @@ char* write_trimmed(char* at, char* buffer, std::size_t end, const NumberFormat&
 
 }  // namespace
 
-std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t size) {
-  decimals = std::clamp(decimals, 0, 12);
-  if (const std::optional<std::uint64_t> rounded = rounded_scaled(value, decimals);
-      rounded && size >= 32) {
-    std::uint64_t n = *rounded;
-    char digits[24];
-    int count = 0;
-    do {
-      digits[count++] = static_cast<char>('0' + n % 10);
-      n /= 10;
-    } while (n != 0);
-    while (count <= decimals) digits[count++] = '0';  // at least one digit before the point
-    std::size_t length = 0;
-    if (std::signbit(value)) buffer[length++] = '-';  // "-0.000" is made "0" by the caller
-    for (int i = count - 1; i >= 0; --i) {
-      buffer[length++] = digits[i];
-      if (i == decimals && decimals > 0) buffer[length++] = '.';
-    }
-    return length;
-  }
-  const auto done = std::to_chars(buffer, buffer + size, value, std::chars_format::fixed, decimals);
-  return done.ec == std::errc() ? static_cast<std::size_t>(done.ptr - buffer) : 0;
-}
-
 char* write_number(char* at, double value, const NumberFormat& format) {
   const int decimals = std::clamp(format.decimals, 0, 12);
   const std::optional<std::uint64_t> rounded = rounded_scaled(value, decimals);
   if (!rounded) {
+    // Near a rounding tie, or too large for the integer: std::to_chars rounds the exact binary
+    // value, as printf does; its text is then trimmed by the same rules.
     char buffer[kNumberRoom];
-    const std::size_t end = fixed_digits(value, decimals, buffer, sizeof buffer - 1);
-    return end > 0 ? write_trimmed(at, buffer, end, format) : at;
+    const auto done = std::to_chars(buffer, buffer + sizeof buffer - 1, value,
+                                    std::chars_format::fixed, decimals);
+    if (done.ec != std::errc()) return at;
+    return write_trimmed(at, buffer, static_cast<std::size_t>(done.ptr - buffer), format);
   }
   // The same rules on the integer, its digits written from the right (this runs for every
   // coordinate of every block): the fraction without its trailing zeros unless the format
@@ -365,6 +346,19 @@ std::optional<Rotary> rotary_angles(double i, double j, double k, std::string_vi
 }
 
 std::string sanitize_comment(std::string_view text, const CommentRules& rules) {
+  // Looked up once per character below; `rules.allowed` is a list of ASCII characters.
+  std::array<bool, 128> allowed{};
+  for (const char ch : rules.allowed) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (byte < allowed.size()) allowed[byte] = true;
+  }
+  // The replacement itself must not be able to close a comment either.
+  std::string replacement = rules.replacement;
+  std::erase_if(replacement, [](char ch) {
+    const auto byte = static_cast<unsigned char>(ch);
+    return ch == '(' || ch == ')' || byte < 0x20 || byte == 0x7F;
+  });
+  const std::size_t replacement_characters = characters(replacement);
   std::string out;
   out.reserve(text.size());
   std::size_t count = 0;
@@ -377,15 +371,14 @@ std::string sanitize_comment(std::string_view text, const CommentRules& rules) {
     if (n == 1) {
       if (rules.upper_case && ch >= 'a' && ch <= 'z') ch = static_cast<char>(ch - 'a' + 'A');
       const auto byte = static_cast<unsigned char>(ch);
-      keep = byte >= 0x20 && byte < 0x7F && ch != '(' && ch != ')' &&
-             rules.allowed.find(ch) != std::string::npos;
+      keep = byte >= 0x20 && byte < 0x7F && ch != '(' && ch != ')' && allowed[byte];
     }
     if (keep) {
       out += ch;
       ++count;
-    } else if (!rules.replacement.empty()) {
-      out += rules.replacement;
-      count += characters(rules.replacement);
+    } else if (!replacement.empty()) {
+      out += replacement;
+      count += replacement_characters;
     }
   }
   // A replacement could be longer than one character; cut again, on a character boundary.

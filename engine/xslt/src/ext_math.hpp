@@ -19,9 +19,6 @@ void append_number(std::string& out, double value, const NumberFormat& format);
 inline constexpr std::size_t kNumberRoom = 400;
 // append_number() into a buffer with kNumberRoom bytes free at `at`; returns the text's end.
 [[nodiscard]] char* write_number(char* at, double value, const NumberFormat& format);
-// `value` rounded to `decimals` (0..12) in fixed notation as printf rounds the exact binary
-// value ("-0.500" for -0.5 with 3), in `buffer`; returns the length (0 if it does not fit).
-[[nodiscard]] std::size_t fixed_digits(double value, int decimals, char* buffer, std::size_t size);
 
 // The quantities ext:format knows, and their formats and scales.
 enum class Quantity { Length, Angle, Feed, Speed, Dwell };
@@ -96,7 +93,8 @@ struct Rotary {
 [[nodiscard]] std::optional<Rotary> rotary_angles(double i, double j, double k,
                                                   std::string_view kinematics, double previous_c);
 
-// ext:comment: sanitise as the rules say.
+// ext:comment: sanitise as the rules say (a replacement loses the characters that could close
+// the comment).
 [[nodiscard]] std::string sanitize_comment(std::string_view text, const CommentRules& rules);
 // Number of characters (UTF-8 code points; an invalid byte counts as one).
 [[nodiscard]] std::size_t characters(std::string_view text);

@@ -1,6 +1,7 @@
-// Number formatting: the integer fast path of fixed_digits gives exactly the digits of
-// std::to_chars (which rounds the exact binary value, as printf does), including ties, values
-// next to ties, both sides of the fast path's range, and negatives.
+// Number formatting: write_number's integer path (every value it can round exactly below
+// 1e12) gives exactly the digits of std::to_chars, which rounds the exact binary value as printf
+// does, including ties, values next to ties, both sides of the integer path's range, and
+// negatives; then the format rules, as first written on that text.
 
 #include <gtest/gtest.h>
 
@@ -23,52 +24,58 @@ std::string reference(double value, int decimals) {
   return std::string(buffer, done.ptr);
 }
 
-std::string fast(double value, int decimals) {
-  char buffer[400];
-  return std::string(buffer, fixed_digits(value, decimals, buffer, sizeof buffer));
+// Every digit kept (no trimming), so the digits themselves are compared; only "-0" becomes "0".
+std::string every_digit(double value, int decimals) {
+  return format_number(value, NumberFormat{decimals, false, true, true, 1.0});
 }
 
-TEST(FixedDigits, AgreesWithToCharsOnRandomValues) {
+// to_chars's text with the same "-0" rule.
+std::string reference_digits(double value, int decimals) {
+  std::string s = reference(value, decimals);
+  if (!s.empty() && s[0] == '-' && s.find_first_not_of("0.", 1) == std::string::npos) s.erase(0, 1);
+  return s;
+}
+
+TEST(WriteNumberDigits, AgreesWithToCharsOnRandomValues) {
   std::mt19937_64 random(20261125);
   std::uniform_real_distribution<double> magnitude(-3, 13);
   std::uniform_int_distribution<int> decimals(0, 12);
   for (int i = 0; i < 300000; ++i) {
     const double v = std::pow(10.0, magnitude(random)) * (random() % 2 ? 1 : -1);
     const int d = decimals(random);
-    ASSERT_EQ(fast(v, d), reference(v, d)) << v << " with " << d;
+    ASSERT_EQ(every_digit(v, d), reference_digits(v, d)) << v << " with " << d;
   }
 }
 
-TEST(FixedDigits, AgreesWithToCharsAtAndNextToTies) {
+TEST(WriteNumberDigits, AgreesWithToCharsAtAndNextToTies) {
   for (int d = 0; d <= 12; ++d) {
     const double unit = std::pow(10.0, -d);
     for (long k = -2000; k <= 2000; ++k) {
       // (k + 1/2) units: ties in decimal, usually not exact in binary; and their neighbours.
       const double tie = (static_cast<double>(k) + 0.5) * unit;
       for (double v : {tie, std::nextafter(tie, 1e300), std::nextafter(tie, -1e300)})
-        ASSERT_EQ(fast(v, d), reference(v, d)) << v << " with " << d;
+        ASSERT_EQ(every_digit(v, d), reference_digits(v, d)) << v << " with " << d;
     }
   }
   // Exact binary ties round to even, as printf does.
-  EXPECT_EQ(fast(0.125, 2), "0.12");
-  EXPECT_EQ(fast(0.375, 2), "0.38");
-  EXPECT_EQ(fast(2.5, 0), "2");
-  EXPECT_EQ(fast(-2.5, 0), "-2");
+  EXPECT_EQ(every_digit(0.125, 2), "0.12");
+  EXPECT_EQ(every_digit(0.375, 2), "0.38");
+  EXPECT_EQ(every_digit(2.5, 0), "2");
+  EXPECT_EQ(every_digit(-2.5, 0), "-2");
 }
 
-TEST(FixedDigits, EdgesOfTheFastPath) {
+TEST(WriteNumberDigits, EdgesOfTheIntegerPath) {
   for (int d = 0; d <= 12; ++d) {
     const double edge = 1e12 / std::pow(10.0, d);
     for (double v : {edge, std::nextafter(edge, 0.0), std::nextafter(edge, 1e300), -edge, 0.0, -0.0,
                      1e-13, -1e-13, 0.4999999999, 999999.9995, 1.7976931348623157e308})
-      ASSERT_EQ(fast(v, d), reference(v, d)) << v << " with " << d;
+      ASSERT_EQ(every_digit(v, d), reference_digits(v, d)) << v << " with " << d;
   }
 }
 
 // The format rules as first written: std::to_chars's fixed text, trimmed as text.
 std::string reference_format(double value, const NumberFormat& format) {
-  std::string s = reference(value, std::clamp(format.decimals, 0, 12));
-  if (!s.empty() && s[0] == '-' && s.find_first_not_of("0.", 1) == std::string::npos) s.erase(0, 1);
+  std::string s = reference_digits(value, std::clamp(format.decimals, 0, 12));
   std::size_t dot = s.find('.');
   if (!format.trailing_zeros && dot != std::string::npos) {
     while (s.back() == '0') s.pop_back();
