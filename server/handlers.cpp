@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <unordered_map>
 
 #include "auth.hpp"
 #include "body_hash.hpp"
@@ -511,7 +512,8 @@ void post_json(Services& services, Exchange& exchange, const pipeline::LoadedMod
   body["filename"] = filename;
   body["program"] = text;
   body["diagnostics"] = diagnostics_json(diagnostics);
-  json blocks = block_map(text, marks);
+  json blocks = block_map(text, marks, exchange.cancel_flag());
+  if (stop_if_cancelled(exchange)) return;
   body["blocks"] = std::move(blocks["blocks"]);
   body["workingsteps"] = std::move(blocks["workingsteps"]);
   exchange.respond(json_response(200, body));
@@ -880,8 +882,14 @@ std::optional<Upload> take_upload(Request& request, std::optional<Response>& err
   return upload;
 }
 
-nlohmann::ordered_json block_map(std::string_view text, const std::vector<WorkingstepMark>& marks) {
+nlohmann::ordered_json block_map(std::string_view text, const std::vector<WorkingstepMark>& marks,
+                                 const std::atomic<bool>* cancel) {
   json blocks = json::object();
+  // Each key is made unique here, so it is appended to the object's list of pairs directly:
+  // ordered_json's own insertion looks the key up in that list first, which made the map
+  // quadratic in the length of the program.
+  auto& entries = blocks.get_ref<json::object_t&>();
+  std::unordered_map<std::string, std::size_t> occurrences;
   json workingsteps = json::array();
   std::size_t line_start = 0;
   std::size_t line_number = 0;
@@ -890,6 +898,7 @@ nlohmann::ordered_json block_map(std::string_view text, const std::vector<Workin
   json* current_ws = nullptr;
   while (line_start < text.size()) {
     ++line_number;
+    if (cancel != nullptr && line_number % 4096 == 0 && cancel->load()) return {};
     // The marks at or before this line's start decide whose line it is.
     while (mark < marks.size() && marks[mark].offset <= line_start) {
       current = marks[mark].id != 0 ? &marks[mark] : nullptr;
@@ -916,8 +925,12 @@ nlohmann::ordered_json block_map(std::string_view text, const std::vector<Workin
         while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
         if (j > i + 1) key = std::string(line.substr(i + 1, j - i - 1));
       }
-      if (key.empty()) key = "L" + std::to_string(line_number);
-      blocks[key] = current->id;
+      if (key.empty()) {
+        key = "L" + std::to_string(line_number);
+      } else if (const std::size_t seen = ++occurrences[key]; seen > 1) {
+        key += "#" + std::to_string(seen);  // the numbering wrapped: N1234, then N1234#2
+      }
+      entries.emplace_back(std::move(key), current->id);
       if ((*current_ws)["first_line"].is_null()) (*current_ws)["first_line"] = line_number;
       (*current_ws)["last_line"] = line_number;
     }

@@ -137,13 +137,16 @@ inline constexpr std::size_t kMaxDiagnosticsTrailer = 8 * 1024;
     const std::vector<xslt::FileDiagnostic>& diagnostics);
 
 // From the lines of a posted program and the offsets at which each workingstep's text begins:
-// {block number (or "L" + line) → workingstep id}. Exposed for unit tests.
+// {block number (or "L" + line) → workingstep id}; a block number seen again (the numbering
+// wrapped) is keyed "N#2", "N#3", ... Empty when `cancel` was set on the way. Exposed for unit
+// tests.
 struct WorkingstepMark {
   std::size_t offset = 0;  // in the program text
   std::uint64_t id = 0;
   std::string name;
 };
 [[nodiscard]] nlohmann::ordered_json block_map(std::string_view text,
-                                               const std::vector<WorkingstepMark>& marks);
+                                               const std::vector<WorkingstepMark>& marks,
+                                               const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace ncpost::server

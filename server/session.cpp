@@ -37,6 +37,13 @@ Response error_response(unsigned status, diag::Code code, std::string_view title
   return problem(status, diag::info(code).id, title, detail, one);
 }
 
+Response queue_full_response() {
+  Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
+                              "all workers are busy and the job queue is full; retry later");
+  r.set(http::field::retry_after, "1");
+  return r;
+}
+
 bool valid_request_id(std::string_view id) {
   if (id.empty() || id.size() > 64) return false;
   for (char c : id)
@@ -244,6 +251,7 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
   // Made now rather than at dispatch: a slice reading the upload as it arrives already needs
   // the request's cancel flag.
   state_ = std::make_shared<RequestState>();
+  if (refused_as_full()) return;
   take_upload_as_it_arrives();
   // curl and browsers wait for 100 Continue before a large body; answer it only once the
   // header passed its checks, so a too-large upload is refused before it is sent.
@@ -259,6 +267,23 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
     return;
   }
   read_body();
+}
+
+// A job while every worker and queue place is taken is refused on its header: the client is
+// told 503 before it sends (or this reads) a body of up to --max-body that would be refused
+// after all. The connection closes, as the body was not read. handle_request() still admits
+// for real: a place may be taken between the header and the body's end.
+bool Session::refused_as_full() {
+  const auto& header = parser_->get();
+  const RouteMatch match = match_route(header.method(), header.target());
+  if (match.route == nullptr || match.route->where != Where::Worker || !server_.saturated())
+    return false;
+  route_name_ = match.route->name;
+  keep_alive_ = false;
+  server_.services().metrics->rejected_full++;
+  state_->answered = true;
+  send(queue_full_response(), true);
+  return true;
 }
 
 // A large raw body to a route that reads a model is read as it arrives: hashed and, in slices
@@ -395,11 +420,8 @@ void Session::handle_request() {
   if (!server_.try_admit()) {
     upload_.reset();
     server_.services().metrics->rejected_full++;
-    Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
-                                "all workers are busy and the job queue is full; retry later");
-    r.set(http::field::retry_after, "1");
     state_->answered = true;
-    return send(std::move(r));
+    return send(queue_full_response());
   }
   dispatch_job(*match.route, std::move(match.id));
 }

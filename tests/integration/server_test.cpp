@@ -364,6 +364,15 @@ TEST(ServerLimits, FullQueueIs503AtOnce) {
   EXPECT_EQ(r.status, 503);
   EXPECT_EQ(r.header("Retry-After"), "1");
   EXPECT_NE(r.body.find("HTTP-004"), std::string::npos);
+  // Refused on its header: a client that asks before sending its upload is told 503 instead
+  // of 100 Continue, and sends nothing.
+  RawConnection asking(server.port());
+  std::string head = post_head(kLargeTarget, body.size());
+  head.insert(head.size() - 2, "Expect: 100-continue\r\n");
+  ASSERT_TRUE(asking.send(head));
+  const std::string answer = asking.receive_until("\r\n\r\n", 10s);
+  EXPECT_EQ(answer.substr(0, 12), "HTTP/1.1 503") << answer;
+  EXPECT_NE(answer.find("Retry-After: 1"), std::string::npos) << answer;
   auto ready = curl({server.url("/readyz")});
   EXPECT_EQ(ready.status, 503);
   holders.clear();  // the clients go away: their jobs are cancelled

@@ -123,6 +123,25 @@ TEST(BlockMap, BlocksBelongToTheWorkingstepWhoseTextTheyAreIn) {
   EXPECT_EQ(unnumbered["blocks"].dump(), R"({"L1":5,"L2":5})");
 }
 
+TEST(BlockMap, ABlockNumberSeenAgainKeepsEveryBlock) {
+  // Block numbers that wrap (N9999 → N1 on a FANUC with N numbers up to 9999) repeat.
+  const std::string text = "N1 G0 X0\nN2 G1 X1\nN1 G1 X2\nN2 G1 X3\nN1 M30\n";
+  const auto j = block_map(text, {{0, 3, "A"}, {text.find("N1 G1 X2"), 4, "B"}});
+  EXPECT_EQ(j["blocks"].dump(), R"({"1":3,"2":3,"1#2":4,"2#2":4,"1#3":4})");
+}
+
+TEST(BlockMap, GrowsInProportionToTheProgramAndStopsWhenCancelled) {
+  // 200,000 numbered blocks (a few MB of program): every one mapped, in program order.
+  std::string text;
+  for (int n = 1; n <= 200000; ++n) text += "N" + std::to_string(n) + " G1 X1\n";
+  const auto j = block_map(text, {{0, 7, "W"}});
+  ASSERT_EQ(j["blocks"].size(), 200000u);
+  EXPECT_EQ(j["blocks"].begin().key(), "1");
+  EXPECT_EQ(j["blocks"]["200000"], 7);
+  const std::atomic<bool> cancelled{true};
+  EXPECT_TRUE(block_map(text, {{0, 7, "W"}}, &cancelled).is_null());
+}
+
 TEST(Config, ParsesLimitsAndRejectsNonsense) {
   std::vector<std::string_view> args = {
       "--listen", "127.0.0.1:0", "--max-body=1000", "--job-timeout", "0.25", "--workers", "3"};

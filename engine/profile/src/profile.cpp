@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 
 namespace ncpost::profile {
@@ -188,6 +189,27 @@ std::optional<Range> read_range(Checker& c, const json& travel, std::string_view
   return Range{*lo, *hi};
 }
 
+// output.mime_type and output.extension go into response headers (Content-Type, and the file
+// name of Content-Disposition) as they are, so they are held to what those headers may carry:
+// a media type of RFC 6838 names with plain parameters, and a file-name suffix of letters,
+// digits, '.', '_' and '-'. A CR or LF would otherwise start a header of the profile's own.
+// The same patterns are in profile.schema.json.
+bool valid_media_type(const std::string& text) {
+  static const std::regex media_type(
+      "^[A-Za-z0-9][A-Za-z0-9!#$&^_.+-]*/[A-Za-z0-9][A-Za-z0-9!#$&^_.+-]*"
+      "( *; *[A-Za-z0-9!#$&^_.+-]+=[A-Za-z0-9!#$&^_.+-]+)*$");
+  return std::regex_match(text, media_type);
+}
+
+bool valid_extension(std::string_view text) {
+  for (const char ch : text) {
+    const bool alnum =
+        (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
+    if (!alnum && ch != '.' && ch != '_' && ch != '-') return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool valid_id(std::string_view id) noexcept {
@@ -235,8 +257,18 @@ std::optional<Profile> parse_profile(std::string_view text,
           c.object(doc, "", "output", true,
                    {"extension", "mime_type", "line_ending", "program_number", "error_marker"},
                    {"extension", "mime_type", "line_ending"})) {
-    if (auto v = c.string(*o, "/output", "extension", 0, 16)) p.extension = *v;
-    if (auto v = c.string(*o, "/output", "mime_type", 1, 100)) p.mime_type = *v;
+    if (auto v = c.string(*o, "/output", "extension", 0, 16)) {
+      if (valid_extension(*v))
+        p.extension = *v;
+      else
+        c.fail("/output/extension", "must match ^[A-Za-z0-9._-]*$");
+    }
+    if (auto v = c.string(*o, "/output", "mime_type", 1, 100)) {
+      if (valid_media_type(*v))
+        p.mime_type = *v;
+      else
+        c.fail("/output/mime_type", "must be a media type such as text/plain; charset=utf-8");
+    }
     if (auto v = c.enumeration(*o, "/output", "line_ending", {"lf", "crlf"}))
       p.line_ending = *v == "lf" ? "\n" : "\r\n";
     if (o->contains("error_marker")) {

@@ -80,6 +80,11 @@ TEST_F(ProfileTest, HandPickedInvalidExamples) {
   auto g = v;
   g["limits"]["travel"]["x"] = json{{"min", 5}, {"max", 1}};
   EXPECT_FALSE(accepts(g));
+  auto charset = v;  // parameters are fine; what would end the header line is not
+  charset["output"]["mime_type"] = "text/plain; charset=utf-8";
+  EXPECT_TRUE(accepts(charset));
+  charset["output"]["mime_type"] = "text/plain; charset=utf-8\n";
+  EXPECT_FALSE(accepts(charset));
   // The shared examples, which schema_check.py (ctest profile_schema_jsonschema) checks the
   // JSON Schema refuses too.
   const json examples = json::parse(
