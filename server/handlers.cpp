@@ -150,6 +150,16 @@ std::string file_stem(std::string_view name) {
   return safe.empty() ? "program" : safe;
 }
 
+// A post's stages (pipeline::PostResult): interpretation and rendering interleave chunk by
+// chunk, so besides their sum, `render` is the time in the stylesheet's transforms and
+// `interpret` the rest.
+void record_post_stages(Metrics& metrics, std::chrono::nanoseconds interpret,
+                        std::chrono::nanoseconds render, std::chrono::nanoseconds both) {
+  metrics.stage("interpret_render", both);
+  metrics.stage("interpret", interpret);
+  metrics.stage("render", render);
+}
+
 // A job whose time limit passed answers 504; the session has usually answered already, in
 // which case this response is dropped.
 bool stop_if_cancelled(Exchange& exchange) {
@@ -493,13 +503,17 @@ void post_json(Services& services, Exchange& exchange, const pipeline::LoadedMod
   const stepnc::InterpretResult interpreted =
       stepnc::interpret(loaded.model, attributes, tracker, interpret_options);
   if (!tracker.cancelled()) renderer.finish();
-  services.metrics->stage("interpret_render", Clock::now() - started);
+  const auto both = Clock::now() - started;
+  record_post_stages(*services.metrics,
+                     std::max(std::chrono::nanoseconds{0}, both - renderer.transform_time()),
+                     renderer.transform_time(), both);
   if (stop_if_cancelled(exchange)) return;
 
   std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded.diagnostics, name);
   for (const auto& d : interpreted.diagnostics) diagnostics.push_back({name, d});
   diagnostics.insert(diagnostics.end(), renderer.diagnostics().begin(),
                      renderer.diagnostics().end());
+  diagnostics = without_server_paths(std::move(diagnostics), *services.profiles);
   const bool ok = interpreted.ok() && !renderer.failed();
   if (!ok) {
     exchange.respond(problem(422, "post-failed", "The program could not be posted",
@@ -607,9 +621,11 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
         alive = exchange.write(piece);
       },
       options);
-  services.metrics->stage("interpret_render", result.interpret_and_render);
+  record_post_stages(*services.metrics, result.interpret, result.render,
+                     result.interpret_and_render);
   std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded->diagnostics, name);
   diagnostics.insert(diagnostics.end(), result.diagnostics.begin(), result.diagnostics.end());
+  diagnostics = without_server_paths(std::move(diagnostics), *services.profiles);
   if (begun) {
     if (result.ok)
       exchange.end_stream(true, diagnostics_trailer(diagnostics));

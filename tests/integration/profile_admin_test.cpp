@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "corpus.hpp"
+#include "server_helpers.hpp"
 #include "server_process.hpp"
 
 namespace ncpost::test {
@@ -223,6 +224,44 @@ TEST_F(ProfileAdmin, UploadValidateActivateDelete) {
             4);
   EXPECT_FALSE(fs::exists(dir_.path() / "escape"));
   EXPECT_EQ(curl({server.url("/healthz")}).status, 200);
+}
+
+// A post keeps the profile version it started with when the profile is replaced under it: a
+// large program streamed to a client that does not read yet (its job is blocked on the full
+// socket, so it is still running), then a new version with CRLF line endings; the stream goes
+// on to its end with the old version's LF only, and the next post has CRLF.
+TEST_F(ProfileAdmin, ARunningPostKeepsTheVersionItStartedWith) {
+  REQUIRE_LARGE_PROGRAM(large, 24);
+  ServerProcess server(writable());
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto xsl = write(files_ / "post.xsl", stylesheet());
+  const auto created =
+      put(server, "keep-mill", write(files_ / "v1.json", profile_json("keep-mill", "v1")), xsl);
+  ASSERT_EQ(created.status, 201) << created.body;
+  const std::string v1 = unquote(created.header("ETag"));
+
+  const std::string body = read_file(large);
+  RawConnection stream(server.port());
+  ASSERT_TRUE(stream.send(post_head("/v1/posts?profile=keep-mill", body.size()) + body));
+  std::string raw = stream.receive_until("\r\n\r\n", 60s);
+  ASSERT_NE(raw.find("X-Ncpost-Profile-Version: " + v1), std::string::npos) << raw;
+
+  const auto replaced = put(
+      server, "keep-mill", write(files_ / "v2.json", profile_json("keep-mill", "v2", "crlf")), xsl);
+  ASSERT_EQ(replaced.status, 200) << replaced.body;
+  // The post was still running when the new version became active.
+  EXPECT_NE(curl({server.url("/metrics")}).body.find("ncpost_jobs_active 1"), std::string::npos);
+
+  while (!stream.closed() && !decode_chunked(raw).complete) raw += stream.receive(30s, 1 << 20);
+  const RawResponse streamed = decode_chunked(raw);
+  ASSERT_TRUE(streamed.complete) << streamed.body.size() << " bytes\n" << server.log();
+  EXPECT_GT(streamed.body.size(), std::size_t{1} << 20);
+  EXPECT_EQ(streamed.body.find('\r'), std::string::npos) << "a line of the new version";
+
+  const auto next = post(server, "keep-mill");
+  ASSERT_EQ(next.status, 200) << next.body;
+  EXPECT_EQ(next.header("X-Ncpost-Profile-Version"), unquote(replaced.header("ETag")));
+  EXPECT_NE(next.body.find("\r\n"), std::string::npos);
 }
 
 // An uploaded stylesheet gets the sandbox of the built-ins: imports from elsewhere are refused at

@@ -48,6 +48,22 @@ TEST(ServerRoutes, HealthReadyMetrics) {
   EXPECT_NE(server.log().find("\"request_id\":\"" + health.header("X-Request-Id") + "\""),
             std::string::npos)
       << server.log();
+  // A post's stages, streamed and as JSON: read, interpret and render, each counted per post.
+  EXPECT_EQ(
+      curl({"--data-binary", "@" + src(kCurves).string(), server.url("/v1/posts?profile=linuxcnc")})
+          .status,
+      200);
+  EXPECT_EQ(curl({"-H", "Accept: application/json", "--data-binary", "@" + src(kCurves).string(),
+                  server.url("/v1/posts?profile=linuxcnc")})
+                .status,
+            200);
+  metrics = curl({server.url("/metrics")});
+  for (const char* stage : {"read", "interpret", "render", "interpret_render"})
+    EXPECT_NE(metrics.body.find("ncpost_stage_duration_seconds_count{stage=\"" +
+                                std::string(stage) + "\"} 2"),
+              std::string::npos)
+        << stage << "\n"
+        << metrics.body;
 }
 
 TEST(ServerRoutes, FrontEndAndOpenApi) {
@@ -192,6 +208,15 @@ TEST(ServerPosts, ErrorsBeforeOutputAreProblems) {
   EXPECT_EQ(broken.header("Content-Type"), "application/problem+json");
   EXPECT_TRUE(std::regex_search(broken.body, std::regex("\"line\": [1-9]"))) << broken.body;
   EXPECT_NE(broken.body.find("\"code\": \"P21-023\""), std::string::npos) << broken.body;
+  // A stylesheet's own stop is named by its profile-relative path, not where the server keeps
+  // it (p28-raw-demo writes explicit toolpaths only; this program has features only).
+  auto stopped =
+      curl({"--data-binary", "@" + src("tests/golden/features/cases/holes-cycles.stp").string(),
+            server.url("/v1/posts?profile=p28-raw-demo")});
+  EXPECT_EQ(stopped.status, 422);
+  EXPECT_NE(stopped.body.find("\"file\": \"profiles/p28-raw-demo/post.xsl\""), std::string::npos)
+      << stopped.body;
+  EXPECT_EQ(stopped.body.find(src("stylesheets").string()), std::string::npos) << stopped.body;
   auto empty = curl({"--data-binary", "", server.url("/v1/posts?profile=linuxcnc")});
   EXPECT_EQ(empty.status, 400);
   auto bad_multipart =

@@ -179,6 +179,7 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
     result.ok = raw.ok;
     result.started = raw.started;
     result.interpret_and_render = std::chrono::steady_clock::now() - started_at;
+    result.render = result.interpret_and_render;
     return result;
   }
   stepnc::InterpretOptions interpret_options;
@@ -195,8 +196,10 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
   CancellableSink sink(
       two_threads ? static_cast<canon::Sink&>(*render_thread) : static_cast<canon::Sink&>(renderer),
       options.cancel);
+  const auto interpret_began = std::chrono::steady_clock::now();
   const stepnc::InterpretResult interpreted =
       stepnc::interpret(loaded.model, attributes, sink, interpret_options);
+  const auto interpret_time = std::chrono::steady_clock::now() - interpret_began;
   result.cancelled = sink.cancelled();
   if (render_thread) {
     // Cancelled while the last batches were rendered: they were skipped, and so is finish().
@@ -218,6 +221,10 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
     out(error_marker(profile.profile, why));
   }
   result.interpret_and_render = std::chrono::steady_clock::now() - started_at;
+  result.render = renderer.transform_time();
+  result.interpret = render_thread ? std::chrono::nanoseconds(interpret_time)
+                                   : std::max(std::chrono::nanoseconds{0},
+                                              result.interpret_and_render - result.render);
   return result;
 }
 

@@ -355,7 +355,9 @@ void Renderer::transform_chunk(const canon::ChunkView& chunk) {
 bool Renderer::transform_tree(const std::string& name, std::uint64_t seq) {
   const bool batch = seq == std::numeric_limits<std::uint64_t>::max();
   job_.set_run_motions(run_motions_);
+  const auto began = std::chrono::steady_clock::now();
   auto result = xslt::transform(*profile_.stylesheet, tree_, job_, params_, name);
+  transform_time_ += std::chrono::steady_clock::now() - began;
   const std::size_t unrendered = job_.run_motions_not_rendered();
   job_.set_run_motions({});
   if (result.ok && unrendered > 0) {

@@ -43,6 +43,12 @@ struct PostResult {
   bool cancelled = false;  // stopped by PostOptions::cancel
   std::size_t calls = 0;   // canonical calls interpreted
   std::chrono::nanoseconds interpret_and_render{0};
+  // Of that, the render stage: the time in the stylesheet's transforms (all of it in raw
+  // mode). `interpret` is the rest: the interpretation and the calls' way to the transforms;
+  // with a render thread, whose work overlaps it, the interpreter's own time instead (which
+  // includes waiting while the render queue is full).
+  std::chrono::nanoseconds render{0};
+  std::chrono::nanoseconds interpret{0};
 };
 
 // Interprets `loaded` (which must be ok()) and renders it with `profile`; a raw-mode profile

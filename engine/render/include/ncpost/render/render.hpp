@@ -70,6 +70,9 @@ class Renderer final : public canon::Sink {
   [[nodiscard]] bool failed() const noexcept { return failed_; }
   // Whether any text was handed to `out` yet.
   [[nodiscard]] bool started() const noexcept { return started_; }
+  // Time spent in the stylesheet's transforms so far (a post's render stage; the calls' way
+  // into the transforms' input is not in it).
+  [[nodiscard]] std::chrono::nanoseconds transform_time() const noexcept { return transform_time_; }
 
  private:
   class ChunkRenderer;
@@ -111,6 +114,7 @@ class Renderer final : public canon::Sink {
   // (to re-render it chunk by chunk if it fails), and the state at its start.
   std::size_t batch_bytes_ = 0;
   std::chrono::milliseconds batch_delay_{0};
+  std::chrono::nanoseconds transform_time_{0};
   std::vector<canon::Call> batch_calls_;
   std::vector<std::pair<std::uint64_t, std::size_t>> batch_chunks_;  // seq, end in batch_calls_
   xslt::JobState batch_job_;
