@@ -37,13 +37,6 @@ Response error_response(unsigned status, diag::Code code, std::string_view title
   return problem(status, diag::info(code).id, title, detail, one);
 }
 
-Response queue_full_response() {
-  Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
-                              "all workers are busy and the job queue is full; retry later");
-  r.set(http::field::retry_after, "1");
-  return r;
-}
-
 bool valid_request_id(std::string_view id) {
   if (id.empty() || id.size() > 64) return false;
   for (char c : id)
@@ -274,16 +267,23 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
 // after all. The connection closes, as the body was not read. handle_request() still admits
 // for real: a place may be taken between the header and the body's end.
 bool Session::refused_as_full() {
+  if (!server_.saturated()) return false;  // the usual case: no route to look up here
   const auto& header = parser_->get();
   const RouteMatch match = match_route(header.method(), header.target());
-  if (match.route == nullptr || match.route->where != Where::Worker || !server_.saturated())
-    return false;
+  if (match.route == nullptr || match.route->where != Where::Worker) return false;
   route_name_ = match.route->name;
   keep_alive_ = false;
+  refuse_as_full(true);
+  return true;
+}
+
+void Session::refuse_as_full(bool then_linger) {
   server_.services().metrics->rejected_full++;
   state_->answered = true;
-  send(queue_full_response(), true);
-  return true;
+  Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
+                              "all workers are busy and the job queue is full; retry later");
+  r.set(http::field::retry_after, "1");
+  send(std::move(r), then_linger);
 }
 
 // A large raw body to a route that reads a model is read as it arrives: hashed and, in slices
@@ -419,9 +419,7 @@ void Session::handle_request() {
   }
   if (!server_.try_admit()) {
     upload_.reset();
-    server_.services().metrics->rejected_full++;
-    state_->answered = true;
-    return send(queue_full_response());
+    return refuse_as_full(false);
   }
   dispatch_job(*match.route, std::move(match.id));
 }

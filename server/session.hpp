@@ -76,6 +76,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void read_header();
   void on_header(boost::beast::error_code ec, std::size_t bytes);
   [[nodiscard]] bool refused_as_full();
+  void refuse_as_full(bool then_linger);  // 503 with Retry-After
   void take_upload_as_it_arrives();
   void read_body();
   // Feeds what buffer_ holds to the parser (up to the end of the header, or of the message) and
