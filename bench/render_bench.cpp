@@ -119,13 +119,13 @@ class Collect final : public ncpost::canon::Sink {
   std::vector<ncpost::canon::Call> calls;
 };
 
-void print(const std::vector<ncpost::xslt::FileDiagnostic>& diagnostics) {
-  for (const auto& d : diagnostics) std::cerr << ncpost::xslt::format(d) << '\n';
+void print(const std::vector<ncpost::diag::FileDiagnostic>& diagnostics) {
+  for (const auto& d : diagnostics) std::cerr << ncpost::diag::format(d) << '\n';
 }
 
 std::shared_ptr<const ncpost::profile::LoadedProfile> load_profile(const std::string& id) {
   static ncpost::profile::ProfileStore store;
-  std::vector<ncpost::xslt::FileDiagnostic> diagnostics;
+  std::vector<ncpost::diag::FileDiagnostic> diagnostics;
   auto loaded = store.load(id, diagnostics);
   print(diagnostics);
   return loaded;
@@ -202,7 +202,7 @@ int cache(const std::string& id, const std::string& file, int runs) {
   std::vector<double> compile_only_times;
   std::size_t out_bytes = 0;
   for (int i = 0; i < runs; ++i) {
-    std::vector<ncpost::xslt::FileDiagnostic> diagnostics;
+    std::vector<ncpost::diag::FileDiagnostic> diagnostics;
     auto start = Clock::now();
     out_bytes = ncpost::render::render_program(*loaded, calls.calls, diagnostics).size();
     cached_times.push_back(seconds_since(start));
@@ -218,7 +218,7 @@ int cache(const std::string& id, const std::string& file, int runs) {
     fresh.stylesheet = compiled.stylesheet;
     const auto text = ncpost::render::render_program(fresh, calls.calls, diagnostics);
     compile_times.push_back(seconds_since(start));
-    if (text.size() != out_bytes || ncpost::xslt::has_errors(diagnostics)) {
+    if (text.size() != out_bytes || ncpost::diag::has_errors(diagnostics)) {
       print(diagnostics);
       return 1;
     }

@@ -90,8 +90,7 @@ void print_diagnostics(const std::vector<diag::Diagnostic>& diagnostics, std::st
 }
 
 bool has_errors(const std::vector<diag::Diagnostic>& diagnostics) {
-  return std::any_of(diagnostics.begin(), diagnostics.end(),
-                     [](const auto& d) { return d.severity == diag::Severity::Error; });
+  return diag::has_errors(diagnostics);
 }
 
 int usage_error(std::string_view verb, std::string_view message) {

@@ -13,8 +13,8 @@
 namespace ncpost::cli {
 namespace {
 
-void print_file_diagnostics(const std::vector<xslt::FileDiagnostic>& diagnostics) {
-  for (const auto& d : diagnostics) std::cerr << xslt::format(d) << '\n';
+void print_file_diagnostics(const std::vector<diag::FileDiagnostic>& diagnostics) {
+  for (const auto& d : diagnostics) std::cerr << diag::format(d) << '\n';
 }
 
 }  // namespace
@@ -28,7 +28,7 @@ int run_post(Args args) {
 
   profile::ProfileStore store(
       options.value("profiles").value_or(profile::builtin_directory().string()));
-  std::vector<xslt::FileDiagnostic> profile_diagnostics;
+  std::vector<diag::FileDiagnostic> profile_diagnostics;
   const auto loaded_profile = store.load(*id, profile_diagnostics);
   print_file_diagnostics(profile_diagnostics);
   if (!loaded_profile) return kExitRejected;

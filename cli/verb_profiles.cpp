@@ -14,12 +14,12 @@ int run_profiles(Args args) {
   if (!options.positionals().empty()) return usage_error("profiles", "takes no FILE");
   const profile::ProfileStore store(
       options.value("profiles").value_or(profile::builtin_directory().string()));
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   const auto profiles = store.list(diagnostics);
   for (const auto& p : profiles)
     std::cout << p.id << '\t' << p.name << '\t' << p.controller << '\n';
-  for (const auto& d : diagnostics) std::cerr << xslt::format(d) << '\n';
-  return xslt::has_errors(diagnostics) ? kExitRejected : kExitOk;
+  for (const auto& d : diagnostics) std::cerr << diag::format(d) << '\n';
+  return diag::has_errors(diagnostics) ? kExitRejected : kExitOk;
 }
 
 }  // namespace ncpost::cli

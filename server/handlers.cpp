@@ -30,7 +30,7 @@ using json = nlohmann::ordered_json;
 
 // ---- problem details -----------------------------------------------------------------------
 
-json diagnostic_json(const xslt::FileDiagnostic& d) {
+json diagnostic_json(const diag::FileDiagnostic& d) {
   json j;
   j["file"] = d.file;
   j["line"] = d.diagnostic.line;
@@ -41,24 +41,16 @@ json diagnostic_json(const xslt::FileDiagnostic& d) {
   return j;
 }
 
-json diagnostics_json(const std::vector<xslt::FileDiagnostic>& diagnostics) {
+json diagnostics_json(const std::vector<diag::FileDiagnostic>& diagnostics) {
   json all = json::array();
   for (const auto& d : diagnostics) all.push_back(diagnostic_json(d));
   return all;
 }
 
-std::vector<xslt::FileDiagnostic> with_file(const std::vector<diag::Diagnostic>& diagnostics,
-                                            const std::string& file) {
-  std::vector<xslt::FileDiagnostic> out;
-  out.reserve(diagnostics.size());
-  for (const auto& d : diagnostics) out.push_back({file, d});
-  return out;
-}
-
 // A problem whose cause is the request itself, not its content: one diagnostic with the code.
 Response http_problem(unsigned status, diag::Code code, std::string_view title,
                       std::string detail) {
-  const std::vector<xslt::FileDiagnostic> one = {{"request", diag::make(code, 0, 0, detail)}};
+  const std::vector<diag::FileDiagnostic> one = {{"request", diag::make(code, 0, 0, detail)}};
   return problem(status, diag::info(code).id, title, detail, one);
 }
 
@@ -198,7 +190,7 @@ std::optional<pipeline::LoadedModel> load_upload(Services& services, Exchange& e
       loaded.diagnostics.push_back(stepnc::no_program_diagnostic(loaded.model));
     exchange.respond(problem(422, "input-rejected", "The upload was rejected",
                              "the input could not be read; see diagnostics",
-                             with_file(loaded.diagnostics, upload.name)));
+                             diag::with_file(loaded.diagnostics, upload.name)));
     return std::nullopt;
   }
   return loaded;
@@ -252,7 +244,7 @@ void handle_healthz(Request&, Services&, Exchange& exchange) {
 }
 
 void handle_readyz(Request&, Services& services, Exchange& exchange) {
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   const auto profiles = services.profiles->list(diagnostics);
   const bool saturated = services.saturated && services.saturated();
   json body;
@@ -299,7 +291,7 @@ void handle_index(Request&, Services& services, Exchange& exchange) {
 
 void handle_not_implemented(Request& request, Services&, Exchange& exchange) {
   const std::string what = std::string(request.target().substr(0, request.target().find('?')));
-  const std::vector<xslt::FileDiagnostic> one = {
+  const std::vector<diag::FileDiagnostic> one = {
       {"request", diag::make(diag::Code::NotImplemented, 0, 0,
                              "'" + what + "' is not implemented yet (the G-code reader)")}};
   exchange.respond(problem(501, "NCPOST-001", "Not implemented",
@@ -308,7 +300,7 @@ void handle_not_implemented(Request& request, Services&, Exchange& exchange) {
 }
 
 void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   const auto list = services.profiles->list(diagnostics);
   json body;
   body["profiles"] = json::array();
@@ -322,8 +314,8 @@ void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
 
 // The store's diagnostics name files on the server; a client learns the profile-relative path
 // (e.g. "profiles/fanuc-0i/post.xsl"), not where the service is installed.
-std::vector<xslt::FileDiagnostic> without_server_paths(
-    std::vector<xslt::FileDiagnostic> diagnostics, const profile::ProfileStore& store) {
+std::vector<diag::FileDiagnostic> without_server_paths(
+    std::vector<diag::FileDiagnostic> diagnostics, const profile::ProfileStore& store) {
   // Absolute roots only: a relative --profiles DIR reveals nothing, and a short relative name
   // would match inside ordinary words.
   std::error_code ec;
@@ -339,7 +331,7 @@ std::vector<xslt::FileDiagnostic> without_server_paths(
   return diagnostics;
 }
 
-Response profile_load_problem(const std::vector<xslt::FileDiagnostic>& store_diagnostics,
+Response profile_load_problem(const std::vector<diag::FileDiagnostic>& store_diagnostics,
                               std::string_view id, const profile::ProfileStore& store) {
   const auto diagnostics = without_server_paths(store_diagnostics, store);
   const bool unknown = std::any_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
@@ -355,7 +347,7 @@ Response profile_load_problem(const std::vector<xslt::FileDiagnostic>& store_dia
 
 void handle_profile_get(Request& request, Services& services, Exchange& exchange) {
   exchange.profile = exchange.path_id;
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   const auto loaded = services.profiles->load(exchange.path_id, diagnostics);
   if (!loaded) {
     exchange.respond(profile_load_problem(diagnostics, exchange.path_id, *services.profiles));
@@ -424,7 +416,7 @@ void handle_profile_put(Request& request, Services& services, Exchange& exchange
     return;
   }
   if (!services.profiles->writable()) {
-    const std::vector<xslt::FileDiagnostic> one = {
+    const std::vector<diag::FileDiagnostic> one = {
         {"request", diag::make(diag::Code::ProfileReadOnly, 0, 0,
                                "the built-in profiles are read-only; start ncpostd with "
                                "--profiles DIR")}};
@@ -475,7 +467,7 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
                                     "no profile '" + exchange.path_id + "' to delete"));
       return;
     case profile::RemoveOutcome::ReadOnly: {
-      const std::vector<xslt::FileDiagnostic> one = {
+      const std::vector<diag::FileDiagnostic> one = {
           {"request", diag::make(diag::Code::ProfileReadOnly, 0, 0,
                                  "'" + exchange.path_id + "' is a built-in profile")}};
       exchange.respond(problem(409, "PROFILE-006", "Read-only profile",
@@ -509,7 +501,7 @@ void post_json(Services& services, Exchange& exchange, const pipeline::LoadedMod
                      renderer.transform_time(), both);
   if (stop_if_cancelled(exchange)) return;
 
-  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded.diagnostics, name);
+  std::vector<diag::FileDiagnostic> diagnostics = diag::with_file(loaded.diagnostics, name);
   for (const auto& d : interpreted.diagnostics) diagnostics.push_back({name, d});
   diagnostics.insert(diagnostics.end(), renderer.diagnostics().begin(),
                      renderer.diagnostics().end());
@@ -543,7 +535,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
     return;
   }
   exchange.profile = *id;
-  std::vector<xslt::FileDiagnostic> profile_diagnostics;
+  std::vector<diag::FileDiagnostic> profile_diagnostics;
   // The job keeps this version even if the profile is replaced while it runs.
   const auto loaded_profile = services.profiles->load(*id, profile_diagnostics);
   if (!loaded_profile) {
@@ -623,7 +615,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
       options);
   record_post_stages(*services.metrics, result.interpret, result.render,
                      result.interpret_and_render);
-  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded->diagnostics, name);
+  std::vector<diag::FileDiagnostic> diagnostics = diag::with_file(loaded->diagnostics, name);
   diagnostics.insert(diagnostics.end(), result.diagnostics.begin(), result.diagnostics.end());
   diagnostics = without_server_paths(std::move(diagnostics), *services.profiles);
   if (begun) {
@@ -678,7 +670,8 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
   out.flush();
   services.metrics->stage("convert", Clock::now() - started);
   if (out.alive())
-    exchange.end_stream(true, diagnostics_trailer(with_file(loaded->diagnostics, upload->name)));
+    exchange.end_stream(true,
+                        diagnostics_trailer(diag::with_file(loaded->diagnostics, upload->name)));
   else
     exchange.end_stream(false);
 }
@@ -707,7 +700,7 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
   if (errors) {
     Response r = problem(422, "input-rejected", "The upload has errors",
                          "see diagnostics; the inspection member holds what could be read",
-                         with_file(diagnostics, name));
+                         diag::with_file(diagnostics, name));
     auto body = json::parse(r.body());
     body["inspection"] = std::move(info.json);
     r.body() = to_text(body) + "\n";
@@ -747,7 +740,7 @@ void handle_trace(Request& request, Services& services, Exchange& exchange) {
   }
   services.metrics->stage("interpret", Clock::now() - started);
   if (stop_if_cancelled(exchange)) return;
-  std::vector<xslt::FileDiagnostic> diagnostics = with_file(loaded->diagnostics, name);
+  std::vector<diag::FileDiagnostic> diagnostics = diag::with_file(loaded->diagnostics, name);
   for (const auto& d : result.diagnostics) diagnostics.push_back({name, d});
   if (!result.ok()) {
     exchange.respond(problem(422, "input-rejected", "The program could not be interpreted",
@@ -765,7 +758,7 @@ void handle_schema(Request& request, Services& services, Exchange& exchange) {
   const express::ParseResult result = express::parse_express(upload->bytes);
   if (!result.ok()) {
     exchange.respond(problem(422, "input-rejected", "The schema has errors", "see diagnostics",
-                             with_file(result.diagnostics, upload->name)));
+                             diag::with_file(result.diagnostics, upload->name)));
     return;
   }
   std::string xml = express::to_express_x(result.schemas);
@@ -800,7 +793,7 @@ std::string percent_decode(std::string_view s) {
 
 std::string problem_body(unsigned status, std::string_view type, std::string_view title,
                          std::string_view detail,
-                         const std::vector<xslt::FileDiagnostic>& diagnostics) {
+                         const std::vector<diag::FileDiagnostic>& diagnostics) {
   json body;
   body["type"] = "urn:ncpost:problem:" + std::string(type);
   body["title"] = title;
@@ -811,14 +804,14 @@ std::string problem_body(unsigned status, std::string_view type, std::string_vie
 }
 
 Response problem(unsigned status, std::string_view type, std::string_view title,
-                 std::string_view detail, const std::vector<xslt::FileDiagnostic>& diagnostics) {
+                 std::string_view detail, const std::vector<diag::FileDiagnostic>& diagnostics) {
   Response r{static_cast<http::status>(status), 11};
   r.set(http::field::content_type, "application/problem+json");
   r.body() = problem_body(status, type, title, detail, diagnostics);
   return r;
 }
 
-http::fields diagnostics_trailer(const std::vector<xslt::FileDiagnostic>& diagnostics) {
+http::fields diagnostics_trailer(const std::vector<diag::FileDiagnostic>& diagnostics) {
   std::string listed = "[";
   for (const auto& d : diagnostics) {
     // ASCII only (\\u escapes), no line breaks: a valid field value whatever the messages say.

@@ -107,10 +107,10 @@ struct RouteMatch {
 // RFC 9457 problem details, with diagnostics {file, line, column, severity, code, message}.
 [[nodiscard]] Response problem(unsigned status, std::string_view type, std::string_view title,
                                std::string_view detail,
-                               const std::vector<xslt::FileDiagnostic>& diagnostics = {});
+                               const std::vector<diag::FileDiagnostic>& diagnostics = {});
 [[nodiscard]] std::string problem_body(unsigned status, std::string_view type,
                                        std::string_view title, std::string_view detail,
-                                       const std::vector<xslt::FileDiagnostic>& diagnostics = {});
+                                       const std::vector<diag::FileDiagnostic>& diagnostics = {});
 
 // The decoded value of a query parameter of `target`, nullopt when absent.
 [[nodiscard]] std::optional<std::string> query_param(std::string_view target,
@@ -134,7 +134,7 @@ inline constexpr std::size_t kMaxDiagnosticsTrailer = 8 * 1024;
 // The trailer of a complete stream: Ncpost-Warnings (how many diagnostics the job gave; a job
 // that streams to the end has no errors) and Ncpost-Diagnostics (them as compact ASCII JSON).
 [[nodiscard]] http::fields diagnostics_trailer(
-    const std::vector<xslt::FileDiagnostic>& diagnostics);
+    const std::vector<diag::FileDiagnostic>& diagnostics);
 
 // From the lines of a posted program and the offsets at which each workingstep's text begins:
 // {block number (or "L" + line) → workingstep id}; a block number seen again (the numbering

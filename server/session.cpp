@@ -33,7 +33,7 @@ constexpr std::size_t kFirstRead = 16384;
 
 Response error_response(unsigned status, diag::Code code, std::string_view title,
                         std::string detail) {
-  const std::vector<xslt::FileDiagnostic> one = {{"request", diag::make(code, 0, 0, detail)}};
+  const std::vector<diag::FileDiagnostic> one = {{"request", diag::make(code, 0, 0, detail)}};
   return problem(status, diag::info(code).id, title, detail, one);
 }
 

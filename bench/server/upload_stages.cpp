@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   const ncpost::parallel::ThreadGroup helpers(argc > 4 ? std::stoul(argv[4]) : 1);
   ncpost::xslt::initialise();
   ncpost::profile::ProfileStore store;
-  std::vector<ncpost::xslt::FileDiagnostic> profile_diagnostics;
+  std::vector<ncpost::diag::FileDiagnostic> profile_diagnostics;
   const auto profile = store.load(argv[2], profile_diagnostics);
   if (!profile) {
     std::cerr << "profile " << argv[2] << " does not load\n";

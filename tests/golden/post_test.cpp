@@ -24,9 +24,9 @@ std::string post(const fs::path& file, const std::string& profile_id) {
   xslt::initialise();
   static const express::SchemaRegistry registry;
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   const auto profile = store.load(profile_id, diagnostics);
-  EXPECT_TRUE(profile) << (diagnostics.empty() ? "" : xslt::format(diagnostics[0]));
+  EXPECT_TRUE(profile) << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
   if (!profile) return {};
   auto loaded = pipeline::load(test::read_file(file), registry);
   EXPECT_TRUE(loaded.ok()) << file;
@@ -38,7 +38,7 @@ std::string post(const fs::path& file, const std::string& profile_id) {
   renderer.finish();
   EXPECT_TRUE(result.ok());
   EXPECT_FALSE(renderer.failed());
-  for (const auto& d : renderer.diagnostics()) ADD_FAILURE() << xslt::format(d);
+  for (const auto& d : renderer.diagnostics()) ADD_FAILURE() << diag::format(d);
   return text;
 }
 

@@ -166,7 +166,7 @@ TEST(Config, ParsesLimitsAndRejectsNonsense) {
 }
 
 TEST(Problem, Rfc9457ShapeWithDiagnostics) {
-  const std::vector<xslt::FileDiagnostic> diagnostics = {
+  const std::vector<diag::FileDiagnostic> diagnostics = {
       {"up.stp", diag::make(diag::Code::P21DanglingReference, 10, 1, "#12 is not defined")}};
   const Response r = problem(422, "input-rejected", "Rejected", "see diagnostics", diagnostics);
   EXPECT_EQ(r.result_int(), 422u);
@@ -184,7 +184,7 @@ TEST(Problem, Rfc9457ShapeWithDiagnostics) {
 
 TEST(Problem, ClientTextThatIsNotUtf8IsReplacedNotThrown) {
   // A path or file name may hold any bytes; the JSON library would throw on them.
-  const std::vector<xslt::FileDiagnostic> diagnostics = {
+  const std::vector<diag::FileDiagnostic> diagnostics = {
       {"bad\xff.stp", diag::make(diag::Code::P21DanglingReference, 1, 1, "x")}};
   const Response r = problem(404, "HTTP-009", "Not found", "no route for /\xfe\xff", diagnostics);
   const auto j = nlohmann::json::parse(r.body());
@@ -254,7 +254,7 @@ TEST(BodyHash, PublishedXxh64VectorsWholeAndInPieces) {
 }
 
 TEST(DiagnosticsTrailer, CountsAllAndListsWhatFitsAsAsciiJson) {
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   EXPECT_EQ(diagnostics_trailer(diagnostics)["Ncpost-Warnings"], "0");
   EXPECT_EQ(diagnostics_trailer(diagnostics)["Ncpost-Diagnostics"], "[]");
   for (int i = 0; i < 200; ++i)

@@ -820,7 +820,7 @@ std::vector<canon::Call> cycles_program() {
 std::shared_ptr<const profile::LoadedProfile> load(const std::string& id) {
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
   xslt::initialise();
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   auto p = store.load(id, diagnostics);
   EXPECT_TRUE(p) << id;
   return p;
@@ -832,9 +832,9 @@ TEST(DialectCheck, Cycles) {
     SCOPED_TRACE(id);
     const auto p = load(id);
     if (!p) continue;
-    std::vector<xslt::FileDiagnostic> diagnostics;
+    std::vector<diag::FileDiagnostic> diagnostics;
     const std::string text = render::render_program(*p, calls, diagnostics);
-    EXPECT_FALSE(xslt::has_errors(diagnostics)) << xslt::format(diagnostics.front());
+    EXPECT_FALSE(diag::has_errors(diagnostics)) << diag::format(diagnostics.front());
     // For reading the output by eye: NCPOST_DUMP_DIR=/tmp/x writes <profile>-cycles.txt there.
     if (const char* dump = std::getenv("NCPOST_DUMP_DIR"))
       std::ofstream(fs::path(dump) / (std::string(id) + "-cycles.txt"), std::ios::binary) << text;
@@ -862,9 +862,9 @@ TEST(DialectCheck, TinyChunksReadTheSame) {
       render::RenderOptions tiny;
       tiny.chunk.max_calls = 3;
       tiny.batch_bytes = 0;
-      std::vector<xslt::FileDiagnostic> diagnostics;
+      std::vector<diag::FileDiagnostic> diagnostics;
       const std::string text = render::render_program(*p, calls, diagnostics, tiny);
-      EXPECT_FALSE(xslt::has_errors(diagnostics)) << xslt::format(diagnostics.front());
+      EXPECT_FALSE(diag::has_errors(diagnostics)) << diag::format(diagnostics.front());
       EXPECT_GT(check_text(id, p->profile, calls, text).compared, 3u);
       // The other stylesheets do not look ahead: their text does not change at all.
       if (std::string(id) != "heidenhain-tnc640") {
@@ -884,7 +884,7 @@ TEST(DialectCheck, NativeCyclesAreWritten) {
   for (const auto& [id, words] : expected) {
     const auto p = load(id);
     if (!p) continue;
-    std::vector<xslt::FileDiagnostic> diagnostics;
+    std::vector<diag::FileDiagnostic> diagnostics;
     const std::string text = render::render_program(*p, calls, diagnostics);
     for (const char* w : words) EXPECT_NE(text.find(w), std::string::npos) << id << ": " << w;
   }
@@ -980,7 +980,7 @@ TEST(DialectCheck, CatchesAWrongCycleDepth) {
     SCOPED_TRACE(id);
     const auto p = load(id);
     if (!p) continue;
-    std::vector<xslt::FileDiagnostic> diagnostics;
+    std::vector<diag::FileDiagnostic> diagnostics;
     std::string text = render::render_program(*p, calls, diagnostics);
     const std::size_t at = text.find(change.first);
     ASSERT_NE(at, std::string::npos) << text;

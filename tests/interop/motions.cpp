@@ -205,10 +205,10 @@ Posted post_file(const std::filesystem::path& input, const std::string& profile_
   static const express::SchemaRegistry registry;
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
   Posted posted;
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   posted.profile = store.load(profile_id, diagnostics);
   EXPECT_TRUE(posted.profile) << profile_id << ": "
-                              << (diagnostics.empty() ? "" : xslt::format(diagnostics[0]));
+                              << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
   if (!posted.profile) return posted;
   auto loaded = pipeline::load(test::read_file(input), registry);
   EXPECT_TRUE(loaded.ok()) << input;
@@ -217,10 +217,10 @@ Posted post_file(const std::filesystem::path& input, const std::string& profile_
   canon::ProgramBuffer buffer;
   EXPECT_TRUE(stepnc::interpret(loaded.model, attributes, buffer, {}).ok()) << input;
   posted.calls = buffer.calls();
-  std::vector<xslt::FileDiagnostic> render_diagnostics;
+  std::vector<diag::FileDiagnostic> render_diagnostics;
   posted.text = render::render_program(*posted.profile, posted.calls, render_diagnostics);
-  EXPECT_FALSE(xslt::has_errors(render_diagnostics))
-      << profile_id << ": " << xslt::format(render_diagnostics.front());
+  EXPECT_FALSE(diag::has_errors(render_diagnostics))
+      << profile_id << ": " << diag::format(render_diagnostics.front());
   return posted;
 }
 

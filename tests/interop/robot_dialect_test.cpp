@@ -343,12 +343,12 @@ Vec minus_unit(const canon::Direction& d) {
 std::string render(const std::string& profile_id, const std::vector<canon::Call>& calls) {
   xslt::initialise();
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   const auto profile = store.load(profile_id, diagnostics);
   EXPECT_TRUE(profile);
   if (!profile) return {};
   std::string text = render::render_program(*profile, calls, diagnostics);
-  EXPECT_FALSE(xslt::has_errors(diagnostics)) << xslt::format(diagnostics.front());
+  EXPECT_FALSE(diag::has_errors(diagnostics)) << diag::format(diagnostics.front());
   return text;
 }
 
@@ -401,7 +401,7 @@ TEST(RobotDialect, ChunkedEqualsWholeProgram) {
       SCOPED_TRACE(std::string(id) + " " + input.filename().string());
       const Posted posted = post_file(input, id);
       ASSERT_TRUE(posted.profile);
-      std::vector<xslt::FileDiagnostic> d1, d2, d3;
+      std::vector<diag::FileDiagnostic> d1, d2, d3;
       const std::string whole = render::render_program(*posted.profile, posted.calls, d1,
                                                        render::RenderOptions{{}, true});
       const std::string tiny = render::render_program(*posted.profile, posted.calls, d2,

@@ -1,5 +1,6 @@
 #include "ncpost/diag/diagnostic.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace ncpost::diag {
@@ -52,6 +53,29 @@ std::string format(const Diagnostic& d, std::string_view file) {
   out += d.code_id();
   out += ": ";
   out += d.message;
+  return out;
+}
+
+std::string format(const FileDiagnostic& d) {
+  return format(d.diagnostic, d.file);
+}
+
+bool has_errors(std::span<const Diagnostic> diagnostics) noexcept {
+  return std::any_of(diagnostics.begin(), diagnostics.end(),
+                     [](const Diagnostic& d) { return d.severity == Severity::Error; });
+}
+
+bool has_errors(std::span<const FileDiagnostic> diagnostics) noexcept {
+  return std::any_of(diagnostics.begin(), diagnostics.end(), [](const FileDiagnostic& d) {
+    return d.diagnostic.severity == Severity::Error;
+  });
+}
+
+std::vector<FileDiagnostic> with_file(std::span<const Diagnostic> diagnostics,
+                                      std::string_view file) {
+  std::vector<FileDiagnostic> out;
+  out.reserve(diagnostics.size());
+  for (const auto& d : diagnostics) out.push_back({std::string(file), d});
   return out;
 }
 

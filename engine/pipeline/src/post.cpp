@@ -142,7 +142,7 @@ class RenderThread final : public canon::Sink {
   std::thread thread_;          // last: started once everything above exists
 };
 
-std::string first_error(const std::vector<xslt::FileDiagnostic>& diagnostics) {
+std::string first_error(const std::vector<diag::FileDiagnostic>& diagnostics) {
   for (const auto& d : diagnostics)
     if (d.diagnostic.severity == diag::Severity::Error)
       return std::string(d.diagnostic.code_id()) + " " + d.diagnostic.message;

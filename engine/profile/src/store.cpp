@@ -47,13 +47,13 @@ std::optional<std::string> read_text(const fs::path& path) {
   return ss.str();
 }
 
-void add(std::vector<xslt::FileDiagnostic>& out, const fs::path& file, diag::Code code,
+void add(std::vector<diag::FileDiagnostic>& out, const fs::path& file, diag::Code code,
          std::string message) {
   out.push_back({file.string(), diag::make(code, 0, 0, std::move(message))});
 }
 
 std::optional<Profile> parse_json_text(const std::string& text, const std::string& file_name,
-                                       std::vector<xslt::FileDiagnostic>& out) {
+                                       std::vector<diag::FileDiagnostic>& out) {
   std::vector<diag::Diagnostic> diagnostics;
   auto profile = parse_profile(text, diagnostics);
   for (auto& d : diagnostics) out.push_back({file_name, std::move(d)});
@@ -61,7 +61,7 @@ std::optional<Profile> parse_json_text(const std::string& text, const std::strin
 }
 
 std::optional<Profile> read_profile_json(const fs::path& file,
-                                         std::vector<xslt::FileDiagnostic>& out) {
+                                         std::vector<diag::FileDiagnostic>& out) {
   auto text = read_text(file);
   if (!text) {
     add(out, file, diag::Code::ProfileDirectory, "cannot read " + file.string());
@@ -191,7 +191,7 @@ std::optional<ProfileStore::Layer> ProfileStore::find_layer(std::string_view id)
 }
 
 std::vector<ProfileSummary> ProfileStore::list(
-    std::vector<xslt::FileDiagnostic>& diagnostics) const {
+    std::vector<diag::FileDiagnostic>& diagnostics) const {
   std::vector<ProfileSummary> out;
   std::vector<std::pair<fs::path, bool>> layers{{directory_, !options_.writable}};
   if (options_.fallback) layers.emplace_back(*options_.fallback, true);
@@ -235,7 +235,7 @@ struct Built {
 // Reads and compiles the profile in `folder` (a real folder: the caller resolved the link).
 // `json` is given when the caller has the text already (put()).
 Built build(const fs::path& folder, std::string_view id, const std::vector<fs::path>& roots,
-            std::optional<std::string> json, std::vector<xslt::FileDiagnostic>& diagnostics) {
+            std::optional<std::string> json, std::vector<diag::FileDiagnostic>& diagnostics) {
   Built out;
   const fs::path json_file = folder / "profile.json";
   const fs::path xsl_file = folder / "post.xsl";
@@ -288,7 +288,7 @@ Built build(const fs::path& folder, std::string_view id, const std::vector<fs::p
 }  // namespace
 
 std::shared_ptr<const LoadedProfile> ProfileStore::load(
-    std::string_view id, std::vector<xslt::FileDiagnostic>& diagnostics) {
+    std::string_view id, std::vector<diag::FileDiagnostic>& diagnostics) {
   {
     std::lock_guard lock(mutex_);
     if (auto it = cache_.find(id); it != cache_.end()) {
@@ -311,7 +311,7 @@ std::shared_ptr<const LoadedProfile> ProfileStore::load(
     if (layer->directory != directory_) stamps.push_back(make_stamp(entry, true));
     std::error_code ec;
     const fs::path folder = fs::canonical(entry, ec);
-    std::vector<xslt::FileDiagnostic> attempt_diagnostics;
+    std::vector<diag::FileDiagnostic> attempt_diagnostics;
     Built built;
     if (ec) {
       add(attempt_diagnostics, entry, diag::Code::ProfileDirectory,
@@ -357,7 +357,7 @@ PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
   }
   const std::string json(profile_json);
   {
-    std::vector<xslt::FileDiagnostic> parsed;
+    std::vector<diag::FileDiagnostic> parsed;
     const auto profile = parse_json_text(json, "profile.json", parsed);
     for (auto& d : parsed) diagnostics.push_back(std::move(d));
     if (!profile) return result;
@@ -428,7 +428,7 @@ PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
   const fs::path real_version = fs::canonical(version, ec);
   std::vector<fs::path> roots{real_version, common};
   if (options_.fallback) roots.push_back(*options_.fallback / "common");
-  std::vector<xslt::FileDiagnostic> built_diagnostics;
+  std::vector<diag::FileDiagnostic> built_diagnostics;
   Built built = build(real_version, id, roots, json, built_diagnostics);
   // Name the uploaded files as the client knows them, not by the server's paths.
   std::vector<std::pair<fs::path, std::string>> renames{{real_version, ""},

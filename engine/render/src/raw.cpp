@@ -14,7 +14,7 @@ struct Gathered {
 };
 
 Gathered gather(const p21::Model& model, const express::SchemaSet* schemas,
-                std::vector<xslt::FileDiagnostic>& diagnostics, std::string_view input_name,
+                std::vector<diag::FileDiagnostic>& diagnostics, std::string_view input_name,
                 std::size_t max_bytes) {
   Gathered g;
   const auto notes = p28::write(model, schemas, p28::Binding::Late, [&](std::string_view piece) {
@@ -34,7 +34,7 @@ Gathered gather(const p21::Model& model, const express::SchemaSet* schemas,
 }  // namespace
 
 std::string raw_document(const p21::Model& model, const express::SchemaSet* schemas,
-                         std::vector<xslt::FileDiagnostic>& diagnostics,
+                         std::vector<diag::FileDiagnostic>& diagnostics,
                          std::string_view input_name) {
   return gather(model, schemas, diagnostics, input_name, xslt::Limits{}.max_input_bytes).text;
 }
@@ -85,7 +85,7 @@ RawResult render_raw(const p21::Model& model, const express::SchemaSet* schemas,
     result.started = true;
     out(text);
   }
-  result.ok = !xslt::has_errors(result.diagnostics);
+  result.ok = !diag::has_errors(result.diagnostics);
   return result;
 }
 

@@ -413,7 +413,7 @@ void Renderer::finish() {
 
 std::string render_program(const profile::LoadedProfile& profile,
                            std::span<const canon::Call> calls,
-                           std::vector<xslt::FileDiagnostic>& diagnostics, RenderOptions options) {
+                           std::vector<diag::FileDiagnostic>& diagnostics, RenderOptions options) {
   std::string text;
   Renderer renderer(
       profile, [&](std::string_view piece) { text.append(piece); }, options);

@@ -10,16 +10,6 @@
 
 namespace ncpost::xslt {
 
-std::string format(const FileDiagnostic& d) {
-  return diag::format(d.diagnostic, d.file);
-}
-
-bool has_errors(std::span<const FileDiagnostic> diagnostics) noexcept {
-  return std::any_of(diagnostics.begin(), diagnostics.end(), [](const FileDiagnostic& d) {
-    return d.diagnostic.severity == diag::Severity::Error;
-  });
-}
-
 namespace detail {
 namespace {
 
@@ -99,7 +89,7 @@ void Collector::add(diag::Code code, std::string file, std::uint32_t line, std::
 }
 
 bool Collector::has_errors() const noexcept {
-  return xslt::has_errors(items_);
+  return diag::has_errors(items_);
 }
 
 void Collector::generic_text(std::string_view text) {

@@ -266,7 +266,7 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
                                                  " XPath operations (max_xpath_ops); stopped")});
     }
   }
-  if (state == XSLT_STATE_STOPPED && !xslt::has_errors(items)) {
+  if (state == XSLT_STATE_STOPPED && !diag::has_errors(items)) {
     auto message = std::find_if(items.rbegin(), items.rend(), [](const FileDiagnostic& d) {
       return d.diagnostic.code == diag::Code::XsltMessage;
     });
@@ -280,7 +280,7 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
     items.push_back(std::move(stop));
   }
   if ((state != XSLT_STATE_OK || (!produced && result.output.empty())) &&
-      !xslt::has_errors(items)) {
+      !diag::has_errors(items)) {
     std::string message = "the transform failed";
     if (!collector.side_text().empty()) message += ": " + collector.side_text();
     while (!message.empty() && message.back() == '\n') message.pop_back();
@@ -288,7 +288,7 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
         sheet_file, diag::make(diag::Code::XsltRuntimeError, 0, 0, std::move(message))});
   }
   result.ok = state == XSLT_STATE_OK && produced && budget.tripped == detail::Budget::Trip::None &&
-              !xslt::has_errors(items);
+              !diag::has_errors(items);
   if (!result.ok) result.output.clear();
   result.diagnostics = std::move(items);
   return result;

@@ -19,9 +19,9 @@ class PostJobTest : public ::testing::Test {
   static void SetUpTestSuite() { xslt::initialise(); }
   static std::shared_ptr<const profile::LoadedProfile> builtin(const std::string& id) {
     static profile::ProfileStore store(test::source_dir() / "stylesheets");
-    std::vector<xslt::FileDiagnostic> d;
+    std::vector<diag::FileDiagnostic> d;
     auto p = store.load(id, d);
-    EXPECT_TRUE(p) << (d.empty() ? "" : xslt::format(d[0]));
+    EXPECT_TRUE(p) << (d.empty() ? "" : diag::format(d[0]));
     return p;
   }
   static LoadedModel load_case(const std::string& name) {
@@ -101,7 +101,7 @@ TEST_F(PostJobTest, FailureAfterOutputEndsWithTheMarker) {
   EXPECT_EQ(posted.text.substr(posted.text.size() - tail.size()), tail) << posted.text;
   EXPECT_NE(posted.text.rfind("(ERROR: STEPNC-"), std::string::npos) << posted.text;
   EXPECT_EQ(posted.text.find("M2\n"), std::string::npos);
-  EXPECT_TRUE(xslt::has_errors(posted.result.diagnostics));
+  EXPECT_TRUE(diag::has_errors(posted.result.diagnostics));
 }
 
 TEST_F(PostJobTest, CancelledBeforeTheFirstExecutable) {
@@ -160,7 +160,7 @@ TEST_F(PostJobTest, RenderThreadGivesTheSameResult) {
       EXPECT_EQ(a.result.calls, b.result.calls) << id << " " << name;
       ASSERT_EQ(a.result.diagnostics.size(), b.result.diagnostics.size()) << id << " " << name;
       for (std::size_t i = 0; i < a.result.diagnostics.size(); ++i)
-        EXPECT_EQ(xslt::format(a.result.diagnostics[i]), xslt::format(b.result.diagnostics[i]));
+        EXPECT_EQ(diag::format(a.result.diagnostics[i]), diag::format(b.result.diagnostics[i]));
       ++compared;
     }
   }

@@ -182,12 +182,12 @@ TEST_F(ProfileTest, SchemaAndValidationAgree) {
 
 TEST_F(ProfileTest, StoreListsAndLoadsBuiltIns) {
   ProfileStore store(stylesheets());
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   const auto list = store.list(d);
   ASSERT_GE(list.size(), 2u);
   EXPECT_TRUE(d.empty());
   auto a = store.load("linuxcnc", d);
-  ASSERT_TRUE(a) << (d.empty() ? "" : xslt::format(d[0]));
+  ASSERT_TRUE(a) << (d.empty() ? "" : diag::format(d[0]));
   auto b = store.load("linuxcnc", d);
   EXPECT_EQ(a.get(), b.get());  // compiled once, cached
   EXPECT_TRUE(store.load("fanuc-0i", d));

@@ -26,13 +26,13 @@ namespace fs = std::filesystem;
 using test_store::profile_json;
 using test_store::stylesheet;
 
-std::string all(const std::vector<xslt::FileDiagnostic>& d) {
+std::string all(const std::vector<diag::FileDiagnostic>& d) {
   std::string out;
-  for (const auto& x : d) out += xslt::format(x) + "\n";
+  for (const auto& x : d) out += diag::format(x) + "\n";
   return out;
 }
 
-bool has_code(const std::vector<xslt::FileDiagnostic>& d, diag::Code code) {
+bool has_code(const std::vector<diag::FileDiagnostic>& d, diag::Code code) {
   return std::any_of(d.begin(), d.end(), [&](const auto& x) { return x.diagnostic.code == code; });
 }
 
@@ -86,7 +86,7 @@ TEST_F(StoreTest, PutCreatesThenReplacesAndKeepsRunningVersions) {
   EXPECT_EQ(first.profile->profile.name, "Mill A");
   EXPECT_TRUE(fs::is_symlink(dir_ / "mill-a"));
 
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   EXPECT_EQ(store.load("mill-a", d).get(), first.profile.get()) << "put() fills the cache";
 
   auto second = store.put("mill-a", profile_json("mill-a", "Mill A v2"), stylesheet("2"));
@@ -154,7 +154,7 @@ TEST_F(StoreTest, InvalidUploadsChangeNothing) {
   EXPECT_TRUE(has_code(escaping.diagnostics, diag::Code::XsltImportRefused))
       << all(escaping.diagnostics);
 
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   auto still = store.load("mill-b", d);
   ASSERT_TRUE(still);
   EXPECT_EQ(still->version, good.profile->version);
@@ -183,7 +183,7 @@ TEST_F(StoreTest, ReadOnlyStoreRefusesWrites) {
   EXPECT_TRUE(has_code(r.diagnostics, diag::Code::ProfileReadOnly));
   EXPECT_EQ(store.remove("linuxcnc"), RemoveOutcome::ReadOnly);
   EXPECT_EQ(store.remove("no-such"), RemoveOutcome::NotFound);
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   auto p = store.load("linuxcnc", d);
   ASSERT_TRUE(p);
   EXPECT_TRUE(p->read_only);
@@ -191,7 +191,7 @@ TEST_F(StoreTest, ReadOnlyStoreRefusesWrites) {
 
 TEST_F(StoreTest, OverlayOnTheBuiltIns) {
   auto store = writable();
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   auto builtin = store.load("linuxcnc", d);
   ASSERT_TRUE(builtin) << all(d);
   EXPECT_TRUE(builtin->read_only);
@@ -223,7 +223,7 @@ TEST_F(StoreTest, RemoveThenNotFound) {
   auto store = writable();
   ASSERT_TRUE(store.put("gone", profile_json("gone", "Gone"), stylesheet("g")).profile);
   EXPECT_EQ(store.remove("gone"), RemoveOutcome::Removed);
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   EXPECT_FALSE(store.load("gone", d));
   EXPECT_TRUE(has_code(d, diag::Code::ProfileUnknown));
   EXPECT_EQ(store.remove("gone"), RemoveOutcome::NotFound);
@@ -236,7 +236,7 @@ TEST_F(StoreTest, HandPlacedFolderIsReplacedAtomically) {
   fs::copy_file(builtin_directory() / "linuxcnc" / "post.xsl", dir_ / "hand" / "post.xsl");
   fs::create_directory_symlink(fs::absolute(builtin_directory() / "common"), dir_ / "common");
   auto store = writable();
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   auto by_hand = store.load("hand", d);
   ASSERT_TRUE(by_hand) << all(d);
   auto r = store.put("hand", profile_json("hand", "Uploaded"), stylesheet("u"));
@@ -251,7 +251,7 @@ TEST_F(StoreTest, ReloadPicksUpChangesOthersMade) {
   auto writer = writable();
   ASSERT_TRUE(writer.put("shared", profile_json("shared", "One"), stylesheet("1")).profile);
   ProfileStore reader(dir_, StoreOptions{.writable = false, .fallback = builtin_directory()});
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   auto one = reader.load("shared", d);
   ASSERT_TRUE(one) << all(d);
   EXPECT_EQ(reader.cache_stats().misses, 1u);
@@ -302,7 +302,7 @@ TEST_F(StoreTest, LoadsDuringPutsNeverFail) {
     readers.emplace_back([&] {
       while (!stop) {
         reader.reload();
-        std::vector<xslt::FileDiagnostic> d;
+        std::vector<diag::FileDiagnostic> d;
         const auto p = reader.load("busy", d);
         if (!p || (p->profile.name != "A" && p->profile.name != "B")) {
           if (failures++ == 0) {
@@ -357,7 +357,7 @@ TEST_F(StoreTest, CrashAtAnyMomentLeavesOneCompleteVersion) {
                                      << "); run it by hand: " << NCPOST_STORE_WRITER << " DIR";
 
     ProfileStore fresh(dir_, StoreOptions{.writable = true, .fallback = builtin_directory()});
-    std::vector<xslt::FileDiagnostic> d;
+    std::vector<diag::FileDiagnostic> d;
     const auto loaded = fresh.load("crash", d);
     ASSERT_TRUE(loaded) << "after kill " << kill << ":\n" << all(d);
     ASSERT_TRUE(loaded->version == version_a || loaded->version == version_b)

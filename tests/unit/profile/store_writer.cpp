@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     const auto r = store.put("crash", json[i % 2], xsl[i % 2]);
     if (!r.profile) {
       for (const auto& d : r.diagnostics)
-        std::fprintf(stderr, "%s\n", ncpost::xslt::format(d).c_str());
+        std::fprintf(stderr, "%s\n", ncpost::diag::format(d).c_str());
       return 1;
     }
   }

@@ -36,9 +36,9 @@ const express::SchemaRegistry& registry() {
 std::shared_ptr<const profile::LoadedProfile> demo_profile() {
   xslt::initialise();
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   auto p = store.load("p28-raw-demo", diagnostics);
-  EXPECT_TRUE(p) << (diagnostics.empty() ? "" : xslt::format(diagnostics[0]));
+  EXPECT_TRUE(p) << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
   return p;
 }
 
@@ -184,7 +184,7 @@ TEST(RawMode, NistEx1EGoldenAndGeometry) {
   const Posted posted = post_bytes(bytes, *profile);
   EXPECT_TRUE(posted.result.ok);
   for (const auto& d : posted.result.diagnostics)
-    EXPECT_NE(d.diagnostic.severity, diag::Severity::Error) << xslt::format(d);
+    EXPECT_NE(d.diagnostic.severity, diag::Severity::Error) << diag::format(d);
   EXPECT_EQ(posted.result.calls, 0u) << "raw mode does not interpret";
   expect_golden(posted.text, test::source_dir() / "tests" / "golden" / "post" / "p28-raw-demo" /
                                  "nist_toolkit_ex1E.ngc");
@@ -218,7 +218,7 @@ TEST(RawMode, P28InputGivesTheSameProgram) {
   const std::string bytes = test::read_file(corpus / "p21" / "nist_toolkit_ex1E.stp");
   auto loaded = pipeline::load(bytes, registry());
   ASSERT_TRUE(loaded.ok());
-  std::vector<xslt::FileDiagnostic> notes;
+  std::vector<diag::FileDiagnostic> notes;
   const std::string xml = raw_document(loaded.model, loaded.schema, notes, "ex1E");
   ASSERT_NE(xml.find("late_binding"), std::string::npos);
   EXPECT_EQ(post_bytes(xml, *profile).text, post_bytes(bytes, *profile).text);

@@ -24,9 +24,9 @@ class RenderTest : public ::testing::Test {
   static fs::path stylesheets() { return test::source_dir() / "stylesheets"; }
   static std::shared_ptr<const profile::LoadedProfile> builtin(const std::string& id) {
     static profile::ProfileStore store(stylesheets());
-    std::vector<xslt::FileDiagnostic> d;
+    std::vector<diag::FileDiagnostic> d;
     auto p = store.load(id, d);
-    EXPECT_TRUE(p) << (d.empty() ? "" : xslt::format(d[0]));
+    EXPECT_TRUE(p) << (d.empty() ? "" : diag::format(d[0]));
     return p;
   }
   static std::vector<canon::Call> program(const fs::path& file) {
@@ -88,7 +88,7 @@ std::vector<canon::Call> cycle_program() {
 
 void expect_chunked_equals_whole(const profile::LoadedProfile& p,
                                  const std::vector<canon::Call>& calls) {
-  std::vector<xslt::FileDiagnostic> d1, d2, d3, d4, d5, d6;
+  std::vector<diag::FileDiagnostic> d1, d2, d3, d4, d5, d6;
   const std::string chunked = render_program(p, calls, d1);
   const std::string whole = render_program(p, calls, d2, RenderOptions{{}, true});
   // Tiny chunks: long workingsteps split and reopened (continued="true").
@@ -98,7 +98,7 @@ void expect_chunked_equals_whole(const profile::LoadedProfile& p,
   const std::string unbatched = render_program(p, calls, d4, RenderOptions{{}, false, 0});
   const std::string tiny_unbatched = render_program(p, calls, d5, RenderOptions{{3}, false, 0});
   const std::string small_batches = render_program(p, calls, d6, RenderOptions{{3}, false, 600});
-  EXPECT_FALSE(xslt::has_errors(d1)) << (d1.empty() ? "" : xslt::format(d1[0]));
+  EXPECT_FALSE(diag::has_errors(d1)) << (d1.empty() ? "" : diag::format(d1[0]));
   EXPECT_FALSE(chunked.empty());
   EXPECT_EQ(chunked, whole);
   EXPECT_EQ(chunked, tiny);
@@ -196,7 +196,7 @@ TEST_F(RenderTest, InputTreeEqualsParsedXmlEx1E) {
 }
 
 TEST_F(RenderTest, FanucWritesNativeCycles) {
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   const std::string text = render_program(*builtin("fanuc-0i"), cycle_program(), d);
   EXPECT_NE(text.find("G98 G81 X10. Y20. Z-15. R2. F200."), std::string::npos) << text;
   EXPECT_NE(text.find("G98 G82 X30. Y20. Z-15. R2. P500 F200."), std::string::npos) << text;
@@ -208,7 +208,7 @@ TEST_F(RenderTest, FanucWritesNativeCycles) {
 }
 
 TEST_F(RenderTest, LinuxcncExpandsCycles) {
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   const std::string text = render_program(*builtin("linuxcnc"), cycle_program(), d);
   EXPECT_EQ(text.find("G81"), std::string::npos) << text;
   EXPECT_NE(text.find("G1 X10. Y20. Z-15."), std::string::npos) << text;
@@ -290,10 +290,10 @@ TEST_F(RenderTest, LimitViolationNamesTheWorkingstep) {
   p.profile.limits.tool_number = std::array<std::int64_t, 2>{1, 99};
   const auto calls =
       program(test::source_dir() / "tests" / "golden" / "trace" / "cases" / "curves.stp");
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   const std::string text = render_program(p, calls, d);
   EXPECT_FALSE(text.empty());  // warnings: the output is complete
-  EXPECT_FALSE(xslt::has_errors(d));
+  EXPECT_FALSE(diag::has_errors(d));
   bool travel = false, feed = false, spindle = false, tool = false;
   for (const auto& x : d) {
     EXPECT_EQ(x.diagnostic.code, diag::Code::RenderLimit);
@@ -309,9 +309,9 @@ TEST_F(RenderTest, LimitViolationNamesTheWorkingstep) {
 
   // severity: error stops the output at the first chunk that would contain the violation.
   p.profile.limits.severity = diag::Severity::Error;
-  std::vector<xslt::FileDiagnostic> e;
+  std::vector<diag::FileDiagnostic> e;
   const std::string partial = render_program(p, calls, e);
-  EXPECT_TRUE(xslt::has_errors(e));
+  EXPECT_TRUE(diag::has_errors(e));
   EXPECT_EQ(partial.find("G1 X10."), std::string::npos);
 }
 
@@ -334,16 +334,16 @@ TEST_F(RenderTest, FailureInABatchEndsWhereUnbatchedDoes) {
   calls.emplace_back(End{Scope::Project, entity(1, "PROJECT", "BATCH")});
   auto p = builtin("linuxcnc");
   ASSERT_TRUE(p);
-  std::vector<xslt::FileDiagnostic> batched_d, unbatched_d;
+  std::vector<diag::FileDiagnostic> batched_d, unbatched_d;
   const std::string batched = render_program(*p, calls, batched_d);
   const std::string unbatched = render_program(*p, calls, unbatched_d, RenderOptions{{}, false, 0});
-  EXPECT_TRUE(xslt::has_errors(batched_d));
+  EXPECT_TRUE(diag::has_errors(batched_d));
   EXPECT_NE(batched.find("G1 X12."), std::string::npos) << batched;
   EXPECT_EQ(batched.find("G1 X13."), std::string::npos) << batched;
   EXPECT_EQ(batched, unbatched);
   ASSERT_EQ(batched_d.size(), unbatched_d.size());
   for (std::size_t i = 0; i < batched_d.size(); ++i)
-    EXPECT_EQ(xslt::format(batched_d[i]), xslt::format(unbatched_d[i]));
+    EXPECT_EQ(diag::format(batched_d[i]), diag::format(unbatched_d[i]));
 
   // An error found before the transform (a limit) ends the output where it did too.
   profile::LoadedProfile limited = *p;
@@ -352,11 +352,11 @@ TEST_F(RenderTest, FailureInABatchEndsWhereUnbatchedDoes) {
   calls.erase(std::remove_if(calls.begin(), calls.end(),
                              [](const Call& c) { return std::holds_alternative<ArcFeed>(c); }),
               calls.end());
-  std::vector<xslt::FileDiagnostic> e1, e2;
+  std::vector<diag::FileDiagnostic> e1, e2;
   const std::string batched_limit = render_program(limited, calls, e1);
   const std::string unbatched_limit =
       render_program(limited, calls, e2, RenderOptions{{}, false, 0});
-  EXPECT_TRUE(xslt::has_errors(e1));
+  EXPECT_TRUE(diag::has_errors(e1));
   EXPECT_NE(batched_limit.find("G1 X12."), std::string::npos) << batched_limit;
   EXPECT_EQ(batched_limit, unbatched_limit);
 }
@@ -369,13 +369,13 @@ void expect_runs_change_nothing(const profile::LoadedProfile& with_runs,
   without.profile.motion_runs = {};
   for (const RenderOptions& options :
        {RenderOptions{}, RenderOptions{{3}, false, 0}, RenderOptions{{}, true}}) {
-    std::vector<xslt::FileDiagnostic> d1, d2;
+    std::vector<diag::FileDiagnostic> d1, d2;
     const std::string runs = render_program(with_runs, calls, d1, options);
     const std::string elements = render_program(without, calls, d2, options);
     EXPECT_FALSE(runs.empty());
     EXPECT_EQ(runs, elements);
     ASSERT_EQ(d1.size(), d2.size());
-    for (std::size_t i = 0; i < d1.size(); ++i) EXPECT_EQ(xslt::format(d1[i]), xslt::format(d2[i]));
+    for (std::size_t i = 0; i < d1.size(); ++i) EXPECT_EQ(diag::format(d1[i]), diag::format(d2[i]));
   }
 }
 
@@ -429,13 +429,13 @@ TEST_F(RenderTest, RunsLeftUnrenderedAreAnError) {
     auto compiled = xslt::compile_text(text, dir / "post.xsl", roots);
     ASSERT_TRUE(compiled.ok()) << (compiled.diagnostics.empty()
                                        ? ""
-                                       : xslt::format(compiled.diagnostics[0]));
+                                       : diag::format(compiled.diagnostics[0]));
     profile::LoadedProfile p = *base;
     p.stylesheet = compiled.stylesheet;
-    std::vector<xslt::FileDiagnostic> d;
+    std::vector<diag::FileDiagnostic> d;
     (void)render_program(p, cycle_program(), d);
-    EXPECT_TRUE(xslt::has_errors(d));
-    const bool named = std::any_of(d.begin(), d.end(), [](const xslt::FileDiagnostic& f) {
+    EXPECT_TRUE(diag::has_errors(d));
+    const bool named = std::any_of(d.begin(), d.end(), [](const diag::FileDiagnostic& f) {
       return f.diagnostic.code == diag::Code::RenderRunNotRendered ||
              f.diagnostic.message.find("rendered before") != std::string::npos;
     });
@@ -447,7 +447,7 @@ TEST_F(RenderTest, CrLfLineEndings) {
   auto base = builtin("linuxcnc");
   profile::LoadedProfile p = *base;
   p.profile.line_ending = "\r\n";
-  std::vector<xslt::FileDiagnostic> d;
+  std::vector<diag::FileDiagnostic> d;
   const std::string text = render_program(p, cycle_program(), d);
   EXPECT_EQ(text.substr(0, 3), "%\r\n");
   EXPECT_EQ(text.find("\n", 0), text.find("\r\n", 0) + 1);

@@ -3,6 +3,7 @@
 // format them as `file:line:column: severity: CODE: message` or as JSON problem details.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,6 +45,21 @@ struct Diagnostic {
 
 // `file:line:column: severity: CODE: message`, the one textual form.
 [[nodiscard]] std::string format(const Diagnostic& d, std::string_view file);
+
+// A diagnostic with the file it points at: the input's name, a schema file, a stylesheet (or
+// one it imports), a subprogram file. Jobs that read several files report these.
+struct FileDiagnostic {
+  std::string file;
+  Diagnostic diagnostic;
+};
+
+// `file:line:column: severity: CODE: message`.
+[[nodiscard]] std::string format(const FileDiagnostic& d);
+[[nodiscard]] bool has_errors(std::span<const Diagnostic> diagnostics) noexcept;
+[[nodiscard]] bool has_errors(std::span<const FileDiagnostic> diagnostics) noexcept;
+// Each of `diagnostics` with `file`.
+[[nodiscard]] std::vector<FileDiagnostic> with_file(std::span<const Diagnostic> diagnostics,
+                                                    std::string_view file);
 
 // A bounded list: hostile input cannot make diagnostics grow without bound. Once the error limit
 // is reached, `full()` tells the producer to stop.

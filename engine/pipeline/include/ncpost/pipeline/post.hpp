@@ -37,7 +37,7 @@ struct PostOptions {
 struct PostResult {
   // Interpreter and renderer diagnostics, in that order; the renderer's carry the stylesheet's
   // file where they come from it (otherwise the input name).
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   bool ok = false;
   bool started = false;    // some text reached `out`
   bool cancelled = false;  // stopped by PostOptions::cancel

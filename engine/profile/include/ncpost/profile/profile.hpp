@@ -126,7 +126,7 @@ struct StoreOptions {
 
 struct PutResult {
   std::shared_ptr<const LoadedProfile> profile;   // the new active version; null when rejected
-  std::vector<xslt::FileDiagnostic> diagnostics;  // why it was rejected; warnings otherwise
+  std::vector<diag::FileDiagnostic> diagnostics;  // why it was rejected; warnings otherwise
   bool created = false;  // no profile with this id was visible before (HTTP 201, else 200)
 };
 
@@ -159,10 +159,10 @@ class ProfileStore {
   // Sorted by id, both layers (the main directory shadows the fallback); folders whose
   // profile.json does not parse are reported and left out.
   [[nodiscard]] std::vector<ProfileSummary> list(
-      std::vector<xslt::FileDiagnostic>& diagnostics) const;
+      std::vector<diag::FileDiagnostic>& diagnostics) const;
   // Null with diagnostics (PROFILE-00x, XSLT-0xx) when the profile is unknown or broken.
   [[nodiscard]] std::shared_ptr<const LoadedProfile> load(
-      std::string_view id, std::vector<xslt::FileDiagnostic>& diagnostics);
+      std::string_view id, std::vector<diag::FileDiagnostic>& diagnostics);
 
   // Validates and activates a new version of profile `id`: the id, profile.json against the
   // schema (its "id" must equal `id`), then post.xsl must compile with the same security as a

@@ -20,7 +20,7 @@ namespace ncpost::render {
 struct RawResult {
   // RENDER-006 (the document is too large), RENDER-002 and the XSLT diagnostics (with the
   // stylesheet's file) when the transform fails, P28 notes about entities the schema lacks.
-  std::vector<xslt::FileDiagnostic> diagnostics;
+  std::vector<diag::FileDiagnostic> diagnostics;
   bool ok = false;
   bool started = false;  // text reached `out`
 };
@@ -28,7 +28,7 @@ struct RawResult {
 // The model as the late-bound P28 document the stylesheet reads (tests, `ncpost convert`
 // gives the same text). Appends P28 notes to `diagnostics`.
 [[nodiscard]] std::string raw_document(const p21::Model& model, const express::SchemaSet* schemas,
-                                       std::vector<xslt::FileDiagnostic>& diagnostics,
+                                       std::vector<diag::FileDiagnostic>& diagnostics,
                                        std::string_view input_name);
 
 // Transforms `model` with a raw-mode profile: one transform with the profile's JobState (number

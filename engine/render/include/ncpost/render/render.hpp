@@ -64,7 +64,7 @@ class Renderer final : public canon::Sink {
 
   // Limit violations (RENDER-001), conversions (RENDER-003/004/005), transform failures
   // (RENDER-002 + the XSLT diagnostics, with the stylesheet's file).
-  [[nodiscard]] const std::vector<xslt::FileDiagnostic>& diagnostics() const noexcept {
+  [[nodiscard]] const std::vector<diag::FileDiagnostic>& diagnostics() const noexcept {
     return diagnostics_;
   }
   [[nodiscard]] bool failed() const noexcept { return failed_; }
@@ -103,7 +103,7 @@ class Renderer final : public canon::Sink {
   std::unique_ptr<RunTaker> run_taker_;  // null when the profile asks for no runs
   std::unique_ptr<ChunkRenderer> chunk_sink_;
   std::unique_ptr<canon::Chunker> chunker_;
-  std::vector<xslt::FileDiagnostic> diagnostics_;
+  std::vector<diag::FileDiagnostic> diagnostics_;
   std::optional<canon::Entity> workingstep_;
   std::int32_t tool_ = 0;  // in the spindle after the chunks rendered so far
   double unit_mm_ = 1.0;   // the program's length unit, in mm
@@ -131,7 +131,7 @@ class Renderer final : public canon::Sink {
 // diagnostics are appended to `diagnostics`.
 [[nodiscard]] std::string render_program(const profile::LoadedProfile& profile,
                                          std::span<const canon::Call> calls,
-                                         std::vector<xslt::FileDiagnostic>& diagnostics,
+                                         std::vector<diag::FileDiagnostic>& diagnostics,
                                          RenderOptions options = {});
 
 }  // namespace ncpost::render

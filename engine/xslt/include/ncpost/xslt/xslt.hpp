@@ -60,15 +60,9 @@ struct Limits {
   std::size_t max_diagnostics = 100;  // per compile or transform; then one XSLT-026
 };
 
-// A diagnostic with the file it points at: the stylesheet (or an imported one) for compile
-// and run-time errors, the input's name for input errors.
-struct FileDiagnostic {
-  std::string file;
-  diag::Diagnostic diagnostic;
-};
-// `file:line:column: severity: CODE: message`.
-[[nodiscard]] std::string format(const FileDiagnostic& d);
-[[nodiscard]] bool has_errors(std::span<const FileDiagnostic> diagnostics) noexcept;
+// Compile and run-time errors name the stylesheet (or an imported one); input errors name the
+// input.
+using diag::FileDiagnostic;
 
 // A compiled stylesheet. Immutable after compile(); share it with std::shared_ptr<const ...>
 // between threads. Each transform gets its own transform context.
