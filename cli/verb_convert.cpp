@@ -27,9 +27,9 @@ int run_convert(Args args) {
 
   auto job = prepare_job(options);
   if (!job) return kExitRejected;
-  const pipeline::ConvertTo target = *to == "p21"            ? pipeline::ConvertTo::P21
-                                     : binding == "early"    ? pipeline::ConvertTo::P28Early
-                                                             : pipeline::ConvertTo::P28Late;
+  const pipeline::ConvertTo target = *to == "p21"         ? pipeline::ConvertTo::P21
+                                     : binding == "early" ? pipeline::ConvertTo::P28Early
+                                                          : pipeline::ConvertTo::P28Late;
   const pipeline::JobResult result =
       pipeline::convert(std::move(job->input), job->context, target, write_stdout);
   std::cout.flush();

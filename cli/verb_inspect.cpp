@@ -11,11 +11,10 @@
 namespace ncpost::cli {
 
 int run_inspect(Args args) {
-  static const VerbSpec spec{
-      "inspect",
-      "inspect [--format json|text] [--schemas DIR] [--strict] FILE|-\n"
-      "  Program information of a STEP-NC file (JSON by default).\n",
-      {{"format", "json|text"}, kSchemasOption, kStrictOption}};
+  static const VerbSpec spec{"inspect",
+                             "inspect [--format json|text] [--schemas DIR] [--strict] FILE|-\n"
+                             "  Program information of a STEP-NC file (JSON by default).\n",
+                             {{"format", "json|text"}, kSchemasOption, kStrictOption}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;
   const std::string format = options.value("format").value_or("json");

@@ -24,7 +24,8 @@ int run_schema(Args args) {
 
   const auto input = read_input(options.positionals().front());
   if (!input) return kExitRejected;
-  const pipeline::JobResult result = pipeline::schema_to_xml(input->bytes, input->name, write_stdout);
+  const pipeline::JobResult result =
+      pipeline::schema_to_xml(input->bytes, input->name, write_stdout);
   std::cout.flush();
   print_diagnostics(result.diagnostics);
   return result.ok && std::cout ? kExitOk : kExitRejected;

@@ -19,15 +19,13 @@ int run_trace(Args args) {
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;
   const std::string format = options.value("format").value_or("text");
-  if (format != "text" && format != "xml")
-    return usage_error(spec, "--format must be text or xml");
+  if (format != "text" && format != "xml") return usage_error(spec, "--format must be text or xml");
 
   auto job = prepare_job(options);
   if (!job) return kExitRejected;
-  const pipeline::JobResult result =
-      pipeline::trace(std::move(job->input), job->context,
-                      format == "text" ? pipeline::TraceFormat::Text : pipeline::TraceFormat::Xml,
-                      write_stdout);
+  const pipeline::JobResult result = pipeline::trace(
+      std::move(job->input), job->context,
+      format == "text" ? pipeline::TraceFormat::Text : pipeline::TraceFormat::Xml, write_stdout);
   std::cout.flush();
   print_diagnostics(result.diagnostics);
   return result.ok ? kExitOk : kExitRejected;

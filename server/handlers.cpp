@@ -10,7 +10,7 @@
 #include "auth.hpp"
 #include "body_hash.hpp"
 #include "multipart.hpp"
-#include "ncpost/diag/json.hpp"
+#include "ncpost/pipeline/diagnostics.hpp"
 #include "ncpost/pipeline/jobs.hpp"
 #include "ncpost/pipeline/post.hpp"
 
@@ -256,7 +256,7 @@ void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
     body["profiles"].push_back(
         {{"id", p.id}, {"name", p.name}, {"controller", p.controller}, {"read_only", p.read_only}});
   body["writable"] = services.profiles->writable();
-  body["diagnostics"] = diag::to_json(list.diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(list.diagnostics);
   exchange.respond(json_response(200, body));
 }
 
@@ -303,7 +303,7 @@ void handle_profile_get(Request& request, Services& services, Exchange& exchange
   body["version"] = loaded->version;
   body["read_only"] = loaded->read_only;
   body["profile"] = json::parse(loaded->json, nullptr, false);
-  body["diagnostics"] = diag::to_json(lookup.diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(lookup.diagnostics);
   Response r = json_response(200, body);
   r.set(http::field::etag, etag);
   exchange.respond(std::move(r));
@@ -380,7 +380,7 @@ void handle_profile_put(Request& request, Services& services, Exchange& exchange
   body["id"] = put.profile->profile.id;
   body["version"] = put.profile->version;
   body["created"] = created;
-  body["diagnostics"] = diag::to_json(put.diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(put.diagnostics);
   Response r = json_response(created ? 201 : 200, body);
   r.set(http::field::etag, "\"" + put.profile->version + "\"");
   if (created) r.set(http::field::location, "/v1/profiles/" + exchange.path_id);
@@ -447,7 +447,7 @@ void post_json(Services& services, Exchange& exchange, pipeline::Input input,
   body["profile_version"] = profile.version;
   body["filename"] = filename;
   body["program"] = std::move(text);
-  body["diagnostics"] = diag::to_json(diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(diagnostics);
   body["blocks"] = std::move(map["blocks"]);
   body["workingsteps"] = std::move(map["workingsteps"]);
   exchange.respond(json_response(200, body));
@@ -474,9 +474,8 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   // hashed as it arrived.
   const std::uint64_t input_hash =
       upload->streamed ? upload->streamed->hash() : body_hash(upload->bytes);
-  const std::uint64_t context_hash =
-      body_hash(loaded_profile->version + "/" + services.engine_version +
-                (context->strict ? "/strict" : ""));
+  const std::uint64_t context_hash = body_hash(
+      loaded_profile->version + "/" + services.engine_version + (context->strict ? "/strict" : ""));
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
   if (request[http::field::if_none_match] == etag && !as_json) {
@@ -510,8 +509,8 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   std::string read_timing;
   auto render_started = Clock::now();
   const auto on_read = [&](const pipeline::JobResult& read) {
-    read_timing = "read;dur=" + timing_ms(read.read_time) +
-                  ", check;dur=" + timing_ms(read.check_time);
+    read_timing =
+        "read;dur=" + timing_ms(read.read_time) + ", check;dur=" + timing_ms(read.check_time);
     render_started = Clock::now();
   };
   const auto begin = [&] {
@@ -585,9 +584,10 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
   head.set(http::field::content_disposition, "attachment; filename=\"" + file_stem(upload->name) +
                                                  (*to == "p21" ? ".stp\"" : ".stpx\""));
   head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
-  const pipeline::ConvertTo target = *to == "p21"                       ? pipeline::ConvertTo::P21
-                                     : binding.value_or("late") == "early" ? pipeline::ConvertTo::P28Early
-                                                                         : pipeline::ConvertTo::P28Late;
+  const pipeline::ConvertTo target = *to == "p21" ? pipeline::ConvertTo::P21
+                                     : binding.value_or("late") == "early"
+                                         ? pipeline::ConvertTo::P28Early
+                                         : pipeline::ConvertTo::P28Late;
   // The head goes out with the first piece, so that an input with errors is still a 422.
   Coalescer out(exchange);
   bool begun = false;
@@ -646,10 +646,10 @@ void handle_trace(Request& request, Services& services, Exchange& exchange) {
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   std::string text;
-  const pipeline::JobResult result = pipeline::trace(
-      job_input(*upload), *context,
-      format == "text" ? pipeline::TraceFormat::Text : pipeline::TraceFormat::Xml,
-      [&text](std::string_view piece) { text.append(piece); });
+  const pipeline::JobResult result =
+      pipeline::trace(job_input(*upload), *context,
+                      format == "text" ? pipeline::TraceFormat::Text : pipeline::TraceFormat::Xml,
+                      [&text](std::string_view piece) { text.append(piece); });
   record_read(*services.metrics, result);
   services.metrics->stage("interpret", result.work_time);
   if (stop_if_cancelled(exchange)) return;
@@ -674,7 +674,8 @@ void handle_verification(Request& request, Services& services, Exchange& exchang
     char* end = nullptr;
     const double v = std::strtod(value->c_str(), &end);
     if (end != value->c_str() + value->size() || !(v > 0) || v > 1000) {
-      exchange.respond(bad_request("'" + std::string(name) + "' must be a length in mm, > 0 and <= 1000"));
+      exchange.respond(
+          bad_request("'" + std::string(name) + "' must be a length in mm, > 0 and <= 1000"));
       return;
     }
     *target = v;
@@ -745,7 +746,7 @@ std::string problem_body(unsigned status, std::string_view type, std::string_vie
   body["title"] = title;
   body["status"] = status;
   body["detail"] = detail;
-  body["diagnostics"] = diag::to_json(diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(diagnostics);
   return to_text(body) + "\n";
 }
 
@@ -761,7 +762,8 @@ http::fields diagnostics_trailer(const std::vector<diag::FileDiagnostic>& diagno
   std::string listed = "[";
   for (const auto& d : diagnostics) {
     // ASCII only (\\u escapes), no line breaks: a valid field value whatever the messages say.
-    std::string one = diag::to_json(d).dump(-1, ' ', true, json::error_handler_t::replace);
+    std::string one =
+        pipeline::diagnostic_json(d).dump(-1, ' ', true, json::error_handler_t::replace);
     if (listed.size() + one.size() + 2 > kMaxDiagnosticsTrailer) break;
     if (listed.size() > 1) listed += ',';
     listed += one;

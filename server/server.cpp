@@ -26,8 +26,8 @@ constexpr auto kReloadPoll = std::chrono::seconds(2);
 
 }  // namespace
 
-Server::Server(Config config, pipeline::Profiles& profiles,
-               std::optional<std::string> admin_token, std::shared_ptr<spdlog::logger> log)
+Server::Server(Config config, pipeline::Profiles& profiles, std::optional<std::string> admin_token,
+               std::shared_ptr<spdlog::logger> log)
     : log_(std::move(log)),
       pool_(config.workers),
       acceptor_(ioc_),

@@ -15,7 +15,8 @@ nlohmann::ordered_json to_json(const Diagnostic& d) {
 nlohmann::ordered_json to_json(const FileDiagnostic& d) {
   nlohmann::ordered_json j;
   j["file"] = d.file;
-  for (auto& [key, value] : to_json(d.diagnostic).items()) j[key] = std::move(value);
+  nlohmann::ordered_json rest = to_json(d.diagnostic);
+  for (auto& [key, value] : rest.items()) j[key] = std::move(value);
   return j;
 }
 

@@ -15,8 +15,7 @@ void append(std::vector<diag::FileDiagnostic>& to, std::vector<diag::FileDiagnos
 void add_builtin_report(Program& program, const express::SchemaRegistry& registry) {
   const express::SchemaSource& builtin = registry.builtin();
   if (program.loaded.schema != &builtin.set()) return;
-  append(program.diagnostics,
-         diag::with_file(registry.builtin_diagnostics(), builtin.origin));
+  append(program.diagnostics, diag::with_file(registry.builtin_diagnostics(), builtin.origin));
 }
 
 }  // namespace
@@ -74,9 +73,8 @@ Program read_model(Input input, const JobContext& context, const ReadOptions& op
   load_options.cancel = context.cancel;
   load_options.helpers = context.helpers;
   const express::SchemaRegistry& registry = context.schemas->registry;
-  program.loaded = input.arriving != nullptr
-                       ? load(*input.arriving, registry, load_options)
-                       : load(std::move(input.bytes), registry, load_options);
+  program.loaded = input.arriving != nullptr ? load(*input.arriving, registry, load_options)
+                                             : load(std::move(input.bytes), registry, load_options);
   program.format = program.loaded.format;
   program.cancelled = program.loaded.cancelled;
   if (program.cancelled) return program;
@@ -90,8 +88,8 @@ Program read_model(Input input, const JobContext& context, const ReadOptions& op
   return program;
 }
 
-Interpretation interpret_model(const Program& program, canon::Sink& sink,
-                               const JobContext& context, const InterpretSettings& settings) {
+Interpretation interpret_model(const Program& program, canon::Sink& sink, const JobContext& context,
+                               const InterpretSettings& settings) {
   stepnc::InterpretOptions options;
   options.tools = context.tools;
   options.cancel = context.cancel;
@@ -113,8 +111,8 @@ Interpretation interpret_model(const Program& program, canon::Sink& sink,
 struct Reader {
   InputFormat format;
   Program (*read)(Input input, const JobContext& context, const ReadOptions& options);
-  Interpretation (*interpret)(const Program& program, canon::Sink& sink,
-                              const JobContext& context, const InterpretSettings& settings);
+  Interpretation (*interpret)(const Program& program, canon::Sink& sink, const JobContext& context,
+                              const InterpretSettings& settings);
 };
 
 constexpr Reader kReaders[] = {

@@ -1,8 +1,8 @@
 #include "ncpost/pipeline/jobs.hpp"
 
-#include "ncpost/diag/json.hpp"
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/canon/xml.hpp"
+#include "ncpost/diag/json.hpp"
 #include "ncpost/express/express_x.hpp"
 #include "ncpost/express/parse.hpp"
 #include "ncpost/p21/writer.hpp"
@@ -24,6 +24,102 @@ TextSink noting_start(const TextSink& out, bool& started) {
     started = started || !piece.empty();
     out(piece);
   };
+}
+
+// ---- the JSON form of program information (docs/inspect.md) ----
+
+using json = nlohmann::ordered_json;
+
+json to_json(const stepnc::EntityRef& ref) {
+  json j;
+  j["id"] = ref.id;
+  j["type"] = ref.type;
+  j["name"] = ref.name ? json(*ref.name) : json(nullptr);
+  return j;
+}
+
+json to_json(const stepnc::HeaderValue& value) {
+  if (const auto* one = std::get_if<std::string>(&value)) return *one;
+  if (const auto* list = std::get_if<std::vector<std::string>>(&value)) return *list;
+  return nullptr;
+}
+
+// The tree as nested objects; recursion is bounded by the inspector's nesting limit.
+json to_json(const stepnc::Executable& x) {
+  using Shape = stepnc::Executable::Shape;
+  if (x.missing) return nullptr;
+  json j = to_json(x.self);
+  const auto children = [&] {
+    json list = json::array();
+    for (const auto& child : x.children) list.push_back(to_json(child));
+    return list;
+  };
+  switch (x.shape) {
+    case Shape::Workingstep:
+      if (x.feature) j["feature"] = to_json(*x.feature);
+      if (x.operation) j["operation"] = to_json(*x.operation);
+      if (x.tool) j["tool"] = to_json(*x.tool);
+      break;
+    case Shape::Sequence:
+      j["elements"] = children();
+      break;
+    case Shape::Parallel:
+      j["branches"] = children();
+      break;
+    case Shape::If:
+      j["true_branch"] = to_json(x.children.at(0));
+      j["false_branch"] = to_json(x.children.at(1));
+      break;
+    case Shape::While:
+      j["body"] = to_json(x.children.at(0));
+      break;
+    case Shape::Message:
+      if (x.text) j["text"] = *x.text;
+      break;
+    case Shape::ToolChange:
+      if (x.tool) j["tool"] = to_json(*x.tool);
+      break;
+    case Shape::Leaf:
+      break;
+  }
+  return j;
+}
+
+json to_json(const stepnc::ProgramInfo& info) {
+  json out;
+  json& header = out["header"];
+  for (const auto& [name, value] : info.header.fields) header[name] = to_json(value);
+  header["schemas"] = info.header.schemas;
+  if (info.project) {
+    json& project = out["project"];
+    project["id"] = info.project->id;
+    project["name"] = info.project->name;
+    project["main_workplan"] =
+        info.project->main_workplan ? to_json(*info.project->main_workplan) : json(nullptr);
+  } else {
+    out["project"] = nullptr;
+  }
+  json& workpieces = out["workpieces"] = json::array();
+  for (const auto& w : info.workpieces) {
+    json j = to_json(w.self);
+    if (w.material) j["material"] = *w.material;
+    if (w.clamping_positions) j["clamping_positions"] = *w.clamping_positions;
+    workpieces.push_back(std::move(j));
+  }
+  json& tools = out["tools"] = json::array();
+  for (const auto& t : info.tools) {
+    json j = to_json(t.self);
+    j["used_by"] = t.used_by;
+    tools.push_back(std::move(j));
+  }
+  json& statistics = out["statistics"];
+  statistics["bytes"] = info.statistics.bytes;
+  statistics["instances"] = info.statistics.instances;
+  statistics["workingsteps"] = info.statistics.workingsteps;
+  statistics["entity_types"] = info.statistics.by_type.size();
+  json& by_type = statistics["by_type"] = json::object();
+  for (const auto& [name, n] : info.statistics.by_type) by_type[name] = n;
+  return out;
 }
 
 bool cancelled(const JobContext& context) {
@@ -108,14 +204,18 @@ Inspection inspect(Input input, const JobContext& context) {
   return inspection;
 }
 
+nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info) {
+  return to_json(info);
+}
+
 nlohmann::ordered_json inspection_json(const Inspection& inspection) {
-  nlohmann::ordered_json json = inspection.info.json;
+  nlohmann::ordered_json json = to_json(inspection.info);
   json["diagnostics"] = diag::to_json(inspection.job.diagnostics);
   return json;
 }
 
 std::string inspection_text(const Inspection& inspection) {
-  return stepnc::format_text(inspection.info.json);
+  return stepnc::format_text(inspection.info);
 }
 
 JobResult convert(Input input, const JobContext& context, ConvertTo to, const TextSink& out) {
@@ -138,8 +238,7 @@ JobResult convert(Input input, const JobContext& context, ConvertTo to, const Te
   return result;
 }
 
-JobResult schema_to_xml(std::string_view express_text, std::string_view name,
-                        const TextSink& out) {
+JobResult schema_to_xml(std::string_view express_text, std::string_view name, const TextSink& out) {
   const auto started = Clock::now();
   const express::ParseResult parsed = express::parse_express(express_text);
   JobResult result;

@@ -7,9 +7,8 @@
 #include <mutex>
 #include <thread>
 
-#include "ncpost/stepnc/attributes.hpp"
-
 #include "ncpost/render/raw.hpp"
+#include "ncpost/stepnc/attributes.hpp"
 
 namespace ncpost::pipeline {
 namespace {
@@ -311,8 +310,7 @@ std::vector<diag::FileDiagnostic> PostJobResult::diagnostics() const {
 }
 
 PostJobResult post(Input input, const JobContext& context, const profile::LoadedProfile& profile,
-                   const render::TextSink& out, const PostOptions& options,
-                   const OnRead& on_read) {
+                   const render::TextSink& out, const PostOptions& options, const OnRead& on_read) {
   PostJobResult result;
   const Program program = read(std::move(input), context);
   result.read = read_result(program);

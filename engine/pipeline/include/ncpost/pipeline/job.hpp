@@ -63,8 +63,8 @@ struct ToolTableResult {
 // Threads a process lends to its jobs for reading and checking large files in pieces (the CLI
 // lends its spare cores; the server lends its worker pool through its own Helpers).
 using parallel::Helpers;
-using parallel::Task;
 using parallel::spare_cores;
+using parallel::Task;
 using parallel::ThreadGroup;
 
 // What one job may use. Cheap to copy: the schemas are shared by every job of a process.

@@ -33,8 +33,8 @@ enum class TraceFormat : std::uint8_t { Text, Xml };
 // ---- verify -------------------------------------------------------------------------------
 
 struct VerifySettings {
-  double tolerance = 0.01;      // mm
-  std::optional<double> grid;   // mm; unset: chosen per feature (docs/verify.md)
+  double tolerance = 0.01;     // mm
+  std::optional<double> grid;  // mm; unset: chosen per feature (docs/verify.md)
 };
 
 struct VerifyOutcome {
@@ -60,7 +60,9 @@ struct Inspection {
 };
 
 [[nodiscard]] Inspection inspect(Input input, const JobContext& context);
-// docs/inspect.md: the program information with every diagnostic in "diagnostics".
+// docs/inspect.md: the program information without diagnostics, ...
+[[nodiscard]] nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info);
+// ... and with every diagnostic of the inspection in "diagnostics".
 [[nodiscard]] nlohmann::ordered_json inspection_json(const Inspection& inspection);
 // The same as a human-readable tree (`ncpost inspect --format text`).
 [[nodiscard]] std::string inspection_text(const Inspection& inspection);

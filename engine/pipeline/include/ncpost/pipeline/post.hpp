@@ -73,9 +73,8 @@ using OnRead = std::function<void(const JobResult& read)>;
 // The whole job: read(input) (job.hpp), then post() below. Nothing reaches `out` when reading
 // fails. `context.tools` replaces options.tools.
 [[nodiscard]] PostJobResult post(Input input, const JobContext& context,
-                                 const profile::LoadedProfile& profile,
-                                 const render::TextSink& out, const PostOptions& options = {},
-                                 const OnRead& on_read = {});
+                                 const profile::LoadedProfile& profile, const render::TextSink& out,
+                                 const PostOptions& options = {}, const OnRead& on_read = {});
 // The post of a program already read (which must be ok()).
 [[nodiscard]] PostResult post(const Program& program, const JobContext& context,
                               const profile::LoadedProfile& profile, const render::TextSink& out,
