@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "features/shapes.hpp"
+#include "features/spec.hpp"
 
 namespace ncpost::stepnc::features {
 namespace {

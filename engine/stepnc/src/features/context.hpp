@@ -10,8 +10,9 @@
 #include <vector>
 
 #include "generator.hpp"
+#include "spec.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 
 using p21::Instance;
 
@@ -139,9 +140,6 @@ class Context {
   }
 };
 
-// Equal depth levels from 0 down to -depth, none deeper than `step` (one level when no step).
-std::vector<double> levels(double depth, std::optional<double> step);
-
 // A pointed tool's point (holes.cpp): the part below its full diameter, and its whole angle in
 // degrees, from tool_tip_half_angle as NIST reads it (docs/features.md, hole depth).
 double tip_length(const Tool& tool);
@@ -156,4 +154,4 @@ bool generate_hole(Context& ctx);
 bool generate_step(Context& ctx);
 bool generate_thread_drilling(Context& ctx);
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

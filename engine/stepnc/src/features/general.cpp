@@ -15,7 +15,7 @@
 #include "outline.hpp"
 #include "polygons.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 namespace {
 
 using poly::Area;
@@ -1261,4 +1261,4 @@ bool general_outside_profile(Context& ctx, const Instance& boundary) {
   return true;
 }
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

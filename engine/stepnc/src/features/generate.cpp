@@ -6,6 +6,7 @@
 #include "context.hpp"
 
 namespace ncpost::stepnc::features {
+namespace legacy {
 
 std::optional<double> Context::number(const Instance& owner, std::string_view attribute) {
   auto v = g.get(owner, attribute);
@@ -127,20 +128,11 @@ OperationData Context::operation() {
   return o;
 }
 
-std::vector<double> levels(double depth, std::optional<double> step) {
-  std::size_t n = 1;
-  if (step && *step > 0) n = static_cast<std::size_t>(std::ceil(depth / *step - 1e-9));
-  n = std::max<std::size_t>(n, 1);
-  std::vector<double> out;
-  out.reserve(n);
-  // Each level from the top, not by accumulation: no drift, and the last is exactly -depth.
-  for (std::size_t k = 1; k <= n; ++k)
-    out.push_back(k == n ? -depth : -depth * static_cast<double>(k) / static_cast<double>(n));
-  return out;
-}
+}  // namespace legacy
 
 Path generate(detail::GeometryReader& geometry, const Request& request,
               const FeatureOptions& options) {
+  using namespace legacy;
   Context ctx(geometry, request, options);
   if (request.feature == nullptr) {
     ctx.not_implemented(ctx.d(request.operation) + " without a feature");

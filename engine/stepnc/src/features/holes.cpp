@@ -7,7 +7,7 @@
 
 #include "context.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 namespace {
 
 constexpr double kEps = 1e-9;
@@ -269,4 +269,4 @@ bool generate_hole(Context& ctx) {
   return true;
 }
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

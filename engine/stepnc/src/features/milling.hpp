@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "context.hpp"
+#include "outline.hpp"
 #include "shapes.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 
 // Rings with sharp corners leave a cusp at each corner unless the step between them is at most
 // (2 - √2)⁻¹ · R ≈ 1.707 R; a little less keeps the cusp inside the tool.
@@ -82,10 +83,21 @@ struct Region {
 
 bool clear_region(Context& ctx, const Region& region);
 
+// The rings at height z in the feature's coordinates, from the innermost start (where the
+// tool is), each ring entered from the previous one by a straight feed inside the pocket.
+void play_rings(Context& ctx, const Rings& rings, const detail::Frame& frame, bool ccw, double z);
+
+// Reads a closed profile of a pocket or outside profile (GENERAL_CLOSED_PROFILE with a POLYLINE,
+// TRIMMED_CURVE or COMPOSITE_CURVE of lines and circular arcs; NGON_CLOSED_PROFILE) in the
+// feature's coordinates, counter-clockwise. nullopt after reporting why (STEPNC-101/103).
+std::optional<Outline> read_closed_outline(Context& ctx, const Instance& boundary);
+// The walls of an OPEN_POCKET: a GENERAL_PROFILE's curve, in its own sense.
+std::optional<Outline> read_open_outline(Context& ctx, const Instance& boundary);
+
 // General profiles (general.cpp): a CLOSED_POCKET bounded by a GENERAL_CLOSED_PROFILE or an
 // NGON_CLOSED_PROFILE, and a GENERAL_OUTSIDE_PROFILE with such a boundary.
 bool general_pocket(Context& ctx, const Instance& boundary, bool through,
                     std::optional<Toleranced> fillet);
 bool general_outside_profile(Context& ctx, const Instance& boundary);
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

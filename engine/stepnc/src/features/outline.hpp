@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "context.hpp"
+#include "generator.hpp"
 #include "polygons.hpp"
 
 namespace ncpost::stepnc::features {
@@ -36,13 +36,6 @@ struct Corner {
   poly::P in, out;                    // unit tangents arriving and leaving
   std::size_t before = 0, after = 0;  // the elements that meet there
 };
-
-// Reads a closed profile of a pocket or outside profile (GENERAL_CLOSED_PROFILE with a POLYLINE,
-// TRIMMED_CURVE or COMPOSITE_CURVE of lines and circular arcs; NGON_CLOSED_PROFILE) in the
-// feature's coordinates, counter-clockwise. nullopt after reporting why (STEPNC-101/103).
-std::optional<Outline> read_closed_outline(Context& ctx, const Instance& boundary);
-// The walls of an OPEN_POCKET: a GENERAL_PROFILE's curve, in its own sense.
-std::optional<Outline> read_open_outline(Context& ctx, const Instance& boundary);
 
 // Reverses the sense of travel.
 void reverse(Outline& outline);

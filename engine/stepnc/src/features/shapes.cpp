@@ -122,31 +122,4 @@ std::vector<std::pair<Vec3, Vec3>> raster(const Shape& shape, double inset, doub
   }
   return lines;
 }
-
-void play_rings(Context& ctx, const Rings& rings, const detail::Frame& frame, bool ccw, double z) {
-  const auto at = [&](Vec3 p) { return frame.point({p.x, p.y, z}); };
-  if (rings.line_length > kTiny) ctx.feed(at(rings.start + rings.axis * rings.line_length));
-  for (const Loop& loop : rings.loops) {
-    ctx.feed(at(loop.start));
-    if (ccw) {
-      for (const Span& s : loop.spans) {
-        if (s.arc)
-          ctx.arc(at(s.to), at(s.centre), 1);
-        else
-          ctx.feed(at(s.to));
-      }
-    } else {
-      // Backwards: span i runs from the end of span i-1 (the start for the first) to its end.
-      for (std::size_t i = loop.spans.size(); i-- > 0;) {
-        const Vec3 to = i == 0 ? loop.start : loop.spans[i - 1].to;
-        const Span& s = loop.spans[i];
-        if (s.arc)
-          ctx.arc(at(to), at(s.centre), -1);
-        else
-          ctx.feed(at(to));
-      }
-    }
-  }
-}
-
 }  // namespace ncpost::stepnc::features

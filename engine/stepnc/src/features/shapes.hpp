@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "context.hpp"
+#include "generator.hpp"
 
 namespace ncpost::stepnc::features {
 
@@ -66,9 +66,5 @@ struct Rings {
 // and circles included), from the -y (-x) side. Each is (from, to) in the profile's coordinates.
 [[nodiscard]] std::vector<std::pair<Vec3, Vec3>> raster(const Shape& shape, double inset,
                                                         double step, bool along_x);
-
-// The rings at height z in the feature's coordinates, from the innermost start (where the
-// tool is), each ring entered from the previous one by a straight feed inside the pocket.
-void play_rings(Context& ctx, const Rings& rings, const detail::Frame& frame, bool ccw, double z);
 
 }  // namespace ncpost::stepnc::features

@@ -18,7 +18,7 @@
 #include "milling.hpp"
 #include "slots.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 namespace {
 
 constexpr double kEps = 1e-9;
@@ -471,4 +471,4 @@ bool slot_passes(Context& ctx, const Tool& tool, const OperationData& o, const S
   return passes.run();
 }
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

@@ -17,7 +17,7 @@
 
 #include "milling.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 namespace {
 
 constexpr double kEps = 1e-9;
@@ -594,4 +594,4 @@ bool generate_slot(Context& ctx) {
   return slot_passes(ctx, *tool, o, plan, *depth);
 }
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

@@ -6,7 +6,7 @@
 
 #include "context.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 
 // The course of travel in the feature's xy plane: a line from the placement's origin, or a
 // circle (an arc of it) about the origin, starting on the x axis.
@@ -55,4 +55,4 @@ struct SlotPlan {
 bool slot_passes(Context& ctx, const Tool& tool, const OperationData& o, const SlotPlan& plan,
                  double depth);
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

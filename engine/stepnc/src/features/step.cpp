@@ -17,7 +17,7 @@
 
 #include "milling.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 namespace {
 
 constexpr double kEps = 1e-9;
@@ -207,4 +207,4 @@ bool generate_step(Context& ctx) {
   return true;
 }
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy

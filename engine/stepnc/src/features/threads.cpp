@@ -22,7 +22,7 @@
 
 #include "context.hpp"
 
-namespace ncpost::stepnc::features {
+namespace ncpost::stepnc::features::legacy {
 namespace {
 
 constexpr double kEps = 1e-9;
@@ -208,4 +208,4 @@ bool generate_thread_drilling(Context& ctx) {
   return true;
 }
 
-}  // namespace ncpost::stepnc::features
+}  // namespace ncpost::stepnc::features::legacy
