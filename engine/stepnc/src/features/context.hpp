@@ -140,18 +140,9 @@ class Context {
   }
 };
 
-// A pointed tool's point (holes.cpp): the part below its full diameter, and its whole angle in
-// degrees, from tool_tip_half_angle as NIST reads it (docs/features.md, hole depth).
-double tip_length(const Tool& tool);
-double point_angle(double tip_half_angle);
-
-bool generate_face(Context& ctx);
 bool generate_pocket(Context& ctx);
 bool generate_open_pocket(Context& ctx);
 bool generate_slot(Context& ctx);
 bool generate_outside_profile(Context& ctx);
-bool generate_hole(Context& ctx);
-bool generate_step(Context& ctx);
-bool generate_thread_drilling(Context& ctx);
 
 }  // namespace ncpost::stepnc::features::legacy

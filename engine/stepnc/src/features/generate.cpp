@@ -4,6 +4,12 @@
 #include <cmath>
 
 #include "context.hpp"
+#include "draft.hpp"
+#include "face.hpp"
+#include "holes.hpp"
+#include "reader.hpp"
+#include "step.hpp"
+#include "threads.hpp"
 
 namespace ncpost::stepnc::features {
 namespace legacy {
@@ -130,39 +136,77 @@ OperationData Context::operation() {
 
 }  // namespace legacy
 
+namespace {
+
+// Each feature kind: its reader fills the spec, its planner draws the path.
+bool face(Reader& reader, Draft& draft) {
+  FaceSpec spec;
+  return read_face(reader, spec) && plan_face(spec, draft);
+}
+
+bool hole(Reader& reader, Draft& draft) {
+  HoleSpec spec;
+  return read_hole(reader, spec) && plan_hole(spec, draft);
+}
+
+bool thread_drilling(Reader& reader, Draft& draft) {
+  ThreadSpec spec;
+  return read_thread_drilling(reader, spec) && plan_thread_drilling(spec, draft);
+}
+
+bool step(Reader& reader, Draft& draft) {
+  StepSpec spec;
+  return read_step(reader, spec) && plan_step(spec, draft);
+}
+
+// A kind not yet split into reader and planner.
+bool unsplit(bool (*generate)(legacy::Context&), detail::GeometryReader& geometry,
+             const Request& request, const FeatureOptions& options, Draft& draft) {
+  legacy::Context ctx(geometry, request, options);
+  const bool ok = generate(ctx);
+  for (const Move& move : ctx.path.moves) draft.add(move);
+  return ok;
+}
+
+}  // namespace
+
 Path generate(detail::GeometryReader& geometry, const Request& request,
               const FeatureOptions& options) {
   using namespace legacy;
-  Context ctx(geometry, request, options);
+  const Instance& ws = *request.workingstep;
+  ModelReport report(geometry, {&ws, geometry.model().type_name(ws)});
+  Reader reader(geometry, request, options, report);
+  Draft draft(options, report);
   if (request.feature == nullptr) {
-    ctx.not_implemented(ctx.d(request.operation) + " without a feature");
+    report.not_implemented(reader.name(request.operation) + " without a feature");
     return {};
   }
+  const auto old = [&](bool (*generate)(legacy::Context&)) {
+    return unsplit(generate, geometry, request, options, draft);
+  };
   bool ok = false;
   if (geometry.is_a(*request.operation, "thread_drilling")) {
-    ok = generate_thread_drilling(ctx);  // on a THREAD feature, which names its hole
+    ok = thread_drilling(reader, draft);  // on a THREAD feature, which names its hole
   } else if (geometry.is_a(*request.feature, "planar_face")) {
-    ok = generate_face(ctx);
+    ok = face(reader, draft);
   } else if (geometry.is_a(*request.feature, "closed_pocket")) {
-    ok = generate_pocket(ctx);
+    ok = old(generate_pocket);
   } else if (geometry.is_a(*request.feature, "open_pocket")) {
-    ok = generate_open_pocket(ctx);
+    ok = old(generate_open_pocket);
   } else if (geometry.is_a(*request.feature, "general_outside_profile")) {
-    ok = generate_outside_profile(ctx);
+    ok = old(generate_outside_profile);
   } else if (geometry.is_a(*request.feature, "slot")) {
-    ok = generate_slot(ctx);
+    ok = old(generate_slot);
   } else if (geometry.is_a(*request.feature, "step")) {
-    ok = generate_step(ctx);
+    ok = step(reader, draft);
   } else if (geometry.is_a(*request.feature, "round_hole")) {
-    ok = generate_hole(ctx);
+    ok = hole(reader, draft);
   } else {
-    ctx.not_implemented(ctx.d(*request.operation) + " on " + ctx.d(*request.feature) +
-                        " (this feature kind)");
+    report.not_implemented(reader.name(request.operation) + " on " + reader.name(request.feature) +
+                           " (this feature kind)");
   }
-  if (ok && ctx.too_many()) ok = ctx.limit_reached();
-  ctx.path.ok = ok;
-  if (!ok) ctx.path.moves.clear();
-  return std::move(ctx.path);
+  if (ok && draft.too_many()) ok = draft.limit_reached();
+  return std::move(draft).finish(ok);
 }
 
 }  // namespace ncpost::stepnc::features
