@@ -137,7 +137,7 @@ bool check_air_plunges(Reader& reader, const Operation& operation, std::string_v
   return true;
 }
 
-bool rings_ccw(Reader& reader, const Operation& operation, bool wall_outside) {
+bool rings_ccw(Reader& reader, const Operation& operation, bool wall_outside, bool note_conflict) {
   const bool spindle_cw = !reader.spindle() || *reader.spindle() <= 0;  // NIST: negative = CW
   // A pocket's wall is outside the path: going counter-clockwise it is on the tool's right,
   // which with a clockwise spindle is climb milling. Round a part it is the other way.
@@ -149,7 +149,7 @@ bool rings_ccw(Reader& reader, const Operation& operation, bool wall_outside) {
       strategy ? reader.enumeration(*strategy, "rotation_direction") : std::string_view();
   if (rotation.empty()) return cutmode == "CONVENTIONAL" ? !climb_ccw : climb_ccw;
   const bool ccw = rotation == "CCW";
-  if (!cutmode.empty() && (cutmode == "CLIMB") != (ccw == climb_ccw))
+  if (note_conflict && !cutmode.empty() && (cutmode == "CLIMB") != (ccw == climb_ccw))
     reader.report().note(operation.strategy, operation.strategy.name() + ": rotation_direction ." +
                                                  std::string(rotation) +
                                                  ". is followed; with this spindle it mills " +

@@ -54,7 +54,10 @@ bool check_air_plunges(Reader& reader, const Operation& operation,
 // The sense of the rings round a wall: counter-clockwise or not, from rotation_direction, else
 // cutmode (climb when unset) and the spindle's direction. `wall_outside`: a pocket's wall is
 // outside its rings, an outside profile's part inside. Diagnostics: STEPNC-016 a
-// rotation_direction that mills the other way than the cutmode asks.
-bool rings_ccw(Reader& reader, const Operation& operation, bool wall_outside);
+// rotation_direction that mills the other way than the cutmode asks, unless `note_conflict` is
+// false (slots along their course, outside profiles with a closed-form ring: as they always
+// were).
+bool rings_ccw(Reader& reader, const Operation& operation, bool wall_outside,
+               bool note_conflict = true);
 
 }  // namespace ncpost::stepnc::features

@@ -10,15 +10,16 @@
 
 #include "generator.hpp"
 #include "polygons.hpp"
+#include "report.hpp"
 
 namespace ncpost::stepnc::features {
 
 struct Element {
-  poly::P a, b;       // from, to
-  bool arc = false;   // else a line
-  poly::P centre{};   // arcs
-  double radius = 0;  // arcs
-  double sweep = 0;   // arcs: signed angle from a to b about the centre (positive CCW)
+  poly::P start, end;  // where it starts and ends
+  bool arc = false;    // else a line
+  poly::P centre{};    // arcs
+  double radius = 0;   // arcs
+  double sweep = 0;    // arcs: signed angle from a to b about the centre (positive CCW)
   [[nodiscard]] poly::P tangent_at_start() const;
   [[nodiscard]] poly::P tangent_at_end() const;
 };
@@ -36,6 +37,17 @@ struct Corner {
   poly::P in, out;                    // unit tangents arriving and leaving
   std::size_t before = 0, after = 0;  // the elements that meet there
 };
+
+// A point of the plane for a message: "(x, y)".
+[[nodiscard]] inline std::string at_text(poly::P p) {
+  return "(" + fmt(p.x) + ", " + fmt(p.y) + ")";
+}
+
+// The margin by which every region of tool centres is kept inside the exact one: the round
+// joins' chords (chord_tolerance), the arcs fitted back (three times that), Clipper's grid.
+[[nodiscard]] inline double region_margin(const FeatureOptions& options) {
+  return 5 * options.chord_tolerance + 4 * poly::kResolution;
+}
 
 // Reverses the sense of travel.
 void reverse(Outline& outline);
