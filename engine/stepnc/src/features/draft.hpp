@@ -21,7 +21,11 @@ class Draft {
   void rapid(Vec3 to) { add({Move::Kind::Rapid, to}); }
   void feed(Vec3 to) { add({Move::Kind::Feed, to}); }
   // A circle or helix about `centre` along +z, `turns` as canon::ArcFeed (negative: clockwise).
-  void arc(Vec3 to, Vec3 centre, int turns);
+  void arc(Vec3 to, Vec3 centre, int turns) {
+    Move move{Move::Kind::Arc, to, centre};
+    move.turns = turns;
+    add(move);
+  }
   // Where the last move ends; there must be one.
   [[nodiscard]] Vec3 here() const { return moves_.back().to; }
   [[nodiscard]] const std::vector<Move>& moves() const { return moves_; }

@@ -68,14 +68,13 @@ bool read_strategy(Reader& reader, const Operation& operation, FaceSpec& spec) {
     }
     feed = reader.direction(instance, "feed_direction");
   }
-  const std::string face = reader.name(reader.feature());
-  if (!check_air_plunges(reader, operation,
-                         ": every pass of " + face +
-                             " starts outside the material, so the tool goes down along its "
-                             "axis there",
-                         ": every pass of " + face +
-                             " ends outside the material, so the tool leaves along its axis there"))
-    return false;
+  const auto face = [&] { return reader.name(reader.feature()); };
+  const auto note = [&](bool approach) {
+    return ": every pass of " + face() +
+           (approach ? " starts outside the material, so the tool goes down along its axis there"
+                     : " ends outside the material, so the tool leaves along its axis there");
+  };
+  if (!check_air_plunges(reader, operation, note)) return false;
   Vec3 u = feed.value_or(spec.travel);
   if (std::abs(u.z) > kEps)
     return report.bad(strategy, strategy.name() + " feed_direction is not in the face");
@@ -87,7 +86,7 @@ bool read_strategy(Reader& reader, const Operation& operation, FaceSpec& spec) {
     return report.not_implemented(strategy.name() +
                                   " feed_direction oblique to the course of "
                                   "travel of " +
-                                  face);
+                                  face());
   spec.feed = u;
   return true;
 }

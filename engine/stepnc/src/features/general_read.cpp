@@ -134,24 +134,24 @@ std::optional<PocketRegion> open_region(Reader& reader, const Instance& boundary
 bool check_reach(Reader& reader, const Tool& tool, const Operation& operation,
                  const PocketRegion& region) {
   Report& report = reader.report();
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   // Checks only: within a fifth of the corner tolerance, erring towards "not reached".
   const double e = reader.options().corner_tolerance / 5;
   const poly::Polygons polygons(e);
   if (region.region.centres.empty())
     return report.unfit(tool.subject, tool.subject.name() + " diameter " + fmt(2 * tool.radius) +
-                                          " + allowances does not fit " + f);
+                                          " + allowances does not fit " + f());
   const auto reach = polygons.offset(poly::simplified(region.region.centres, e), tool.radius - e);
   const auto missed = reach ? polygons.difference(region.floor, *reach) : std::nullopt;
   const auto missed_much =
       missed ? polygons.offset(*missed, -reader.options().chord_tolerance) : std::nullopt;
   if (!missed_much)
-    return report.bad(reader.subject(reader.feature()), f + ": its outline cannot be offset");
+    return report.bad(reader.subject(reader.feature()), f() + ": its outline cannot be offset");
   if (!missed_much->empty())
     return report.unfit(tool.subject, tool.subject.name() + " diameter " + fmt(2 * tool.radius) +
                                           " + allowance " + fmt(operation.allowance_side) + " of " +
-                                          operation.subject.name() + " does not reach all of " + f +
-                                          ": a part near " +
+                                          operation.subject.name() + " does not reach all of " +
+                                          f() + ": a part near " +
                                           at_text(missed_much->front().outer.front()) +
                                           " is narrower than the tool");
   return true;
@@ -162,7 +162,7 @@ bool read_pattern(Reader& reader, const Operation& operation, GeneralPocketSpec&
   Report& report = reader.report();
   const Subject& strategy = operation.strategy;
   if (!strategy || reader.is(strategy, "contour_parallel")) return true;
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   if (reader.is(strategy, "bidirectional_milling") ||
       reader.is(strategy, "bidirectional_contour")) {
     spec.pattern = GeneralPocketSpec::Pattern::LinesThenRing;
@@ -172,11 +172,11 @@ bool read_pattern(Reader& reader, const Operation& operation, GeneralPocketSpec&
   } else if (reader.is(strategy, "contour_bidirectional")) {
     spec.pattern = GeneralPocketSpec::Pattern::RingThenLines;
   } else {
-    return report.not_implemented(strategy.name() + " on " + f);
+    return report.not_implemented(strategy.name() + " on " + f());
   }
   if (spec.walls_only)
     return report.not_implemented(strategy.name() + " for " + operation.subject.name() + " on " +
-                                  f);
+                                  f());
   if (const auto dir = reader.direction(*strategy.instance, "feed_direction")) {
     if (std::abs(dir->z) > 1e-9)
       return report.bad(strategy, strategy.name() + " feed_direction is not in the pocket");

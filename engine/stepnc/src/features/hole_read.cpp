@@ -15,9 +15,9 @@ enum class HoleKind { Drill, Peck, Ream, Bore, Tap };
 // The operation's kind. Diagnostics: STEPNC-101 one the generator does not know.
 std::optional<HoleKind> read_kind(Reader& reader) {
   const Instance& op = reader.operation();
-  const std::string on = reader.name(op) + " on " + reader.name(reader.feature());
+  const auto on = [&] { return reader.name(op) + " on " + reader.name(reader.feature()); };
   if (!reader.is(&op, "drilling_type_operation")) {
-    reader.report().not_implemented(on + " (round holes take the drilling-type operations)");
+    reader.report().not_implemented(on() + " (round holes take the drilling-type operations)");
     return std::nullopt;
   }
   if (reader.is(&op, "multistep_drilling")) return HoleKind::Peck;
@@ -25,24 +25,24 @@ std::optional<HoleKind> read_kind(Reader& reader) {
   if (reader.is(&op, "reaming")) return HoleKind::Ream;
   if (reader.is(&op, "boring")) return HoleKind::Bore;
   if (reader.is(&op, "tapping")) return HoleKind::Tap;
-  reader.report().not_implemented(on);
+  reader.report().not_implemented(on());
   return std::nullopt;
 }
 
 // A drill may be smaller than the hole (a reamer or boring bar finishes it); a reamer or a tap
 // is the hole's size.
 bool check_size(Reader& reader, const Tool& tool, const Toleranced& diameter, HoleKind kind) {
-  const std::string hole = reader.name(reader.feature());
+  const auto hole = [&] { return reader.name(reader.feature()); };
   const double tool_d = 2 * tool.radius;
   if (tool_d > diameter.size + diameter.upper + kEps)
     return reader.report().unfit(tool.subject, tool.subject.name() + " diameter " + fmt(tool_d) +
                                                    " > diameter " + fmt(diameter.size) + " + " +
-                                                   fmt(diameter.upper) + " of " + hole);
+                                                   fmt(diameter.upper) + " of " + hole());
   if ((kind == HoleKind::Ream || kind == HoleKind::Tap) &&
       tool_d + diameter.lower + kEps < diameter.size)
     return reader.report().unfit(tool.subject, tool.subject.name() + " diameter " + fmt(tool_d) +
                                                    " < diameter " + fmt(diameter.size) + " - " +
-                                                   fmt(diameter.lower) + " of " + hole + " for " +
+                                                   fmt(diameter.lower) + " of " + hole() + " for " +
                                                    reader.name(reader.operation()));
   return true;
 }

@@ -45,16 +45,16 @@ bool check_edge(Reader& reader, const Tool& tool, const std::vector<double>& z) 
 
 bool check_fillet(Reader& reader, const Tool& tool, const Operation& operation,
                   const Toleranced& fillet) {
-  const std::string feature = reader.name(reader.feature());
+  const auto feature = [&] { return reader.name(reader.feature()); };
   if (tool.corner_radius > fillet.size + fillet.upper + operation.allowance_bottom + kEps)
     return reader.report().unfit(
         tool.subject, tool.subject.name() + " edge radius " + fmt(tool.corner_radius) +
                           " > planar (floor) radius " + fmt(fillet.size) + " + allowance " +
-                          fmt(operation.allowance_bottom) + " of " + feature);
+                          fmt(operation.allowance_bottom) + " of " + feature());
   if (tool.corner_radius + fillet.lower + kEps < fillet.size)
     return reader.report().unfit(
         tool.subject, tool.subject.name() + " edge radius " + fmt(tool.corner_radius) +
-                          " < planar (floor) radius " + fmt(fillet.size) + " of " + feature +
+                          " < planar (floor) radius " + fmt(fillet.size) + " of " + feature() +
                           ": the tool would cut the fillet away");
   return true;
 }
@@ -122,17 +122,17 @@ bool read_exit(Reader& reader, const Operation& operation, const Entry& entry, E
          read_plunge(reader, *operation.retract.instance, "retract from", exit);
 }
 
-bool check_air_plunges(Reader& reader, const Operation& operation, std::string_view approach_note,
-                       std::string_view retract_note) {
-  for (const auto& [strategy, role, note] :
-       {std::tuple{&operation.approach, "approach", approach_note},
-        std::tuple{&operation.retract, "retract", retract_note}}) {
+bool check_air_plunges(Reader& reader, const Operation& operation,
+                       const std::function<std::string(bool approach)>& note) {
+  for (const auto& [strategy, role, approach] :
+       {std::tuple{&operation.approach, "approach", true},
+        std::tuple{&operation.retract, "retract", false}}) {
     if (!*strategy) continue;
     if (!reader.is(*strategy, "plunge_strategy"))
       return reader.report().not_implemented(strategy->name() + " as the " + role + " of " +
                                              operation.subject.name());
-    if (!note.empty() && !reader.is(*strategy, "plunge_toolaxis"))
-      reader.report().note(*strategy, strategy->name() + std::string(note));
+    if (note && !reader.is(*strategy, "plunge_toolaxis"))
+      reader.report().note(*strategy, strategy->name() + note(approach));
   }
   return true;
 }

@@ -4,7 +4,9 @@
 // strategies, and the sense of the rings round a wall. Each reports what is wrong and returns
 // false (or nullopt).
 
+#include <functional>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -46,10 +48,10 @@ bool read_exit(Reader& reader, const Operation& operation, const Entry& entry, E
 // The approach and retract of passes that start and end in the air (faces, steps, outside
 // profiles), where the tool goes down and up along its axis whatever they say.
 // Diagnostics: STEPNC-101 an approach or retract that is not a plunge strategy; STEPNC-016 one
-// that is not PLUNGE_TOOLAXIS, with the strategy's name and `approach_note` or `retract_note`
-// (none when that is empty).
+// that is not PLUNGE_TOOLAXIS, the strategy's name followed by what `note` says of it (called
+// with true for the approach, false for the retract; no note when `note` is empty).
 bool check_air_plunges(Reader& reader, const Operation& operation,
-                       std::string_view approach_note = {}, std::string_view retract_note = {});
+                       const std::function<std::string(bool approach)>& note = {});
 
 // The sense of the rings round a wall: counter-clockwise or not, from rotation_direction, else
 // cutmode (climb when unset) and the spindle's direction. `wall_outside`: a pocket's wall is

@@ -79,10 +79,10 @@ bool read_radiused_pocket(Reader& reader, const PocketBasics& basics, RadiusedPo
   const Instance& f = reader.feature();
   const Instance& bottom = *basics.bottom;
   const Instance& boundary = *basics.boundary;
-  const std::string pocket = reader.name(f);
+  const auto pocket = [&] { return reader.name(f); };
   if (!reader.is(&boundary, "circular_closed_profile"))
     return report.not_implemented(
-        pocket + " with " + reader.name(bottom) + " bounded by " + reader.name(boundary) +
+        pocket() + " with " + reader.name(bottom) + " bounded by " + reader.name(boundary) +
         " (a round pocket whose floor is the half ball of its radius is)");
   Shape shape;
   if (!read_closed_profile(reader, boundary, 0, "pocket's", shape)) return false;
@@ -99,7 +99,7 @@ bool read_radiused_pocket(Reader& reader, const PocketBasics& basics, RadiusedPo
   const Vec3 axis = shape.frame.origin;
   if (std::hypot(centre->x - axis.x, centre->y - axis.y) > kSame ||
       std::abs(radius->size - shape.half_length) > kSame)
-    return report.not_implemented(pocket + " with " + reader.name(bottom) +
+    return report.not_implemented(pocket() + " with " + reader.name(bottom) +
                                   ", a sphere of radius " + fmt(radius->size) + " about (" +
                                   fmt(centre->x) + ", " + fmt(centre->y) + ", " + fmt(centre->z) +
                                   ") that is not the half ball of the pocket's radius " +
@@ -107,7 +107,7 @@ bool read_radiused_pocket(Reader& reader, const PocketBasics& basics, RadiusedPo
   if (std::abs(centre->z - radius->size + *depth) > kSame)
     return report.bad(reader.subject(bottom),
                       reader.name(bottom) + " puts the lowest point of the floor at z " +
-                          fmt(centre->z - radius->size) + ", but the depth plane of " + pocket +
+                          fmt(centre->z - radius->size) + ", but the depth plane of " + pocket() +
                           " is at z " + fmt(-*depth));
   const bool ball =
       reader.is(tool->body, "ball_endmill") || std::abs(tool->corner_radius - tool->radius) <= kEps;
@@ -116,21 +116,21 @@ bool read_radiused_pocket(Reader& reader, const PocketBasics& basics, RadiusedPo
     return report.unfit(tool->subject, tool->subject.name() + " (radius " + fmt(tool->radius) +
                                            (ball ? ", a ball end" : ", not a ball end") +
                                            ") cannot make " + reader.name(bottom) + " of " +
-                                           pocket + ": that needs a ball end mill of radius " +
+                                           pocket() + ": that needs a ball end mill of radius " +
                                            fmt(radius->size));
   if (operation.allowance_side > kEps)
-    return report.unfit(tool->subject, tool->subject.name() + " fills " + pocket + ", so " +
+    return report.unfit(tool->subject, tool->subject.name() + " fills " + pocket() + ", so " +
                                            operation.subject.name() +
                                            " cannot leave its allowance_side " +
                                            fmt(operation.allowance_side));
   if (operation.approach && !reader.is(operation.approach, "plunge_toolaxis"))
     return report.unfit(operation.approach, operation.approach.name() + ": " +
-                                                tool->subject.name() + " fills " + pocket +
+                                                tool->subject.name() + " fills " + pocket() +
                                                 ", no room to enter but along the axis");
   const double finish = *depth - operation.allowance_bottom;
   if (!(finish > 0))
     return report.bad(operation.subject,
-                      operation.subject.name() + " leaves the whole depth of " + pocket);
+                      operation.subject.name() + " leaves the whole depth of " + pocket());
   auto levels = depth_levels(reader, operation, finish);
   if (!levels || !check_edge(reader, *tool, *levels)) return false;
   spec.axis = axis;

@@ -281,17 +281,19 @@ std::optional<Outline> read_open_outline(Reader& reader, const Instance& boundar
 bool corner_checks(Reader& reader, const Outline& outline, const Tool& tool,
                    const Operation& operation, double corner_radius, bool material_outside) {
   const double d = tool.radius + operation.allowance_side;
-  const std::string who = tool.subject.name() + " radius " + fmt(tool.radius) + " + allowance " +
-                          fmt(operation.allowance_side) + " of " + operation.subject.name();
-  const std::string feature = reader.name(reader.feature());
+  const auto who = [&] {
+    return tool.subject.name() + " radius " + fmt(tool.radius) + " + allowance " +
+           fmt(operation.allowance_side) + " of " + operation.subject.name();
+  };
+  const auto feature = [&] { return reader.name(reader.feature()); };
   // A corner turning towards the material is one the tool must fit into.
   const double sign = material_outside ? 1 : -1;
   for (const Corner& c : corners(outline)) {
     if (sign * c.turn <= 0) continue;
     const double left = d * (1 / std::cos(std::min(std::abs(c.turn), 3.1) / 2) - 1);
     if (left <= reader.options().corner_tolerance || corner_radius + kEps >= d) continue;
-    return reader.report().unfit(tool.subject, who + " > corner radius " + fmt(corner_radius) +
-                                                   " of " + feature + " at " + at_text(c.at));
+    return reader.report().unfit(tool.subject, who() + " > corner radius " + fmt(corner_radius) +
+                                                   " of " + feature() + " at " + at_text(c.at));
   }
   for (const Element& e : outline.elements) {
     if (!e.arc || sign * e.sweep <= 0 || e.radius + kEps >= d ||
@@ -299,7 +301,7 @@ bool corner_checks(Reader& reader, const Outline& outline, const Tool& tool,
       continue;
     const double mid = std::atan2((e.start - e.centre).y, (e.start - e.centre).x) + e.sweep / 2;
     return reader.report().unfit(
-        tool.subject, who + " > arc radius " + fmt(e.radius) + " of " + feature + " at " +
+        tool.subject, who() + " > arc radius " + fmt(e.radius) + " of " + feature() + " at " +
                           at_text(e.centre + P{std::cos(mid), std::sin(mid)} * e.radius));
   }
   return true;

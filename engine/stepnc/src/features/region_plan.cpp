@@ -68,24 +68,24 @@ bool paths(const RegionSpec& spec, double room, Draft& draft, Rings& rings,
 bool fit_entries(const RegionSpec& spec, double room, const Rings& rings, Draft& draft,
                  Entry& entry, double& ramp_length, double& exit_length) {
   Report& report = draft.report();
-  const std::string tool = spec.tool.name();
-  const std::string f = spec.feature.name();
+  const auto tool = [&] { return spec.tool.name(); };
+  const auto f = [&] { return spec.feature.name(); };
   const Subject& approach = spec.entry.strategy;
   ramp_length = std::max(rings.line_length, room);
   if (entry.kind == Entry::Kind::Helix) {
     if (entry.radius > room + kEps) {
       if (entry.explicit_entry)
         return report.unfit(approach, approach.name() + " radius " + fmt(entry.radius) +
-                                          " leaves no room for " + tool + " in " + f +
+                                          " leaves no room for " + tool() + " in " + f() +
                                           " (at most " + fmt(room) + ")");
       entry.radius = room;
     }
     if (entry.radius < 1e-3) {
       if (entry.explicit_entry)
         return report.unfit(
-            approach, approach.name() + ": " + tool + " fills " + f + ", no room for a helix");
+            approach, approach.name() + ": " + tool() + " fills " + f() + ", no room for a helix");
       entry.kind = Entry::Kind::Plunge;
-      report.note(spec.feature, tool + " fills " + f +
+      report.note(spec.feature, tool() + " fills " + f() +
                                     " across; it enters along its axis, as there is no room for "
                                     "a helix");
     }
@@ -93,7 +93,7 @@ bool fit_entries(const RegionSpec& spec, double room, const Rings& rings, Draft&
     if (entry.width > 0) ramp_length = std::min(ramp_length, entry.width);
     if (ramp_length < 1e-3)
       return report.unfit(approach,
-                          approach.name() + ": no room for a ramp of " + tool + " in " + f);
+                          approach.name() + ": no room for a ramp of " + tool() + " in " + f());
   }
   // The retract needs the same room as an approach of its kind.
   const Entry& exit = spec.exit;
@@ -101,11 +101,12 @@ bool fit_entries(const RegionSpec& spec, double room, const Rings& rings, Draft&
   exit_length = std::max(rings.line_length, room);
   if (exit.kind == Entry::Kind::Helix && (exit.radius > room + kEps || exit.radius < 1e-3))
     return report.unfit(retract, retract.name() + " radius " + fmt(exit.radius) + " does not fit " +
-                                     tool + " in " + f + " (room " + fmt(room) + ")");
+                                     tool() + " in " + f() + " (room " + fmt(room) + ")");
   if (exit.kind == Entry::Kind::Ramp) {
     if (exit.width > 0) exit_length = std::min(exit_length, exit.width);
     if (exit_length < 1e-3)
-      return report.unfit(retract, retract.name() + ": no room for a ramp of " + tool + " in " + f);
+      return report.unfit(retract,
+                          retract.name() + ": no room for a ramp of " + tool() + " in " + f());
   }
   return true;
 }

@@ -14,7 +14,7 @@ constexpr double kEps = 1e-9;
 // The tool against the region: its corners, its width, the centre pass.
 bool check_fit(Reader& reader, const Region& region, const Tool& tool, const Operation& operation) {
   Report& report = reader.report();
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   const Shape& shape = region.shape;
   const double inset = tool.radius + operation.allowance_side;
   if (region.corners_in_material && shape.kind == Shape::Kind::Rectangle &&
@@ -22,15 +22,15 @@ bool check_fit(Reader& reader, const Region& region, const Tool& tool, const Ope
     return report.unfit(tool.subject, tool.subject.name() + " radius " + fmt(tool.radius) +
                                           " + allowance " + fmt(operation.allowance_side) + " of " +
                                           operation.subject.name() + " > corner radius " +
-                                          fmt(shape.corner) + " of " + f);
+                                          fmt(shape.corner) + " of " + f());
   const double room = std::max(0.0, shape.inradius() - inset);
   if (shape.inradius() - inset < -kEps)
     return report.unfit(tool.subject, tool.subject.name() + " diameter " + fmt(2 * tool.radius) +
-                                          " + allowances does not fit " + f);
+                                          " + allowances does not fit " + f());
   if (region.centre_only && room > 1e-3)
     return report.unfit(tool.subject, tool.subject.name() + " diameter " + fmt(2 * tool.radius) +
                                           " + allowances is " + fmt(2 * room) + " narrower than " +
-                                          f + ", which " + operation.strategy.name() +
+                                          f() + ", which " + operation.strategy.name() +
                                           " (center milling) cuts in one pass");
   return true;
 }
@@ -41,12 +41,12 @@ bool read_pattern(Reader& reader, const Region& region, const Operation& operati
                   RegionSpec& spec) {
   Report& report = reader.report();
   const Subject& strategy = operation.strategy;
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   if (!strategy || reader.is(strategy, "contour_parallel") ||
       (region.centre_only && reader.is(strategy, "center_milling")))
     return true;
   if (region.centre_only)
-    return report.not_implemented(strategy.name() + " on " + f +
+    return report.not_implemented(strategy.name() + " on " + f() +
                                   ", which only a centre pass can machine");
   using Pattern = RegionSpec::Pattern;
   if (reader.is(strategy, "bidirectional_milling")) {
@@ -59,7 +59,7 @@ bool read_pattern(Reader& reader, const Region& region, const Operation& operati
   } else if (reader.is(strategy, "contour_bidirectional")) {
     spec.pattern = Pattern::RingThenLines;
   } else {
-    return report.not_implemented(strategy.name() + " on " + f);
+    return report.not_implemented(strategy.name() + " on " + f());
   }
   if (const auto dir = reader.direction(*strategy.instance, "feed_direction")) {
     const Vec3 fx = region.shape.frame.x;
@@ -70,7 +70,7 @@ bool read_pattern(Reader& reader, const Region& region, const Operation& operati
       spec.along_x = false;
     else
       return report.not_implemented(strategy.name() + " feed_direction oblique to the sides of " +
-                                    f);
+                                    f());
     // Left of the feed direction is where the next line goes for stepover_direction LEFT.
     const Vec3 feed_local{dir->dot(fx), dir->dot(fy), 0};
     const Vec3 left{-feed_local.y, feed_local.x, 0};

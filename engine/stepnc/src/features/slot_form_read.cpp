@@ -25,40 +25,42 @@ double degrees(double radians) {
 bool check_ends(Reader& reader, const SlotBasics& basics, const Tool& tool, double depth) {
   Report& report = reader.report();
   const SlotPath& path = basics.path;
-  const std::string f = reader.name(reader.feature());
-  const std::string swept = basics.swept.name();
-  const std::string travel = basics.travel.name();
+  const auto f = [&] { return reader.name(reader.feature()); };
+  const auto swept = [&] { return basics.swept.name(); };
+  const auto travel = [&] { return basics.travel.name(); };
   for (const SlotEnd& e : basics.end) {
     if (path.kind == SlotPath::Kind::Circle) break;
-    const std::string end = e.subject.name();
+    const auto end = [&] { return e.subject.name(); };
     if (e.kind == SlotEnd::Kind::Flat)
-      return report.not_implemented(
-          f + " with " + swept + (path.kind == SlotPath::Kind::Arc ? " along " + travel : "") +
-          " and the flat end " + end + " (a form tool cannot make a flat end across the profile)");
+      return report.not_implemented(f() + " with " + swept() +
+                                    (path.kind == SlotPath::Kind::Arc ? " along " + travel() : "") +
+                                    " and the flat end " + end() +
+                                    " (a form tool cannot make a flat end across the profile)");
     if (e.kind == SlotEnd::Kind::Open && path.kind == SlotPath::Kind::Arc)
-      return report.not_implemented(f + " along " + travel + " with the open end " + end);
+      return report.not_implemented(f() + " along " + travel() + " with the open end " + end());
     if (e.kind != SlotEnd::Kind::Woodruff) continue;
     if (basics.section.kind == SlotSection::Kind::SquareU) {
       // The woodruff end is the swept profile turned about an axis across the slot: with a
       // square-U profile its corners with the walls are sharp at every height, which no tool
       // turning about a vertical axis leaves.
       if (reader.is(tool.body, "woodruff_keyseat_mill"))
-        return report.not_implemented(f + "'s woodruff end " + end + " with " +
+        return report.not_implemented(f() + "'s woodruff end " + end() + " with " +
                                       tool.subject.name() +
                                       ", which cuts with its axis across the slot (the "
                                       "generator's tools turn about the feature's z axis)");
-      return report.unfit(
-          tool.subject, tool.subject.name() + " cannot make the woodruff end " + end + " of " + f +
-                            ": the end meets the square-U walls in sharp corners at every "
-                            "height, which a tool turning about the vertical leaves rounded");
+      return report.unfit(tool.subject,
+                          tool.subject.name() + " cannot make the woodruff end " + end() + " of " +
+                              f() +
+                              ": the end meets the square-U walls in sharp corners at every "
+                              "height, which a tool turning about the vertical leaves rounded");
     }
     if (basics.section.kind == SlotSection::Kind::Vee)
-      return report.not_implemented(f + " with " + swept + " and the woodruff end " + end +
+      return report.not_implemented(f() + " with " + swept() + " and the woodruff end " + end() +
                                     " (a cone cannot follow the turned vee)");
     if (path.kind != SlotPath::Kind::Line)
-      return report.not_implemented(f + " along " + travel + " with the woodruff end " + end);
+      return report.not_implemented(f() + " along " + travel() + " with the woodruff end " + end());
     if (e.woodruff.size + kEps < depth)
-      return report.not_implemented(f + "'s woodruff end " + end + " of radius " +
+      return report.not_implemented(f() + "'s woodruff end " + end() + " of radius " +
                                     fmt(e.woodruff.size) + ", less than the " + fmt(depth) +
                                     " depth (its arc would turn under the top)");
   }
@@ -70,8 +72,8 @@ bool check_ends(Reader& reader, const SlotBasics& basics, const Tool& tool, doub
 bool vee_passes(Reader& reader, const Tool& tool, const Operation& operation, const SlotSection& s,
                 double depth, std::vector<SlotPass>& passes) {
   Report& report = reader.report();
-  const std::string f = reader.name(reader.feature());
-  const std::string named = tool.subject.name();
+  const auto f = [&] { return reader.name(reader.feature()); };
+  const auto named = [&] { return tool.subject.name(); };
   // A cone: a countersink, or a milling cutter with a point (its tool_tip_half_angle, read as
   // for drills: NIST's angle between the cutting edge and the plane normal to the axis below
   // 90 degrees, the whole point angle from 90 on).
@@ -80,22 +82,22 @@ bool vee_passes(Reader& reader, const Tool& tool, const Operation& operation, co
                          reader.is(tool.body, "user_defined_tool");
   if (!cone_body || !tool.tip_half_angle || !(*tool.tip_half_angle > 0) ||
       !(*tool.tip_half_angle < 180))
-    return report.unfit(tool.subject, named + " has no cone of " + fmt(degrees(s.angle)) +
-                                          " degrees to make " + f +
+    return report.unfit(tool.subject, named() + " has no cone of " + fmt(degrees(s.angle)) +
+                                          " degrees to make " + f() +
                                           "'s vee (a countersink or a pointed cutter "
                                           "of the vee's angle is needed)");
   const double point =
       *tool.tip_half_angle < 90 ? 180 - 2 * *tool.tip_half_angle : *tool.tip_half_angle;
   if (std::abs(point - degrees(s.angle)) > kAngleMatch)
-    return report.unfit(tool.subject, named + " point angle " + fmt(point) +
+    return report.unfit(tool.subject, named() + " point angle " + fmt(point) +
                                           " differs from the profile_angle " +
-                                          fmt(degrees(s.angle)) + " of " + f);
+                                          fmt(degrees(s.angle)) + " of " + f());
   const double rho = s.radius.size;
   const double c = tool.corner_radius;
   if (c > rho + s.radius.upper + kEps || c < rho - s.radius.lower - kEps)
-    return report.unfit(tool.subject, named + " tip radius " + fmt(c) +
+    return report.unfit(tool.subject, named() + " tip radius " + fmt(c) +
                                           " is not the vee's profile_radius " + fmt(rho) + " of " +
-                                          f + " within its tolerance");
+                                          f() + " within its tolerance");
   const double half = s.angle / 2;
   const double sin_half = std::sin(half);
   // Lifted along the axis by `lift`, the cone stays a_s off the walls (normal to them) and a_b
@@ -105,21 +107,21 @@ bool vee_passes(Reader& reader, const Tool& tool, const Operation& operation, co
   const double tip = depth - lift;
   if (!(tip > 0))
     return report.bad(operation.subject,
-                      operation.subject.name() + " leaves the whole depth of " + f);
+                      operation.subject.name() + " leaves the whole depth of " + f());
   // The cone must reach the top of the walls: its width at the top of the slot is what the
   // tool's diameter has to cover.
   const double apex_below_tip = c / sin_half - c;
   const double needed = (tip + apex_below_tip) * std::tan(half);
   if (tool.radius + kEps < needed)
-    return report.unfit(tool.subject, named + " diameter " + fmt(2 * tool.radius) +
+    return report.unfit(tool.subject, named() + " diameter " + fmt(2 * tool.radius) +
                                           " is narrower than the " + fmt(2 * needed) + " that " +
-                                          f + "'s vee is wide at its top");
+                                          f() + "'s vee is wide at its top");
   // The flank touches the walls over the whole depth: its length along the cone (the edge
   // length, whichever way it is measured, covers at least that height once projected).
   if (tool.edge_length && *tool.edge_length * std::cos(half) + kEps < tip)
-    return report.unfit(tool.subject, named + " cutting edge length " + fmt(*tool.edge_length) +
+    return report.unfit(tool.subject, named() + " cutting edge length " + fmt(*tool.edge_length) +
                                           " does not reach the " + fmt(tip) + " deep walls of " +
-                                          f);
+                                          f());
   passes.push_back({0, tip});
   return true;
 }
@@ -157,21 +159,21 @@ bool partial_circle_passes(Reader& reader, const Tool& tool, const Operation& op
                            const SlotSection& s, double depth, std::vector<SlotPass>& passes,
                            bool& stepped) {
   Report& report = reader.report();
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   const double R = s.radius.size;
   // The arc, its lowest point on the depth plane, must reach the top of the slot: a shallower
   // arc would leave the slot's upper walls undefined.
   if (R * (1 - std::cos(s.sweep / 2)) + 1e-9 < depth)
     return report.bad(reader.subject(reader.feature()),
-                      f + " is " + fmt(depth) + " deep, but its partial circle (radius " + fmt(R) +
-                          ", " + fmt(degrees(s.sweep)) + " degrees) ends " +
+                      f() + " is " + fmt(depth) + " deep, but its partial circle (radius " +
+                          fmt(R) + ", " + fmt(degrees(s.sweep)) + " degrees) ends " +
                           fmt(R * (1 - std::cos(s.sweep / 2))) + " above its bottom");
   if (!ball_check(reader, tool, "a partial-circular slot, takes a ball of at most its radius"))
     return false;
   const double r = tool.radius;
   if (r > R + s.radius.upper + kEps)
     return report.unfit(tool.subject, tool.subject.name() + " radius " + fmt(r) +
-                                          " is larger than the radius " + fmt(R) + " of " + f +
+                                          " is larger than the radius " + fmt(R) + " of " + f() +
                                           "'s partial circle");
   const double allowance = std::max(operation.allowance_side, operation.allowance_bottom);
   if (allowance == 0 && r >= R - s.radius.lower - kEps) {
@@ -183,7 +185,7 @@ bool partial_circle_passes(Reader& reader, const Tool& tool, const Operation& op
   if (!(rc > 1e-6))
     return report.unfit(tool.subject, tool.subject.name() + " radius " + fmt(r) + " + allowance " +
                                           fmt(allowance) + " of " + operation.subject.name() +
-                                          " leaves no room in the radius " + fmt(R) + " of " + f);
+                                          " leaves no room in the radius " + fmt(R) + " of " + f());
   stepped = true;
   const double centre = R - depth;  // the profile's centre above the top (>= 0)
   const double top = std::acos(std::clamp(centre / R, -1.0, 1.0));  // where it meets the top
@@ -205,24 +207,24 @@ bool u_pass(Reader& reader, const SlotBasics& basics, const Tool& tool, const Op
             double depth, FormSlotSpec& spec) {
   Report& report = reader.report();
   const SlotSection& section = basics.section;
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   const double inset = tool.radius + operation.allowance_side;
   if (section.kind == SlotSection::Kind::RoundedU) {
     if (!ball_check(reader, tool, "a rounded-U slot, takes a ball of its width")) return false;
     if (std::abs(section.half - inset) > 1e-3)
       return report.unfit(tool.subject, tool.subject.name() + " diameter " + fmt(2 * tool.radius) +
                                             " + allowances is not the width " +
-                                            fmt(2 * section.half) + " of " + f +
+                                            fmt(2 * section.half) + " of " + f() +
                                             ", which a ball cuts in one pass");
     spec.ball_radius = tool.radius;
   } else {
     if (section.half - inset < -kEps || section.half - inset > 1e-3)
-      return report.unfit(
-          tool.subject, tool.subject.name() + " diameter " + fmt(2 * tool.radius) +
-                            " + allowances is not the width " + fmt(2 * section.half) + " of " + f +
-                            " along " + basics.travel.name() +
-                            " (only a tool of the slot's width, along its centre, is generated "
-                            "there)");
+      return report.unfit(tool.subject,
+                          tool.subject.name() + " diameter " + fmt(2 * tool.radius) +
+                              " + allowances is not the width " + fmt(2 * section.half) + " of " +
+                              f() + " along " + basics.travel.name() +
+                              " (only a tool of the slot's width, along its centre, is generated "
+                              "there)");
     const double fillet = section.fillet ? section.fillet->size : 0;
     const double upper = section.fillet ? section.fillet->upper : 0;
     const double lower = section.fillet ? section.fillet->lower : 0;
@@ -230,12 +232,12 @@ bool u_pass(Reader& reader, const SlotBasics& basics, const Tool& tool, const Op
         tool.corner_radius + lower + kEps < fillet)
       return report.unfit(tool.subject, tool.subject.name() + " edge radius " +
                                             fmt(tool.corner_radius) + " is not the floor radius " +
-                                            fmt(fillet) + " of " + f);
+                                            fmt(fillet) + " of " + f());
   }
   const double tip = depth - operation.allowance_bottom;
   if (!(tip > 0))
     return report.bad(operation.subject,
-                      operation.subject.name() + " leaves the whole depth of " + f);
+                      operation.subject.name() + " leaves the whole depth of " + f());
   spec.passes.push_back({0, tip});
   return true;
 }
@@ -270,13 +272,13 @@ bool check_woodruff(Reader& reader, const SlotBasics& basics, const Tool& tool,
                     const Operation& operation, bool stepped, const FormSlotSpec& spec) {
   Report& report = reader.report();
   const SlotPath& path = basics.path;
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   const bool woodruff =
       path.kind != SlotPath::Kind::Circle && (basics.end[0].kind == SlotEnd::Kind::Woodruff ||
                                               basics.end[1].kind == SlotEnd::Kind::Woodruff);
   if (stepped && (path.kind != SlotPath::Kind::Line || woodruff))
     return report.not_implemented(
-        f + " with " + basics.swept.name() + " cut by " + tool.subject.name() +
+        f() + " with " + basics.swept.name() + " cut by " + tool.subject.name() +
         ", smaller than its radius, " +
         (path.kind != SlotPath::Kind::Line ? "along " + basics.travel.name()
                                            : std::string("with a woodruff end")) +
@@ -291,7 +293,7 @@ bool check_woodruff(Reader& reader, const SlotBasics& basics, const Tool& tool,
       return report.unfit(tool.subject, tool.subject.name() + " radius " + fmt(spec.ball_radius) +
                                             " + allowance " + fmt(allowance) + " > the radius " +
                                             fmt(e.woodruff.size) + " of the woodruff end " +
-                                            e.subject.name() + " of " + f);
+                                            e.subject.name() + " of " + f());
   }
   // Into a woodruff end the tool comes down along its arc, which is as steep as the end is at
   // the top of the slot: a ramp or zigzag approach must allow that.
@@ -309,8 +311,8 @@ bool check_woodruff(Reader& reader, const SlotBasics& basics, const Tool& tool,
     const double steepest =
         rho > 1e-9 ? degrees(std::acos(std::clamp((axis - r) / rho, -1.0, 1.0))) : 90;
     if (std::min(steepest, 90.0) > allowed + 1e-9)
-      return report.not_implemented(approach.name() + " at " + fmt(allowed) + " degrees into " + f +
-                                    ", whose woodruff end " + e.subject.name() +
+      return report.not_implemented(approach.name() + " at " + fmt(allowed) + " degrees into " +
+                                    f() + ", whose woodruff end " + e.subject.name() +
                                     " the tool follows down at up to " +
                                     fmt(std::min(steepest, 90.0)) + " degrees");
   }
@@ -342,7 +344,7 @@ bool read_plunges(Reader& reader, const Tool& tool, const Operation& operation,
 
 bool read_form_slot(Reader& reader, const SlotBasics& basics, FormSlotSpec& spec) {
   Report& report = reader.report();
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   const auto depth = reader.read_depth();
   const auto tool = reader.read_tool();
   if (!depth || !tool) return false;
@@ -350,12 +352,12 @@ bool read_form_slot(Reader& reader, const SlotBasics& basics, FormSlotSpec& spec
   const SlotPath& path = basics.path;
   if (reader.is(&reader.operation(), "side_milling"))
     return report.not_implemented(
-        operation.subject.name() + " on " + f + " with " + basics.swept.name() +
+        operation.subject.name() + " on " + f() + " with " + basics.swept.name() +
         (path.kind == SlotPath::Kind::Line ? std::string() : " along " + basics.travel.name()) +
         " (its walls are the form tool's, made by bottom-and-side milling)");
   if (operation.strategy && !reader.is(operation.strategy, "center_milling") &&
       !reader.is(operation.strategy, "contour_parallel"))
-    return report.not_implemented(operation.strategy.name() + " on " + f + ", which " +
+    return report.not_implemented(operation.strategy.name() + " on " + f() + ", which " +
                                   tool->subject.name() + " machines along its course of travel");
   if (!check_ends(reader, basics, *tool, *depth)) return false;
   spec.path = path;

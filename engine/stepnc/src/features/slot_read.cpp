@@ -56,13 +56,13 @@ bool read_circular_path(Reader& reader, const Instance& travel, SlotPath& path) 
 }
 
 bool read_path(Reader& reader, const Instance& travel, SlotPath& path) {
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   if (reader.set(travel, "placement"))
-    return reader.report().not_implemented(f + " with a placed course_of_travel " +
+    return reader.report().not_implemented(f() + " with a placed course_of_travel " +
                                            reader.name(travel));
   if (reader.is(&travel, "linear_path")) return read_linear_path(reader, travel, path);
   if (reader.is(&travel, "circular_path")) return read_circular_path(reader, travel, path);
-  return reader.report().not_implemented(f + " along " + reader.name(travel) +
+  return reader.report().not_implemented(f() + " along " + reader.name(travel) +
                                          " (linear and circular paths are)");
 }
 
@@ -145,14 +145,15 @@ bool read_partial_circle(Reader& reader, const Instance& swept, SlotSection& s) 
 }
 
 bool read_section(Reader& reader, const Instance& swept, SlotSection& s) {
-  const std::string f = reader.name(reader.feature());
+  const auto f = [&] { return reader.name(reader.feature()); };
   if (reader.set(swept, "placement"))
-    return reader.report().not_implemented(f + " with a placed swept_shape " + reader.name(swept));
+    return reader.report().not_implemented(f() + " with a placed swept_shape " +
+                                           reader.name(swept));
   if (reader.is(&swept, "square_u_profile")) return read_square_u(reader, swept, s);
   if (reader.is(&swept, "rounded_u_profile")) return read_rounded_u(reader, swept, s);
   if (reader.is(&swept, "vee_profile")) return read_vee(reader, swept, s);
   if (reader.is(&swept, "partial_circular_profile")) return read_partial_circle(reader, swept, s);
-  return reader.report().not_implemented(f + " with " + reader.name(swept) +
+  return reader.report().not_implemented(f() + " with " + reader.name(swept) +
                                          " (square-U, rounded-U, vee and partial-circular slots "
                                          "are)");
 }

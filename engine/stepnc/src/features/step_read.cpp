@@ -91,7 +91,7 @@ bool read_wall(Reader& reader, double depth, StepSpec& spec, std::optional<Toler
 // The fillet at the foot of the wall is the tool's corner radius (as a pocket's floor radius).
 bool check_fillet(Reader& reader, const Tool& tool, const Operation& operation,
                   const std::optional<Toleranced>& fillet) {
-  const std::string step = reader.name(reader.feature());
+  const auto step = [&] { return reader.name(reader.feature()); };
   const double rho = fillet ? fillet->size : 0;
   const double upper = fillet ? fillet->upper : 0;
   const double lower = fillet ? fillet->lower : 0;
@@ -99,12 +99,12 @@ bool check_fillet(Reader& reader, const Tool& tool, const Operation& operation,
     return reader.report().unfit(tool.subject,
                                  tool.subject.name() + " edge radius " + fmt(tool.corner_radius) +
                                      " > the wall's radius " + fmt(rho) + " + allowance " +
-                                     fmt(operation.allowance_bottom) + " of " + step);
+                                     fmt(operation.allowance_bottom) + " of " + step());
   if (tool.corner_radius + lower + kEps < rho)
     return reader.report().unfit(tool.subject, tool.subject.name() + " edge radius " +
                                                    fmt(tool.corner_radius) +
                                                    " < the wall's radius " + fmt(rho) + " of " +
-                                                   step + ": the tool would cut the fillet away");
+                                                   step() + ": the tool would cut the fillet away");
   return true;
 }
 
@@ -112,28 +112,28 @@ bool check_fillet(Reader& reader, const Tool& tool, const Operation& operation,
 bool read_strategy(Reader& reader, const Operation& operation, StepSpec& spec) {
   Report& report = reader.report();
   const Subject& strategy = operation.strategy;
-  const std::string step = reader.name(reader.feature());
+  const auto step = [&] { return reader.name(reader.feature()); };
   if (strategy) {
     const Instance& instance = *strategy.instance;
     if (reader.is(strategy, "bidirectional_milling")) {
       spec.one_way = false;
     } else if (!reader.is(strategy, "unidirectional_milling") &&
                !reader.is(strategy, "contour_parallel")) {
-      return report.not_implemented(strategy.name() + " on " + step);
+      return report.not_implemented(strategy.name() + " on " + step());
     }
     if (const auto feed = reader.direction(instance, "feed_direction");
         feed && std::abs(std::abs(feed->dot(spec.along)) - 1) > 1e-9)
-      return report.not_implemented(strategy.name() + " feed_direction across the wall of " + step +
-                                    " (passes run along the wall)");
+      return report.not_implemented(strategy.name() + " feed_direction across the wall of " +
+                                    step() + " (passes run along the wall)");
     if (reader.set(instance, "stepover_direction"))
-      report.note(strategy, strategy.name() + ": the passes over " + step +
+      report.note(strategy, strategy.name() + ": the passes over " + step() +
                                 " go from its open boundary towards its wall, whichever the "
                                 "stepover_direction");
   }
-  const std::string air = ": every pass over " + step +
-                          " starts and ends outside the material, so the tool moves along its "
-                          "axis there";
-  return check_air_plunges(reader, operation, air, air);
+  return check_air_plunges(reader, operation, [&](bool) {
+    return ": every pass over " + step() +
+           " starts and ends outside the material, so the tool moves along its axis there";
+  });
 }
 
 // Climb milling with the material on the tool's right: with a clockwise spindle, the wall side

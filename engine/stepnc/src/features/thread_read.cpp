@@ -154,18 +154,18 @@ std::optional<HoleData> read_hole_data(Reader& reader, const Instance& hole, dou
 
 // A thread drill-mill whose drilling diameter is the hole's.
 bool check_tool(Reader& reader, const Tool& tool, const Instance& hole, const Toleranced& hole_d) {
-  const std::string op = reader.name(reader.operation());
-  const std::string thread = reader.name(reader.feature());
+  const auto op = [&] { return reader.name(reader.operation()); };
+  const auto thread = [&] { return reader.name(reader.feature()); };
   if (!reader.is(tool.body, "milling_threading_tool") && !reader.is(tool.body, "thread_mill"))
     return reader.report().unfit(tool.subject, tool.subject.name() + " is not a threading tool; " +
-                                                   op + " on " + thread +
+                                                   op() + " on " + thread() +
                                                    " needs a thread drill-mill");
   const double tool_d = 2 * tool.radius;
   if (tool_d > hole_d.size + hole_d.upper + kEps || tool_d + hole_d.lower + kEps < hole_d.size)
     return reader.report().unfit(tool.subject, tool.subject.name() + " diameter " + fmt(tool_d) +
                                                    " is not the diameter " + fmt(hole_d.size) +
-                                                   " of " + reader.name(hole) + " that " + op +
-                                                   " drills for " + thread);
+                                                   " of " + reader.name(hole) + " that " + op() +
+                                                   " drills for " + thread());
   return true;
 }
 
