@@ -76,9 +76,11 @@ struct GeneralPocketSpec {
 //   (five attempts); a ramp retract after an approach that is not a ramp; no straight way back
 //   across the floor to where the approach came down.
 // - STEPNC-102: a helix or ramp (approach or retract) that does not fit where it goes down.
-// - STEPNC-103: nothing to machine; a region that cannot be offset; more motions than the
-//   motion limit.
+// - STEPNC-103: nothing to machine; more motions than the motion limit.
 // - STEPNC-016: a tool that fills the pocket where it goes down (it enters along its axis).
+// Should Clipper refuse an offset of the regions the reader built (their coordinates are
+// bounded, so it should not), the planner returns false without a diagnostic, as the
+// generator always has.
 [[nodiscard]] bool plan_general_pocket(const GeneralPocketSpec& spec, Draft& draft);
 
 }  // namespace ncpost::stepnc::features
