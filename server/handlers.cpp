@@ -41,9 +41,29 @@ json diagnostic_json(const diag::FileDiagnostic& d) {
   return j;
 }
 
+// The note that ends a list cut at kMaxResponseDiagnostics.
+diag::Diagnostic more_diagnostics(std::size_t left_out) {
+  return diag::make(diag::Code::HttpMoreDiagnostics, 0, 0,
+                    std::to_string(left_out) + " more diagnostics are not listed");
+}
+
+// One cap on every path that answers with diagnostics (kMaxResponseDiagnostics); the memory of
+// the rest goes at once.
+void bound_diagnostics(std::vector<diag::Diagnostic>& list) {
+  if (list.size() <= kMaxResponseDiagnostics) return;
+  const std::size_t left_out = list.size() - kMaxResponseDiagnostics;
+  list.resize(kMaxResponseDiagnostics);
+  list.push_back(more_diagnostics(left_out));
+  list.shrink_to_fit();
+}
+
 json diagnostics_json(const std::vector<diag::FileDiagnostic>& diagnostics) {
   json all = json::array();
-  for (const auto& d : diagnostics) all.push_back(diagnostic_json(d));
+  const std::size_t listed = std::min(diagnostics.size(), kMaxResponseDiagnostics);
+  for (std::size_t i = 0; i < listed; ++i) all.push_back(diagnostic_json(diagnostics[i]));
+  if (listed < diagnostics.size())
+    all.push_back(
+        diagnostic_json({diagnostics[listed].file, more_diagnostics(diagnostics.size() - listed)}));
   return all;
 }
 
@@ -176,6 +196,7 @@ pipeline::LoadedModel load_model(Upload& upload, Services& services, Exchange& e
   pipeline::LoadedModel loaded =
       upload.streamed ? pipeline::load(upload.streamed->reader(), *services.schemas, options)
                       : pipeline::load(std::move(upload.bytes), *services.schemas, options);
+  bound_diagnostics(loaded.diagnostics);
   services.metrics->stage("read", loaded.read_time + loaded.check_time);
   return loaded;
 }
@@ -687,6 +708,7 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
   std::vector<diag::Diagnostic> diagnostics = std::move(loaded.diagnostics);
   stepnc::ProgramInfo info = stepnc::inspect(loaded.model, *loaded.schema);
   diagnostics.insert(diagnostics.end(), info.diagnostics.begin(), info.diagnostics.end());
+  bound_diagnostics(diagnostics);
   json all = json::array();
   if (loaded.schema == &services.schemas->builtin().set())
     for (auto& d : stepnc::diagnostics_json(services.schemas->builtin_diagnostics(),
@@ -1000,6 +1022,7 @@ RouteMatch match_route(http::verb method, std::string_view target) {
       matches = path == pattern;
     }
     if (!matches) continue;
+    result.pattern = route.pattern;
     // HEAD is answered as GET by the session.
     if (route.method == method || (method == http::verb::head && route.method == http::verb::get)) {
       result.route = &route;
@@ -1008,6 +1031,7 @@ RouteMatch match_route(http::verb method, std::string_view target) {
     }
     if (!allow.empty()) allow += ", ";
     allow += std::string(http::to_string(route.method));
+    if (route.method == http::verb::get) allow += ", HEAD";
   }
   result.status = allow.empty() ? 404 : 405;
   result.allow = std::move(allow);

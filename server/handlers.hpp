@@ -98,7 +98,8 @@ struct RouteMatch {
   const Route* route = nullptr;  // null: no route (status says 404 or 405)
   std::string id;
   unsigned status = 0;
-  std::string allow;  // for 405
+  std::string allow;         // for 405
+  std::string_view pattern;  // for 405: the pattern the path matched (metrics count it there)
 };
 
 [[nodiscard]] const std::vector<Route>& routes();
@@ -129,8 +130,13 @@ struct Upload {
                                                 std::shared_ptr<StreamedUpload> streamed = {});
 
 // At most this much of the diagnostics goes into the Ncpost-Diagnostics trailer (whole entries;
-// Ncpost-Warnings still counts them all), so that the trailer stays within any client's limits.
-inline constexpr std::size_t kMaxDiagnosticsTrailer = 8 * 1024;
+// Ncpost-Warnings still counts them all), so that the trailer stays within any client's limits:
+// curl (7.88) fails a transfer whose trailer line passes 4 KiB ("Out of memory in
+// chunked-encoding"), and the line holds the field's name too.
+inline constexpr std::size_t kMaxDiagnosticsTrailer = 4000;
+// At most this many diagnostics go into a response (problem details, an inspection, the JSON of
+// a post); one HTTP-013 note after them counts the rest. An upload can give millions.
+inline constexpr std::size_t kMaxResponseDiagnostics = 1000;
 // The trailer of a complete stream: Ncpost-Warnings (how many diagnostics the job gave; a job
 // that streams to the end has no errors) and Ncpost-Diagnostics (them as compact ASCII JSON).
 [[nodiscard]] http::fields diagnostics_trailer(

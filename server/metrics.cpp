@@ -45,6 +45,13 @@ void Metrics::request(std::string_view route, unsigned status, std::chrono::nano
   Histogram* histogram = nullptr;
   {
     std::lock_guard lock(mutex_);
+    if (status == 0 || status == kClientClosed) {
+      auto closed = client_closed_.find(route);
+      if (closed == client_closed_.end())
+        closed = client_closed_.try_emplace(std::string(route)).first;
+      ++closed->second;
+      return;
+    }
     const auto key = std::pair<std::string_view, unsigned>(route, status);
     auto counter = requests_.find(key);
     if (counter == requests_.end())
@@ -78,6 +85,13 @@ std::string Metrics::render(const CacheCounters& cache) const {
   for (const auto& [key, count] : requests_)
     out += "ncpost_http_requests_total{route=\"" + key.first + "\",status=\"" +
            std::to_string(key.second) + "\"} " + std::to_string(count) + "\n";
+  out +=
+      "# HELP ncpost_http_client_closed_total Requests whose client left before it was answered "
+      "(logged with status 499, or 0 when the request itself was not read whole), by route.\n"
+      "# TYPE ncpost_http_client_closed_total counter\n";
+  for (const auto& [route, count] : client_closed_)
+    out +=
+        "ncpost_http_client_closed_total{route=\"" + route + "\"} " + std::to_string(count) + "\n";
   out +=
       "# HELP ncpost_http_request_duration_seconds Time from the request's arrival to the end "
       "of its response, by route.\n";

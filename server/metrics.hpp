@@ -35,6 +35,11 @@ struct CacheCounters {
 
 class Metrics {
  public:
+  // The status nginx logs for a client that left before its answer: the access log writes it,
+  // but it was never sent, so /metrics counts such requests apart (client_closed), as it does
+  // those that left before they were read whole (status 0).
+  static constexpr unsigned kClientClosed = 499;
+
   void request(std::string_view route, unsigned status, std::chrono::nanoseconds duration,
                std::uint64_t bytes_in, std::uint64_t bytes_out);
   void stage(std::string_view stage, std::chrono::nanoseconds duration);
@@ -62,6 +67,7 @@ class Metrics {
   std::map<std::pair<std::string, unsigned>, std::uint64_t, RouteStatusLess> requests_;
   std::map<std::string, Histogram, std::less<>> latency_;
   std::map<std::string, Histogram, std::less<>> stages_;
+  std::map<std::string, std::uint64_t, std::less<>> client_closed_;
   std::atomic<std::uint64_t> bytes_in_{0};
   std::atomic<std::uint64_t> bytes_out_{0};
 };

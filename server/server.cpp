@@ -1,5 +1,7 @@
 #include "server.hpp"
 
+#include <malloc.h>
+
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/post.hpp>
@@ -23,6 +25,10 @@ namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
 constexpr auto kReloadPoll = std::chrono::seconds(2);
+// A job that ran this long may have held much memory (a large model, millions of diagnostics):
+// giving the free pages back costs a walk over the heap, small beside such a job and spared
+// the many short ones.
+constexpr auto kTrimAfter = std::chrono::milliseconds(100);
 
 }  // namespace
 
@@ -239,6 +245,12 @@ bool Server::try_admit() noexcept {
     if (now >= limit) return false;
   } while (!in_system_.compare_exchange_weak(now, now + 1));
   return true;
+}
+
+void Server::job_returned(std::chrono::nanoseconds ran) noexcept {
+  if (ran < kTrimAfter || trimming_.test_and_set()) return;
+  ::malloc_trim(0);
+  trimming_.clear();
 }
 
 void Server::release() noexcept {

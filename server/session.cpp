@@ -166,22 +166,45 @@ void Session::read_header() {
   parser_.emplace();
   parser_->header_limit(server_.config().max_header);
   parser_->body_limit(server_.config().max_body);
-  // A header already in the buffer is parsed here: Beast's read would only hand it over through
-  // one more queued completion.
+  header_step();
+}
+
+// Beast 1.74 holds its header limit on what one put() sees, not on the whole header (fields it
+// has taken are not counted again), so the total is counted here; obs-fold, which its parser
+// unfolds silently, is found in the bytes it took. A header already in the buffer is parsed
+// without a queued completion.
+void Session::header_step() {
   beast::error_code ec;
-  const std::size_t used = parse_buffered(*parser_, ec, true);
-  if (ec || parser_->is_header_done()) return on_header(ec, used);
-  http::async_read_header(socket_, buffer_, *parser_,
-                          net::bind_executor(executor_, [self = shared_from_this(), used](
+  HeadProblem problem = HeadProblem::None;
+  std::size_t used = 0;
+  while (buffer_.size() > 0 && !parser_->is_header_done()) {
+    const auto bytes = buffer_.data();
+    const std::size_t n = parser_->put(bytes, ec);
+    if (has_obs_fold({static_cast<const char*>(bytes.data()), n})) problem = HeadProblem::ObsFold;
+    buffer_.consume(n);
+    used += n;
+    if (ec == http::error::need_more) ec = {};
+    if (ec || n == 0 || problem != HeadProblem::None) break;
+  }
+  record_.bytes_in += used;
+  const std::size_t unparsed = parser_->is_header_done() ? 0 : buffer_.size();
+  if (!ec && record_.bytes_in + unparsed > server_.config().max_header)
+    ec = http::error::header_limit;
+  if (ec || problem != HeadProblem::None || parser_->is_header_done())
+    return on_header(ec, problem);
+  socket_.async_read_some(buffer_.prepare(kFirstRead),
+                          net::bind_executor(executor_, [self = shared_from_this()](
                                                             beast::error_code e, std::size_t n) {
-                            self->on_header(e, used + n);
+                            if (e) return self->read_failed(e);
+                            self->buffer_.commit(n);
+                            self->header_step();
                           }));
 }
 
 template <class Parser>
-std::size_t Session::parse_buffered(Parser& parser, beast::error_code& ec, bool header_only) {
+std::size_t Session::parse_buffered(Parser& parser, beast::error_code& ec) {
   std::size_t used = 0;
-  while (buffer_.size() > 0 && !parser.is_done() && !(header_only && parser.is_header_done())) {
+  while (buffer_.size() > 0 && !parser.is_done()) {
     const std::size_t n = parser.put(buffer_.data(), ec);
     buffer_.consume(n);
     used += n;
@@ -191,10 +214,12 @@ std::size_t Session::parse_buffered(Parser& parser, beast::error_code& ec, bool 
   return used;
 }
 
-void Session::on_header(beast::error_code ec, std::size_t bytes) {
-  record_.bytes_in += bytes;
+void Session::on_header(beast::error_code ec, HeadProblem problem) {
   if (ec) return read_failed(ec);
-  const auto& header = parser_->get();
+  auto& header = parser_->get();
+  if (problem == HeadProblem::None) problem = check_head(header);
+  // RFC 9112 §3.2.2: a server accepts the absolute form (a proxy's) and routes its path.
+  if (auto origin = origin_form(header.target())) header.target(*origin);
   verb_ = header.method();
   record_.method = std::string(header.method_string());
   record_.path = std::string(header.target().substr(0, header.target().find('?')));
@@ -204,6 +229,16 @@ void Session::on_header(beast::error_code ec, std::size_t bytes) {
   // Made now rather than at dispatch: a slice reading the upload as it arrives already needs
   // the request's cancel flag.
   channel_ = std::make_shared<JobChannel>();
+  if (problem != HeadProblem::None) {
+    // The body's framing is unknown or not trusted: nothing after the header is read as a
+    // request (no smuggling), and the connection closes.
+    after_ = After::Linger;
+    (void)channel_->claim_response({});
+    const unsigned status = status_of(problem);
+    return send(error_response(
+        status, status == 501 ? diag::Code::HttpTransferCoding : diag::Code::HttpBadRequest,
+        status == 501 ? "Not implemented" : "Bad request", std::string(describe(problem))));
+  }
   if (refused_as_full()) return;
   take_upload_as_it_arrives();
   // curl and browsers wait for 100 Continue before a large body; answer it only once the
@@ -287,7 +322,7 @@ void Session::read_body() {
   // No body, or all of it in the buffer (a small post usually comes in one segment with its
   // header): done here, without a queued completion.
   beast::error_code ec;
-  const std::size_t used = parse_buffered(*parser_, ec, false);
+  const std::size_t used = parse_buffered(*parser_, ec);
   if (ec || parser_->is_done()) return on_body(ec, used);
   http::async_read(socket_, buffer_, *parser_,
                    net::bind_executor(executor_, [self = shared_from_this(), used](
@@ -353,7 +388,11 @@ void Session::handle_request() {
                                       "allowed here: " + match.allow)
                      : error_response(404, diag::Code::HttpNotFound, "Not found",
                                       "no route for " + record_.path);
-    if (match.status == 405) r.set(http::field::allow, match.allow);
+    if (match.status == 405) {
+      r.set(http::field::allow, match.allow);
+      record_.route_label = std::string(method_label(verb_)) + " " + std::string(match.pattern);
+      record_.route = record_.route_label;
+    }
     (void)channel_->claim_response({});
     return send(std::move(r));
   }
@@ -395,6 +434,7 @@ void Session::dispatch_job(const Route& route, std::string id) {
                              received = record_.received, &metrics]() mutable {
     metrics.queued--;
     metrics.active++;
+    const auto started = Clock::now();
     {
       SessionExchange exchange(self, channel);
       exchange.path_id = std::move(id);
@@ -415,6 +455,7 @@ void Session::dispatch_job(const Route& route, std::string id) {
       if (channel->handler_returned()) self->post_pump(channel);
     }
     request.reset();  // free the upload on the worker, not on the IO thread
+    self->server_.job_returned(Clock::now() - started);
     metrics.active--;
     self->server_.release();
     self->post_job_finished(channel);

@@ -23,6 +23,7 @@
 #include "chunked_writer.hpp"
 #include "handlers.hpp"
 #include "job_channel.hpp"
+#include "request_head.hpp"
 
 namespace ncpost::server {
 
@@ -34,7 +35,8 @@ struct RequestRecord {
   std::chrono::steady_clock::time_point started{};
   std::chrono::steady_clock::time_point received{};  // the request's last byte
   std::string request_id;
-  std::string_view route = "unmatched";  // the route table's (static) name
+  std::string_view route = "unmatched";  // the route table's (static) name, or route_label
+  std::string route_label;               // a 405's: method and the path's pattern
   std::string method;
   std::string path;
   std::string profile;
@@ -102,15 +104,17 @@ class Session : public std::enable_shared_from_this<Session> {
 
   void wait_request();
   void read_header();
-  void on_header(boost::beast::error_code ec, std::size_t bytes);
+  // Parses what the buffer holds of the header, reading more until it is whole.
+  void header_step();
+  void on_header(boost::beast::error_code ec, HeadProblem problem);
   [[nodiscard]] bool refused_as_full();
   void refuse_as_full();  // 503 with Retry-After
   void take_upload_as_it_arrives();
   void read_body();
-  // Feeds what buffer_ holds to the parser (up to the end of the header, or of the message) and
-  // returns the bytes it took; a short buffer is not an error.
+  // Feeds what buffer_ holds to the parser, up to the end of the message, and returns the bytes
+  // it took; a short buffer is not an error.
   template <class Parser>
-  std::size_t parse_buffered(Parser& parser, boost::beast::error_code& ec, bool header_only);
+  std::size_t parse_buffered(Parser& parser, boost::beast::error_code& ec);
   void on_body(boost::beast::error_code ec, std::size_t bytes);
   void read_failed(boost::beast::error_code ec);
   void handle_request();
