@@ -268,13 +268,16 @@ void handle_readyz(Request&, Services& services, Exchange& exchange) {
   std::vector<diag::FileDiagnostic> diagnostics;
   const auto profiles = services.profiles->list(diagnostics);
   const bool saturated = services.saturated && services.saturated();
+  const bool memory = services.memory_exhausted && services.memory_exhausted();
+  const bool ready = !profiles.empty() && !saturated && !memory;
   json body;
-  body["status"] = (!profiles.empty() && !saturated) ? "ready" : "not ready";
+  body["status"] = ready ? "ready" : "not ready";
   body["profiles"] = profiles.size();
   body["queue_saturated"] = saturated;
-  Response r = json_response(!profiles.empty() && !saturated ? 200 : 503, body);
+  body["memory_exhausted"] = memory;
+  Response r = json_response(ready ? 200 : 503, body);
   r.set(http::field::cache_control, "no-store");
-  if (saturated) r.set(http::field::retry_after, "1");
+  if (saturated || memory) r.set(http::field::retry_after, "1");
   exchange.respond(std::move(r));
 }
 

@@ -41,6 +41,8 @@ struct Services {
   std::filesystem::path web_root;
   std::filesystem::path openapi_file;
   std::function<bool()> saturated;  // the job queue is full (readyz)
+  // Only the memory budget's reserve is left (readyz): large requests are refused.
+  std::function<bool()> memory_exhausted;
   std::string engine_version;
   // The worker pool lent to a job for reading and checking a large upload in pieces: a piece
   // waits behind queued jobs, and the job does it itself if no worker is free first.
@@ -70,6 +72,11 @@ class Exchange {
   // Set when the client went away or the job's time limit passed; the engine polls it.
   [[nodiscard]] virtual const std::atomic<bool>* cancel_flag() const noexcept = 0;
   [[nodiscard]] virtual bool timed_out() const noexcept = 0;
+  // The memory budget (docs/server.md, "Memory budget"): the job no longer holds its upload's
+  // text nor the model read from it (after interpretation, say), so their share of
+  // --max-inflight may go to the next request now rather than when the handler returns, which
+  // gives it back anyway. Any thread; once is enough.
+  virtual void release_model() {}
 
   // Filled by the router / handler for the access log.
   std::string path_id;  // the {id} of /v1/profiles/{id}

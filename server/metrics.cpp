@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "memory_budget.hpp"
+
 namespace ncpost::server {
 namespace {
 
@@ -65,6 +67,10 @@ void Metrics::request(std::string_view route, unsigned status, std::chrono::nano
   histogram->observe(duration);
 }
 
+void Metrics::memory_refused(MemoryRefusal reason) noexcept {
+  memory_refusals_[static_cast<std::size_t>(reason)].fetch_add(1, std::memory_order_relaxed);
+}
+
 void Metrics::stage(std::string_view stage, std::chrono::nanoseconds duration) {
   Histogram* histogram = nullptr;
   {
@@ -120,6 +126,28 @@ std::string Metrics::render(const CacheCounters& cache) const {
       "# HELP ncpost_jobs_rejected_total Jobs answered 503 because the queue was full.\n"
       "# TYPE ncpost_jobs_rejected_total counter\n";
   out += "ncpost_jobs_rejected_total " + std::to_string(rejected_full.load()) + "\n";
+  if (budget != nullptr) {
+    out +=
+        "# HELP ncpost_inflight_bytes Bytes admitted requests hold or will hold (uploads, and "
+        "the expected size of the models read from them).\n# TYPE ncpost_inflight_bytes gauge\n";
+    out += "ncpost_inflight_bytes " + std::to_string(budget->in_flight()) + "\n";
+    out +=
+        "# HELP ncpost_inflight_budget_bytes The memory budget (--max-inflight).\n"
+        "# TYPE ncpost_inflight_budget_bytes gauge\n";
+    out += "ncpost_inflight_budget_bytes " + std::to_string(budget->budget()) + "\n";
+    out +=
+        "# HELP ncpost_inflight_reserve_bytes The part of the budget only small requests may "
+        "use (--inflight-reserve).\n# TYPE ncpost_inflight_reserve_bytes gauge\n";
+    out += "ncpost_inflight_reserve_bytes " + std::to_string(budget->reserve()) + "\n";
+  }
+  out +=
+      "# HELP ncpost_inflight_refusals_total Requests the memory budget refused: 503 on the "
+      "header, 503 while a chunked upload grew, 413 alone over the budget.\n"
+      "# TYPE ncpost_inflight_refusals_total counter\n";
+  static constexpr const char* kReasons[] = {"header", "upload", "too_large"};
+  for (std::size_t i = 0; i < memory_refusals_.size(); ++i)
+    out += std::string("ncpost_inflight_refusals_total{reason=\"") + kReasons[i] + "\"} " +
+           std::to_string(memory_refusals_[i].load()) + "\n";
   out +=
       "# HELP ncpost_http_connections_total Connections accepted.\n"
       "# TYPE ncpost_http_connections_total counter\n";

@@ -34,7 +34,9 @@ constexpr auto kTrimAfter = std::chrono::milliseconds(100);
 
 Server::Server(Config config, profile::ProfileStore& profiles,
                std::optional<std::string> admin_token, std::shared_ptr<spdlog::logger> log)
-    : log_(std::move(log)),
+    : budget_(config.max_inflight.value_or(default_max_inflight(std::nullopt)),
+              config.inflight_reserve.value_or(0)),
+      log_(std::move(log)),
       pool_(config.workers),
       acceptor_(ioc_),
       stop_signals_(ioc_, SIGTERM, SIGINT),
@@ -48,6 +50,8 @@ Server::Server(Config config, profile::ProfileStore& profiles,
   services_.admin_token = std::move(admin_token);
   services_.engine_version = NCPOST_VERSION;
   services_.saturated = [this] { return saturated(); };
+  services_.memory_exhausted = [this] { return budget_.exhausted(); };
+  metrics_.budget = &budget_;
   services_.helpers.start = [pool = pool_.get_executor()](parallel::Task task) {
     net::post(pool, std::move(task));
   };
@@ -81,6 +85,8 @@ int Server::run() {
   line["workers"] = config().workers;
   line["queue"] = config().queue;
   line["max_body"] = config().max_body;
+  line["max_inflight"] = budget_.budget();
+  line["inflight_reserve"] = budget_.reserve();
   line["admin_token"] = services_.admin_token.has_value();  // whether one is set, never which
   log_->info(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   log_->flush();

@@ -21,6 +21,7 @@
 
 #include "config.hpp"
 #include "handlers.hpp"
+#include "memory_budget.hpp"
 #include "metrics.hpp"
 
 namespace ncpost::server {
@@ -48,6 +49,7 @@ class Server {
   [[nodiscard]] bool try_admit() noexcept;
   void release() noexcept;
   [[nodiscard]] bool saturated() const noexcept;
+  [[nodiscard]] MemoryBudget& budget() noexcept { return budget_; }
   // A slot for reading an upload while it arrives (at most one per worker at a time); null when
   // none is free. Released when the last holder lets go.
   [[nodiscard]] std::shared_ptr<void> try_stream_read();
@@ -70,6 +72,7 @@ class Server {
   void reload_profiles();
 
   Metrics metrics_;
+  MemoryBudget budget_;
   express::SchemaRegistry schemas_;
   Services services_;
   std::shared_ptr<spdlog::logger> log_;

@@ -45,8 +45,9 @@ bool valid_request_id(std::string_view id) {
 // The handler's view of its request, from a worker thread (or inline on the IO thread).
 class SessionExchange final : public Exchange {
  public:
-  SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<JobChannel> channel)
-      : session_(std::move(session)), channel_(std::move(channel)) {}
+  SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<JobChannel> channel,
+                  MemoryBudget::Reservation* reservation = nullptr)
+      : session_(std::move(session)), channel_(std::move(channel)), reservation_(reservation) {}
   using Exchange::end_stream;
 
   void respond(Response response) override {
@@ -74,9 +75,14 @@ class SessionExchange final : public Exchange {
   }
   [[nodiscard]] bool timed_out() const noexcept override { return channel_->timed_out(); }
 
+  void release_model() override {
+    if (reservation_ != nullptr) reservation_->release();
+  }
+
  private:
   std::shared_ptr<Session> session_;
   std::shared_ptr<JobChannel> channel_;
+  MemoryBudget::Reservation* reservation_;  // the job's, on its worker
 };
 
 }  // namespace
@@ -93,6 +99,9 @@ Session::Session(Socket socket, Server& server)
   if (!ec) remote_ = endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
   socket_.set_option(net::ip::tcp::no_delay(true), ec);
   server_.services().metrics->connections++;
+  chunk_counter_ = [this](std::uint64_t, std::string_view piece, beast::error_code& e) {
+    return count_chunk(piece, e);
+  };
 }
 
 Session::~Session() {
@@ -160,6 +169,8 @@ void Session::read_header() {
   record_.open = true;
   after_ = After::NextRequest;
   shutdown_ = Shutdown::None;
+  reservation_.release();
+  memory_refusal_ = MemoryBudget::Refusal::None;
   arm_timer(server_.config().read_timeout);
   upload_parser_.reset();
   upload_.reset();
@@ -239,7 +250,7 @@ void Session::on_header(beast::error_code ec, HeadProblem problem) {
         status, status == 501 ? diag::Code::HttpTransferCoding : diag::Code::HttpBadRequest,
         status == 501 ? "Not implemented" : "Bad request", std::string(describe(problem))));
   }
-  if (refused_as_full()) return;
+  if (refused_as_full() || refused_by_budget()) return;
   take_upload_as_it_arrives();
   // curl and browsers wait for 100 Continue before a large body; answer it only once the
   // header passed its checks, so a too-large upload is refused before it is sent.
@@ -277,6 +288,62 @@ void Session::refuse_as_full() {
   (void)channel_->claim_response({});
   Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
                               "all workers are busy and the job queue is full; retry later");
+  r.set(http::field::retry_after, "1");
+  send(std::move(r));
+}
+
+// Admission by bytes (docs/server.md, "Memory budget"): a body announced by its Content-Length
+// reserves, on the header, what it will hold, so that a request that does not fit is told 503
+// before it sends its body (after 100 Continue is not sent); a chunked body reserves as it
+// arrives. Requests without a body reserve nothing and are never refused here.
+bool Session::refused_by_budget() {
+  const bool chunked = parser_->chunked();
+  const auto length = parser_->content_length();
+  if (!chunked && length.value_or(0) == 0) return false;
+  const auto& header = parser_->get();
+  const RouteMatch match = match_route(header.method(), header.target());
+  body_factor_ =
+      match.route != nullptr && match.route->reads_model ? MemoryBudget::kModelFactor : 1.0;
+  reservation_ = server_.budget().open();
+  if (chunked) {
+    parser_->on_chunk_body(chunk_counter_);
+    return false;
+  }
+  memory_refusal_ = reservation_.grow(MemoryBudget::need(*length, body_factor_));
+  if (memory_refusal_ == MemoryBudget::Refusal::None) return false;
+  if (match.route != nullptr) record_.route = match.route->name;
+  refuse_for_memory(Metrics::MemoryRefusal::Header);
+  return true;
+}
+
+// A piece of a chunked body: kept when its bytes fit the budget, else the read stops and
+// read_failed() answers.
+std::size_t Session::count_chunk(std::string_view piece, beast::error_code& ec) {
+  memory_refusal_ = reservation_.grow(MemoryBudget::need(piece.size(), body_factor_));
+  if (memory_refusal_ != MemoryBudget::Refusal::None) {
+    ec = http::error::body_limit;
+    return 0;
+  }
+  parser_->get().body().append(piece);
+  return piece.size();
+}
+
+void Session::refuse_for_memory(Metrics::MemoryRefusal reason) {
+  const auto& budget = server_.budget();
+  const bool alone = memory_refusal_ == MemoryBudget::Refusal::TooLarge;
+  server_.services().metrics->memory_refused(alone ? Metrics::MemoryRefusal::TooLarge : reason);
+  after_ = After::Linger;
+  reservation_.release();
+  (void)channel_->claim_response({});
+  if (alone)
+    return send(error_response(
+        413, diag::Code::HttpMemoryBudget, "Content too large",
+        "the request would hold more than the memory budget admits for one request (" +
+            std::to_string(budget.budget() - budget.reserve()) + " bytes of --max-inflight " +
+            std::to_string(budget.budget()) + "; a model is about 2.3 times its upload)"));
+  Response r = error_response(503, diag::Code::HttpMemoryBudget, "Service unavailable",
+                              "the memory budget (--max-inflight) is taken by requests in "
+                              "flight; retry later");
   r.set(http::field::retry_after, "1");
   send(std::move(r));
 }
@@ -347,6 +414,8 @@ void Session::read_failed(beast::error_code ec) {
     upload_->complete();  // no more slices of an upload that will not be answered
     upload_.reset();
   }
+  if (memory_refusal_ != MemoryBudget::Refusal::None)
+    return refuse_for_memory(Metrics::MemoryRefusal::Upload);
   if (timed_out)
     return send(error_response(408, diag::Code::HttpReadTimeout, "Request timeout",
                                "the request did not arrive within --read-timeout"));
@@ -406,6 +475,8 @@ void Session::handle_request() {
     } catch (const std::exception& e) {
       exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
     }
+    request_ = {};  // its body, whose share of the budget goes back now
+    reservation_.release();
     return;  // the handler's respond() started the write
   }
   if (!server_.try_admit()) {
@@ -429,37 +500,39 @@ void Session::dispatch_job(const Route& route, std::string id) {
       }));
   watch_client();
   auto request = std::make_shared<Request>(std::move(request_));
-  net::post(server_.pool(), [self = shared_from_this(), channel, request, handler = route.handler,
-                             id = std::move(id), upload = std::move(upload_),
-                             received = record_.received, &metrics]() mutable {
-    metrics.queued--;
-    metrics.active++;
-    const auto started = Clock::now();
-    {
-      SessionExchange exchange(self, channel);
-      exchange.path_id = std::move(id);
-      exchange.upload = std::move(upload);
-      exchange.received = received;
-      // A job whose client left (or whose time ran out) while it queued is not started.
-      if (!channel->cancel_flag().load()) {
-        try {
-          handler(*request, self->server_.services(), exchange);
-        } catch (const std::exception& e) {
-          exchange.respond(
-              error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
+  net::post(
+      server_.pool(), [self = shared_from_this(), channel, request, handler = route.handler,
+                       id = std::move(id), upload = std::move(upload_), received = record_.received,
+                       reservation = std::move(reservation_), &metrics]() mutable {
+        metrics.queued--;
+        metrics.active++;
+        const auto started = Clock::now();
+        {
+          SessionExchange exchange(self, channel, &reservation);
+          exchange.path_id = std::move(id);
+          exchange.upload = std::move(upload);
+          exchange.received = received;
+          // A job whose client left (or whose time ran out) while it queued is not started.
+          if (!channel->cancel_flag().load()) {
+            try {
+              handler(*request, self->server_.services(), exchange);
+            } catch (const std::exception& e) {
+              exchange.respond(
+                  error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
+            }
+          }
+          exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error",
+                                          "the handler gave no response"));  // dropped if answered
+          // A stream the handler began but did not end (it threw) is cut, never left open.
+          if (channel->handler_returned()) self->post_pump(channel);
         }
-      }
-      exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error",
-                                      "the handler gave no response"));  // dropped if answered
-      // A stream the handler began but did not end (it threw) is cut, never left open.
-      if (channel->handler_returned()) self->post_pump(channel);
-    }
-    request.reset();  // free the upload on the worker, not on the IO thread
-    self->server_.job_returned(Clock::now() - started);
-    metrics.active--;
-    self->server_.release();
-    self->post_job_finished(channel);
-  });
+        request.reset();  // free the upload on the worker, not on the IO thread
+        reservation.release();
+        self->server_.job_returned(Clock::now() - started);
+        metrics.active--;
+        self->server_.release();
+        self->post_job_finished(channel);
+      });
 }
 
 // While a job runs the connection is otherwise silent; a readable socket then means the client
@@ -706,6 +779,7 @@ void Session::close() {
   socket_.close(ec);
   timer_.cancel();
   job_timer_.cancel();
+  reservation_.release();
   if (channel_) channel_->client_gone();
 }
 

@@ -16,6 +16,7 @@
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/http.hpp>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +24,8 @@
 #include "chunked_writer.hpp"
 #include "handlers.hpp"
 #include "job_channel.hpp"
+#include "memory_budget.hpp"
+#include "metrics.hpp"
 #include "request_head.hpp"
 
 namespace ncpost::server {
@@ -109,6 +112,11 @@ class Session : public std::enable_shared_from_this<Session> {
   void on_header(boost::beast::error_code ec, HeadProblem problem);
   [[nodiscard]] bool refused_as_full();
   void refuse_as_full();  // 503 with Retry-After
+  // The memory budget: reserves what the request's body will hold (on the header, or as a
+  // chunked body arrives); true when it was refused and answered.
+  [[nodiscard]] bool refused_by_budget();
+  void refuse_for_memory(Metrics::MemoryRefusal reason);  // 503 with Retry-After, or 413
+  std::size_t count_chunk(std::string_view piece, boost::beast::error_code& ec);
   void take_upload_as_it_arrives();
   void read_body();
   // Feeds what buffer_ holds to the parser, up to the end of the message, and returns the bytes
@@ -154,6 +162,14 @@ class Session : public std::enable_shared_from_this<Session> {
   Request request_;
   http::verb verb_ = http::verb::unknown;  // of the request in progress (HEAD: no body)
   std::shared_ptr<JobChannel> channel_;
+  // The request's share of --max-inflight: its body (times the model factor for a route that
+  // reads a model); moved to its job, which gives it back.
+  MemoryBudget::Reservation reservation_;
+  double body_factor_ = 1.0;
+  MemoryBudget::Refusal memory_refusal_ = MemoryBudget::Refusal::None;
+  // Beast keeps a reference to its chunk callback: this one lives as long as the session.
+  std::function<std::size_t(std::uint64_t, std::string_view, boost::beast::error_code&)>
+      chunk_counter_;
   std::shared_ptr<Response> response_;   // a buffered response being written
   std::optional<ChunkedWriter> stream_;  // a stream under way
   std::string chunk_;                    // what the channel handed over for the next write
