@@ -10,6 +10,8 @@
 #include <fstream>
 #include <vector>
 
+#include "config.hpp"
+
 namespace ncpost::server {
 namespace {
 
@@ -126,6 +128,27 @@ TEST(MemoryBudget, MachineMemoryIsTheSmallerOfMemTotalAndTheCgroupLimit) {
   EXPECT_FALSE(machine_memory(dir / "none", dir / "none").has_value());
   EXPECT_EQ(default_max_inflight(std::nullopt), std::uint64_t{1} << 30);
   std::filesystem::remove_all(dir);
+}
+
+TEST(MemoryBudgetOptions, ParsedCheckedAndResolved) {
+  const auto parse = [](std::vector<std::string_view> args) {
+    args.insert(args.begin(), {"--listen", "127.0.0.1:0"});
+    return parse_args(args);
+  };
+  const auto given = parse({"--max-inflight", "314572800", "--inflight-reserve", "1048576"});
+  ASSERT_TRUE(given.config) << given.error;
+  const Config resolved = resolve_memory(*given.config);
+  EXPECT_EQ(resolved.max_inflight, 300 * kMiB);
+  EXPECT_EQ(resolved.inflight_reserve, kMiB);
+  EXPECT_FALSE(parse({"--max-inflight", "1000"}).config) << "below 1 MiB";
+  EXPECT_FALSE(parse({"--max-inflight", "lots"}).config);
+  EXPECT_FALSE(parse({"--max-inflight", "8388608", "--inflight-reserve", "8388608"}).config)
+      << "the reserve must leave room for large requests";
+  const Config defaults = resolve_memory(*parse({}).config);
+  ASSERT_TRUE(defaults.max_inflight && defaults.inflight_reserve);
+  EXPECT_EQ(*defaults.max_inflight, default_max_inflight(machine_memory()));
+  EXPECT_EQ(*defaults.inflight_reserve, *defaults.max_inflight / 8);
+  EXPECT_NE(usage().find("--max-inflight BYTES"), std::string_view::npos);
 }
 
 }  // namespace
