@@ -205,6 +205,14 @@ TEST(HttpMetrics, ClientsThatLeaveAreLoggedNotCountedAsAStatus) {
 
 // ---- issue 23.1, the server's part: bounded diagnostics, memory given back -------------------
 
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kLines = 24000;
+constexpr bool kCheckResident = false;
+#else
+constexpr int kLines = 240000;
+constexpr bool kCheckResident = true;
+#endif
+
 TEST(HttpDiagnostics, AnUploadsDiagnosticsAreBoundedAndItsMemoryGivenBack) {
   ServerProcess server(with_args({"--access-log", "off"}));
   ASSERT_TRUE(server.started()) << server.log();
@@ -212,7 +220,9 @@ TEST(HttpDiagnostics, AnUploadsDiagnosticsAreBoundedAndItsMemoryGivenBack) {
   const auto file = dir.path() / "brackets.txt";
   {
     std::ofstream out(file, std::ios::binary);
-    for (int i = 0; i < 240000; ++i) out << "[#\n";  // 720 KB, three diagnostics a line
+    // 720 KB, three diagnostics a line (a tenth under AddressSanitizer, which is slower and
+    // whose allocator keeps freed memory in quarantine, so the resident check is not made).
+    for (int i = 0; i < kLines; ++i) out << "[#\n";
   }
   expect_serving(server);
   const std::uint64_t before = resident_bytes(server.pid());
@@ -238,8 +248,9 @@ TEST(HttpDiagnostics, AnUploadsDiagnosticsAreBoundedAndItsMemoryGivenBack) {
   const std::uint64_t after = resident_bytes(server.pid());
   RecordProperty("resident_before_mb", std::to_string(before >> 20));
   RecordProperty("resident_after_mb", std::to_string(after >> 20));
-  EXPECT_LT(after, before + (std::uint64_t{96} << 20))
-      << "resident " << (before >> 20) << " MB before, " << (after >> 20) << " MB after";
+  if (kCheckResident)
+    EXPECT_LT(after, before + (std::uint64_t{96} << 20))
+        << "resident " << (before >> 20) << " MB before, " << (after >> 20) << " MB after";
   expect_serving(server);
 }
 
