@@ -10,6 +10,8 @@ build_packages=(
   libxml2-dev libxslt1-dev                    # libxml2, libxslt and libexslt
   nlohmann-json3-dev libspdlog-dev libfmt-dev
   libpolyclipping-dev                         # Clipper 1: offsets of general feature profiles
+  libxxhash-dev                               # XXH64 of the server's ETags
+  nettle-dev                                  # SHA-256 of profile versions
 )
 test_packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev

@@ -196,13 +196,16 @@ void handle_healthz(Request&, Services&, Exchange& exchange) {
 void handle_readyz(Request&, Services& services, Exchange& exchange) {
   const auto profiles = services.profiles->list().profiles;
   const bool saturated = services.saturated && services.saturated();
+  const bool memory = services.memory_exhausted && services.memory_exhausted();
+  const bool ready = !profiles.empty() && !saturated && !memory;
   json body;
-  body["status"] = (!profiles.empty() && !saturated) ? "ready" : "not ready";
+  body["status"] = ready ? "ready" : "not ready";
   body["profiles"] = profiles.size();
   body["queue_saturated"] = saturated;
-  Response r = json_response(!profiles.empty() && !saturated ? 200 : 503, body);
+  body["memory_exhausted"] = memory;
+  Response r = json_response(ready ? 200 : 503, body);
   r.set(http::field::cache_control, "no-store");
-  if (saturated) r.set(http::field::retry_after, "1");
+  if (saturated || memory) r.set(http::field::retry_after, "1");
   exchange.respond(std::move(r));
 }
 
@@ -890,6 +893,7 @@ RouteMatch match_route(http::verb method, std::string_view target) {
       matches = path == pattern;
     }
     if (!matches) continue;
+    result.pattern = route.pattern;
     // HEAD is answered as GET by the session.
     if (route.method == method || (method == http::verb::head && route.method == http::verb::get)) {
       result.route = &route;
@@ -898,6 +902,7 @@ RouteMatch match_route(http::verb method, std::string_view target) {
     }
     if (!allow.empty()) allow += ", ";
     allow += std::string(http::to_string(route.method));
+    if (route.method == http::verb::get) allow += ", HEAD";
   }
   result.status = allow.empty() ? 404 : 405;
   result.allow = std::move(allow);

@@ -90,7 +90,7 @@ TEST(ServerRoutes, UnknownRouteAndMethod) {
   EXPECT_EQ(missing.header("Content-Type"), "application/problem+json");
   auto method = curl({"-X", "DELETE", server.url("/healthz")});
   EXPECT_EQ(method.status, 405);
-  EXPECT_EQ(method.header("Allow"), "GET");
+  EXPECT_EQ(method.header("Allow"), "GET, HEAD");
   expect_serving(server);
 }
 

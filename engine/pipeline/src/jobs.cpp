@@ -2,7 +2,7 @@
 
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/canon/xml.hpp"
-#include "ncpost/diag/json.hpp"
+#include "ncpost/pipeline/diagnostics.hpp"
 #include "ncpost/express/express_x.hpp"
 #include "ncpost/express/parse.hpp"
 #include "ncpost/p21/writer.hpp"
@@ -210,7 +210,7 @@ nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info) {
 
 nlohmann::ordered_json inspection_json(const Inspection& inspection) {
   nlohmann::ordered_json json = to_json(inspection.info);
-  json["diagnostics"] = diag::to_json(inspection.job.diagnostics);
+  json["diagnostics"] = diagnostics_json(inspection.job.diagnostics);
   return json;
 }
 

@@ -75,6 +75,36 @@ TEST(Sha256, KnownVectors) {
   EXPECT_EQ(h.hex(), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
+// A version names the folder a profile is stored in and goes into every post's ETag: the digest
+// library must not change it. The profile is written here, so that edits to the built-in
+// profiles do not move the pinned value (computed with the hand-written SHA-256 it replaced).
+TEST_F(StoreTest, VersionOfAFixedProfileIsPinned) {
+  const std::string json = R"({
+  "id": "pinned", "name": "Pinned", "controller": "linuxcnc",
+  "output": {"extension": ".ngc", "mime_type": "text/plain", "line_ending": "lf"},
+  "block_numbers": {"start": 10, "increment": 10, "maximum": 99999, "wrap": true},
+  "formats": {
+    "length": {"decimals": 4, "decimal_point": true, "leading_zero": true, "trailing_zeros": false},
+    "angle": {"decimals": 3, "decimal_point": true, "leading_zero": true, "trailing_zeros": false},
+    "feed": {"decimals": 1, "decimal_point": true, "leading_zero": true, "trailing_zeros": false},
+    "speed": {"decimals": 0, "decimal_point": false, "leading_zero": true, "trailing_zeros": false},
+    "dwell": {"decimals": 3, "decimal_point": true, "leading_zero": true, "trailing_zeros": false}
+  },
+  "units": "mm",
+  "capabilities": {"arcs": "ijk", "helical": false, "canned_cycles": "expand", "nurbs": "linearize"}
+}
+)";
+  const std::string xsl =
+      "<xsl:stylesheet version=\"1.0\" xmlns:xsl=\"http://www.w3.org/1999/XSL/Transform\">\n"
+      "<xsl:output method=\"text\"/>\n<xsl:template match=\"/\">%</xsl:template>\n"
+      "</xsl:stylesheet>\n";
+  auto store = writable();
+  const auto put = store.put("pinned", json, xsl);
+  ASSERT_TRUE(put.profile) << all(put.diagnostics);
+  EXPECT_EQ(put.profile->version,
+            "3731b4181a81e77e90360a1fa32d9af40d49d306c2aa6790494fa5b93f9bc2f2");
+}
+
 TEST_F(StoreTest, PutCreatesThenReplacesAndKeepsRunningVersions) {
   auto store = writable();
   EXPECT_TRUE(store.writable());
