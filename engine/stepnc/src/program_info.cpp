@@ -293,7 +293,8 @@ diag::Diagnostic no_program_diagnostic(const p21::Model& model) {
   if (aim)
     return diag::make(diag::Code::StepncAimNotSupported, 0, 0,
                       "this is an AP238 AIM file (MACHINING_PROJECT in the integrated CNC "
-                      "schema); ncpost reads ISO 14649 ARM programs only");
+                      "schema), not an ISO 14649 ARM program: the AP238 interpreter reads it, "
+                      "the ISO 14649 one does not");
   return diag::make(diag::Code::StepncNoProject, 0, 0,
                     "no PROJECT instance: not an ISO 14649 program");
 }

@@ -38,8 +38,9 @@ struct InspectOptions {
 [[nodiscard]] ProgramInfo inspect(const p21::Model& model, const express::SchemaRegistry& schemas,
                                   const InspectOptions& options = {});
 
-// Why a model without a PROJECT is not an ISO 14649 program: an AP238 AIM file (STEPNC-006), or
-// no program at all (STEPNC-001). Shared by inspect and the interpreter.
+// Why a model without a PROJECT is not an ISO 14649 program: an AP238 AIM file (STEPNC-006:
+// engine/ap238 reads those), or no program at all (STEPNC-001). Shared by inspect and the
+// interpreter.
 [[nodiscard]] diag::Diagnostic no_program_diagnostic(const p21::Model& model);
 
 // Diagnostics as JSON objects {file, line, column, severity, code, message}.
