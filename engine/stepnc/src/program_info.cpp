@@ -35,11 +35,11 @@ class Inspector {
 
   ProgramInfo run() {
     ordered_json out;
-    out["header"] = header();
+    out["header"] = header_json(model_);
     out["project"] = project();
     out["workpieces"] = workpieces_;
     out["tools"] = tools();
-    out["statistics"] = statistics();
+    out["statistics"] = statistics_json(model_, workingsteps_);
     return {std::move(out), std::move(diagnostics_)};
   }
 
@@ -49,29 +49,6 @@ class Inspector {
     diagnostics_.push_back(diag::make(code, pos.line, pos.column, std::move(message)));
   }
   static std::string name_of(const Instance& i) { return "#" + std::to_string(i.id); }
-
-  ordered_json header() const {
-    ordered_json h;
-    static constexpr std::pair<std::string_view, std::array<std::string_view, 7>> kFields[] = {
-        {"FILE_DESCRIPTION", {"description", "implementation_level"}},
-        {"FILE_NAME",
-         {"name", "time_stamp", "author", "organization", "preprocessor_version",
-          "originating_system", "authorization"}},
-    };
-    for (const auto& [entity, fields] : kFields) {
-      const Instance* inst = model_.header_entity(entity);
-      for (std::size_t i = 0; i < fields.size() && !fields[i].empty(); ++i) {
-        ordered_json value = nullptr;
-        if (inst != nullptr && i < inst->count) value = text_value(model_, model_.params(*inst)[i]);
-        h[std::string(fields[i])] = value;
-      }
-    }
-    ordered_json schemas = ordered_json::array();
-    if (const Instance* fs = model_.header_entity("FILE_SCHEMA"); fs && fs->count > 0)
-      schemas = text_value(model_, model_.params(*fs)[0]);
-    h["schemas"] = schemas;
-    return h;
-  }
 
   const Instance* deref(std::optional<Value> v) const {
     if (!v || !v->is_reference()) return nullptr;
@@ -230,35 +207,6 @@ class Inspector {
     return out;
   }
 
-  ordered_json statistics() const {
-    ordered_json s;
-    s["bytes"] = model_.text().size();
-    s["instances"] = model_.instances().size();
-    s["workingsteps"] = workingsteps_;
-    std::map<std::string, std::size_t> by_type;
-    for (p21::KeywordId k = 0; k < model_.keyword_count(); ++k) {
-      const auto n = model_.instance_indices_of(k).size();
-      if (n == 0) continue;
-      if (k == Model::kComplexKeyword) {
-        for (std::uint32_t index : model_.instance_indices_of(k)) {
-          std::string name;
-          for (Value record : model_.params(model_.instances()[index])) {
-            if (!name.empty()) name += '+';
-            name += model_.keyword(record.keyword_id());
-          }
-          ++by_type["(" + name + ")"];
-        }
-        continue;
-      }
-      by_type[std::string(model_.keyword(k))] += n;
-    }
-    s["entity_types"] = by_type.size();
-    ordered_json counts = ordered_json::object();
-    for (const auto& [name, n] : by_type) counts[name] = n;
-    s["by_type"] = std::move(counts);
-    return s;
-  }
-
   const Model& model_;
   AttributeReader attributes_;
   const InspectOptions& options_;
@@ -271,6 +219,58 @@ class Inspector {
 };
 
 }  // namespace
+
+ordered_json header_json(const p21::Model& model) {
+  ordered_json h;
+  static constexpr std::pair<std::string_view, std::array<std::string_view, 7>> kFields[] = {
+      {"FILE_DESCRIPTION", {"description", "implementation_level"}},
+      {"FILE_NAME",
+       {"name", "time_stamp", "author", "organization", "preprocessor_version",
+        "originating_system", "authorization"}},
+  };
+  for (const auto& [entity, fields] : kFields) {
+    const Instance* inst = model.header_entity(entity);
+    for (std::size_t i = 0; i < fields.size() && !fields[i].empty(); ++i) {
+      ordered_json value = nullptr;
+      if (inst != nullptr && i < inst->count) value = text_value(model, model.params(*inst)[i]);
+      h[std::string(fields[i])] = value;
+    }
+  }
+  ordered_json schemas = ordered_json::array();
+  if (const Instance* fs = model.header_entity("FILE_SCHEMA"); fs && fs->count > 0)
+    schemas = text_value(model, model.params(*fs)[0]);
+  h["schemas"] = schemas;
+  return h;
+}
+
+ordered_json statistics_json(const p21::Model& model, std::size_t workingsteps) {
+  ordered_json s;
+  s["bytes"] = model.text().size();
+  s["instances"] = model.instances().size();
+  s["workingsteps"] = workingsteps;
+  std::map<std::string, std::size_t> by_type;
+  for (p21::KeywordId k = 0; k < model.keyword_count(); ++k) {
+    const auto n = model.instance_indices_of(k).size();
+    if (n == 0) continue;
+    if (k == Model::kComplexKeyword) {
+      for (std::uint32_t index : model.instance_indices_of(k)) {
+        std::string name;
+        for (Value record : model.params(model.instances()[index])) {
+          if (!name.empty()) name += '+';
+          name += model.keyword(record.keyword_id());
+        }
+        ++by_type["(" + name + ")"];
+      }
+      continue;
+    }
+    by_type[std::string(model.keyword(k))] += n;
+  }
+  s["entity_types"] = by_type.size();
+  ordered_json counts = ordered_json::object();
+  for (const auto& [name, n] : by_type) counts[name] = n;
+  s["by_type"] = std::move(counts);
+  return s;
+}
 
 ProgramInfo inspect(const p21::Model& model, const express::SchemaSet& schema,
                     const InspectOptions& options) {

@@ -54,6 +54,10 @@ struct Frame {
   [[nodiscard]] bool identity() const;
 };
 
+// The frame that undoes `f` (f.then(inverse(f)) is the identity): `f`'s parent in `f`'s
+// coordinates. `f`'s axes must be orthonormal, as placements give them.
+[[nodiscard]] Frame inverse(const Frame& f);
+
 // Reads geometry instances, reporting every problem at the instance that has it.
 class GeometryReader {
  public:

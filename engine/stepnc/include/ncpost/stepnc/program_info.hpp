@@ -43,6 +43,12 @@ struct InspectOptions {
 // interpreter.
 [[nodiscard]] diag::Diagnostic no_program_diagnostic(const p21::Model& model);
 
+// The "header" member: FILE_DESCRIPTION, FILE_NAME and FILE_SCHEMA by field name.
+[[nodiscard]] nlohmann::ordered_json header_json(const p21::Model& model);
+// The "statistics" member: bytes, instances, workingsteps, entity types and counts by type.
+[[nodiscard]] nlohmann::ordered_json statistics_json(const p21::Model& model,
+                                                     std::size_t workingsteps);
+
 // Diagnostics as JSON objects {file, line, column, severity, code, message}.
 [[nodiscard]] nlohmann::ordered_json diagnostics_json(const std::vector<diag::Diagnostic>& list,
                                                       std::string_view file);

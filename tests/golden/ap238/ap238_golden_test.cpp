@@ -1,0 +1,159 @@
+// AP238 AIM programs: the corpus's milling programs traced against their golden traces, its
+// turning programs refused by name, the truncated AIM stub still refused by the reader. The
+// goldens were checked by hand against the files' own numbers (the tests below say which) and
+// then frozen; NCPOST_UPDATE_GOLDEN=1 rewrites them (review the diff).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "corpus.hpp"
+#include "ncpost/ap238/ap238.hpp"
+#include "ncpost/canon/trace.hpp"
+#include "ncpost/express/registry.hpp"
+#include "ncpost/pipeline/load.hpp"
+
+namespace ncpost::ap238 {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Traced {
+  std::string trace;
+  std::vector<diag::Diagnostic> diagnostics;  // loading and interpreting
+  bool loaded = false;
+};
+
+const express::SchemaRegistry& registry() {
+  static const express::SchemaRegistry r;
+  return r;
+}
+
+Traced trace_of(const fs::path& file, const stepnc::InterpretOptions& options = {}) {
+  pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry());
+  Traced out;
+  out.diagnostics = loaded.diagnostics;
+  out.loaded = loaded.ok();
+  if (!loaded.ok()) return out;
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  canon::TraceWriter writer([&](std::string_view piece) { out.trace += piece; });
+  auto result = ap238::interpret(loaded.model, attributes, writer, options);
+  out.diagnostics.insert(out.diagnostics.end(), result.diagnostics.begin(),
+                         result.diagnostics.end());
+  return out;
+}
+
+std::string golden_text(const Traced& t, const std::string& name) {
+  std::string text = t.trace;
+  for (const auto& d : t.diagnostics) text += diag::format(d, name) + "\n";
+  return text;
+}
+
+void expect_golden(const std::string& actual, const fs::path& golden) {
+  if (const char* update = std::getenv("NCPOST_UPDATE_GOLDEN");
+      update && std::string(update) == "1") {
+    std::ofstream(golden, std::ios::binary) << actual;
+    return;
+  }
+  ASSERT_TRUE(fs::exists(golden)) << golden;
+  EXPECT_EQ(actual, test::read_file(golden)) << "differs from " << golden;
+}
+
+bool has_line(const std::string& trace, const std::string& call) {
+  return trace.find(" " + call + "\n") != std::string::npos;
+}
+
+std::size_t errors(const Traced& t) {
+  return static_cast<std::size_t>(
+      std::count_if(t.diagnostics.begin(), t.diagnostics.end(),
+                    [](const diag::Diagnostic& d) { return d.severity == diag::Severity::Error; }));
+}
+
+// The milling programs of p21-aim/ (every file but the two turning ones).
+std::vector<std::string> milling_files(const fs::path& corpus) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(corpus / "p21-aim"))
+    if (e.path().extension() == ".stpnc") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  std::erase_if(names, [](const std::string& n) {
+    return n == "nextnc_autodesk-face" || n == "nextnc_autodesk-profile";
+  });
+  return names;
+}
+
+TEST(Ap238Corpus, EveryMillingProgramMatchesItsGoldenTrace) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const auto names = milling_files(corpus);
+  EXPECT_EQ(names.size(), 17u);
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    const Traced t = trace_of(corpus / "p21-aim" / (name + ".stpnc"));
+    ASSERT_TRUE(t.loaded);
+    EXPECT_EQ(errors(t), 0u) << golden_text(t, name);
+    EXPECT_TRUE(has_line(t.trace, "PROGRAM_END()")) << t.trace;
+    expect_golden(golden_text(t, name + ".stpnc"),
+                  test::source_dir() / "tests/golden/ap238/corpus" / (name + ".trace"));
+  }
+}
+
+// The two turning programs are refused before any canonical call, by an error that names turning
+// and the instance that makes the program a turning one.
+TEST(Ap238Corpus, TurningProgramsAreRefusedNamingTurning) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  for (const char* name : {"nextnc_autodesk-face", "nextnc_autodesk-profile"}) {
+    SCOPED_TRACE(name);
+    const Traced t = trace_of(corpus / "p21-aim" / (std::string(name) + ".stpnc"));
+    ASSERT_TRUE(t.loaded);  // the schema check passes: the refusal is the interpreter's
+    EXPECT_TRUE(t.trace.empty()) << t.trace;
+    ASSERT_EQ(errors(t), 1u) << golden_text(t, name);
+    const auto refusal =
+        std::find_if(t.diagnostics.begin(), t.diagnostics.end(),
+                     [](const auto& d) { return d.severity == diag::Severity::Error; });
+    EXPECT_EQ(refusal->code_id(), "AP238-005");
+    EXPECT_NE(refusal->message.find("turning programs are not supported"), std::string::npos)
+        << refusal->message;
+    EXPECT_NE(refusal->message.find("#48 (TURNING_TYPE_OPERATION)"), std::string::npos)
+        << refusal->message;
+  }
+}
+
+// The truncated STEP-NC Maker file keeps being refused by the reader, which names each
+// reference to an instance that was cut out; nothing is interpreted.
+TEST(Ap238Corpus, TruncatedStubIsRefusedWithItsDanglingReferences) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const Traced t = trace_of(corpus / "p21/efrainrodriguez_exp2.stpnc");
+  EXPECT_FALSE(t.loaded);
+  EXPECT_TRUE(t.trace.empty());
+  std::string all;
+  for (const auto& d : t.diagnostics) all += diag::format(d, "exp2") + "\n";
+  EXPECT_NE(all.find("P21-040: #20 used by #11 attribute 5 is not defined"), std::string::npos)
+      << all;
+  EXPECT_NE(all.find("P21-040: #18 used by #13 attribute 3 is not defined"), std::string::npos)
+      << all;
+}
+
+// inspect: the tree of an AIM program in the ARM's JSON shape (docs/inspect.md).
+TEST(Ap238Corpus, InspectGivesTheArmShape) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const auto file = corpus / "p21-aim/nextnc_autodesk-mill-toolchange.stpnc";
+  pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry());
+  ASSERT_TRUE(loaded.ok());
+  const stepnc::ProgramInfo info = ap238::inspect(loaded.model, *loaded.schema);
+  EXPECT_TRUE(info.diagnostics.empty());
+  const auto& main = info.json["project"]["main_workplan"];
+  EXPECT_EQ(main["type"], "MACHINING_WORKPLAN");
+  ASSERT_EQ(main["elements"].size(), 2u);
+  EXPECT_EQ(main["elements"][1]["name"], "2D-Contour");
+  EXPECT_EQ(main["elements"][1]["operation"]["type"], "MILLING_TYPE_OPERATION");
+  EXPECT_EQ(main["elements"][1]["tool"]["name"], "2");
+  EXPECT_EQ(info.json["tools"].size(), 2u);
+  EXPECT_EQ(info.json["tools"][1]["number"], 2);
+  EXPECT_EQ(info.json["statistics"]["workingsteps"], 2);
+  expect_golden(
+      info.json.dump(2) + "\n",
+      test::source_dir() / "tests/golden/ap238/corpus/nextnc_autodesk-mill-toolchange.json");
+}
+
+}  // namespace
+}  // namespace ncpost::ap238
