@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <fstream>
+#include <regex>
 
 #include "corpus.hpp"
 #include "ncpost/ap238/ap238.hpp"
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
+#include "ncpost/stepnc/interpreter.hpp"
 
 namespace ncpost::ap238 {
 namespace {
@@ -154,6 +156,57 @@ TEST(Ap238Corpus, InspectGivesTheArmShape) {
       info.json.dump(2) + "\n",
       test::source_dir() / "tests/golden/ap238/corpus/nextnc_autodesk-mill-toolchange.json");
 }
+
+// ---------------------------------------------------------------------------------------------
+// The project's own programs, each written in the ARM (cases/<name>.arm.stp) and converted by
+// hand to the AIM (cases/<name>.aim.stp, following docs/ap238.md). The AIM file keeps the ARM
+// ids of the instances that stand for ARM objects, so the two canonical programs must be
+// identical call for call; only the entity names in the structure markers differ (PROJECT /
+// MACHINING_PROJECT, WORKPLAN / MACHINING_WORKPLAN, SETUP / MACHINING_SETUP, RAPID_MOVEMENT /
+// MACHINING_RAPID_MOVEMENT), as each names its own file's entity.
+
+Traced arm_trace_of(const fs::path& file) {
+  pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry());
+  Traced out;
+  out.diagnostics = loaded.diagnostics;
+  out.loaded = loaded.ok();
+  if (!loaded.ok()) return out;
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  canon::TraceWriter writer([&](std::string_view piece) { out.trace += piece; });
+  auto result = stepnc::interpret(loaded.model, attributes, writer, {});
+  out.diagnostics.insert(out.diagnostics.end(), result.diagnostics.begin(),
+                         result.diagnostics.end());
+  return out;
+}
+
+// The trace with the entity name of each structure marker left out.
+std::string without_marker_entities(const std::string& trace) {
+  static const std::regex marker(
+      R"(((?:PROJECT|WORKPLAN|SETUP|WORKINGSTEP)_(?:BEGIN|END)\(#\d+), [A-Z_0-9]+,)");
+  return std::regex_replace(trace, marker, "$1,");
+}
+
+class ArmEqualsAim : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ArmEqualsAim, SameCanonicalProgram) {
+  const fs::path cases = test::source_dir() / "tests/golden/ap238/cases";
+  const Traced arm = arm_trace_of(cases / (GetParam() + ".arm.stp"));
+  const Traced aim = trace_of(cases / (GetParam() + ".aim.stp"));
+  ASSERT_TRUE(arm.loaded) << golden_text(arm, GetParam() + ".arm.stp");
+  ASSERT_TRUE(aim.loaded) << golden_text(aim, GetParam() + ".aim.stp");
+  EXPECT_TRUE(arm.diagnostics.empty()) << golden_text(arm, GetParam() + ".arm.stp");
+  EXPECT_TRUE(aim.diagnostics.empty()) << golden_text(aim, GetParam() + ".aim.stp");
+  EXPECT_GT(std::count(aim.trace.begin(), aim.trace.end(), '\n'), 40);
+  EXPECT_EQ(without_marker_entities(arm.trace), without_marker_entities(aim.trace));
+  expect_golden(golden_text(aim, GetParam() + ".aim.stp"), cases / (GetParam() + ".trace"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, ArmEqualsAim, ::testing::Values("own-mill-mm"),
+                         [](const auto& param_info) {
+                           std::string n = param_info.param;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
 
 }  // namespace
 }  // namespace ncpost::ap238
