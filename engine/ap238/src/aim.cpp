@@ -65,13 +65,40 @@ const Instance* Aim::ref(const Instance& i, std::string_view attribute) {
   return v && v->is_reference() ? model_.find(v->id()) : nullptr;
 }
 
+std::vector<const Instance*> Aim::instances_of(std::string_view entity) const {
+  const express::SchemaSet& schema = attributes_.schema();
+  const express::Entity* wanted = schema.find_entity(entity);
+  std::vector<std::uint32_t> indices;
+  if (wanted == nullptr) return {};
+  for (p21::KeywordId k = 0; k < model_.keyword_count(); ++k) {
+    const auto of_keyword = model_.instance_indices_of(k);
+    if (k == p21::Model::kExternalKeyword || of_keyword.empty()) continue;
+    if (k == p21::Model::kComplexKeyword) {
+      for (const std::uint32_t i : of_keyword)
+        if (attributes_.is_a(model_.instances()[i], wanted)) indices.push_back(i);
+      continue;
+    }
+    const express::Entity* e = schema.find_entity(model_.keyword(k));
+    if (e != nullptr && schema.is_subtype_of(*e, *wanted))
+      indices.insert(indices.end(), of_keyword.begin(), of_keyword.end());
+  }
+  std::sort(indices.begin(), indices.end());
+  std::vector<const Instance*> out;
+  out.reserve(indices.size());
+  for (const std::uint32_t i : indices)
+    if (model_.instances()[i].id != 0) out.push_back(&model_.instances()[i]);
+  return out;
+}
+
 std::vector<const Instance*> Aim::referring(const Instance& target, std::string_view entity,
                                             std::string_view attribute) {
   std::vector<const Instance*> out;
-  for (const std::uint32_t index : links_.referrers(target)) {
-    const Instance& source = links_.instance(index);
-    if (!out.empty() && out.back() == &source) continue;
-    if (is_a(source, entity) && ref(source, attribute) == &target) out.push_back(&source);
+  const auto from = links_.referrers(target);
+  const auto through = links_.links(target);
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    if (attribute_of(through[i]) != attribute) continue;
+    const Instance& source = links_.instance(from[i]);
+    if (is_a(source, entity)) out.push_back(&source);
   }
   return out;
 }
@@ -118,22 +145,59 @@ std::vector<const Instance*> Aim::related(const Instance& method, std::string_vi
 
 std::vector<Property> Aim::properties(const Instance& owner) {
   std::vector<Property> out;
-  for (const std::uint32_t index : links_.referrers(owner)) {
-    const Instance& p = links_.instance(index);
-    const bool action = is_a(p, "action_property");
-    if (!action && !is_a(p, "resource_property")) continue;
-    if (ref(p, action ? "definition" : "resource") != &owner) continue;
-    Property property{&p, text(p, "name"), {}};
-    for (const std::uint32_t r : links_.referrers(p)) {
-      const Instance& pr = links_.instance(r);
-      const bool fits = action ? is_a(pr, "action_property_representation")
-                               : is_a(pr, "resource_property_representation");
-      if (!fits || ref(pr, "property") != &p) continue;
-      if (const Instance* rep = ref(pr, "representation")) property.representations.push_back(rep);
-    }
-    out.push_back(std::move(property));
-  }
+  properties(owner, out);
   return out;
+}
+
+void Aim::properties(const Instance& owner, std::vector<Property>& out) {
+  out.clear();
+  const auto from = links_.referrers(owner);
+  const auto through = links_.links(owner);
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const bool action = through[i] == Link::PropertyDefinition;
+    if (!action && through[i] != Link::ResourceProperty) continue;
+    const Instance& p = links_.instance(from[i]);
+    Property& property = out.emplace_back();
+    property.instance = &p;
+    property.name = text(p, "name");
+    const Link representation =
+        action ? Link::PropertyRepresentation : Link::ResourceRepresentation;
+    const auto pr_from = links_.referrers(p);
+    const auto pr_through = links_.links(p);
+    for (std::size_t k = 0; k < pr_from.size(); ++k)
+      if (pr_through[k] == representation)
+        if (const Instance* rep = ref(links_.instance(pr_from[k]), "representation"))
+          property.representations.push_back(rep);
+  }
+}
+
+const Instance* Aim::first_related(const Instance& method, std::string_view relationship,
+                                   std::size_t& count) {
+  const Instance* first = nullptr;
+  count = 0;
+  const auto from = links_.referrers(method);
+  const auto through = links_.links(method);
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    if (through[i] != Link::RelatingMethod) continue;
+    const Instance& r = links_.instance(from[i]);
+    if (!is_a(r, relationship)) continue;
+    const Instance* target = ref(r, "related_method");
+    if (target == nullptr) continue;
+    if (first == nullptr) first = target;
+    ++count;
+  }
+  return first;
+}
+
+const Instance* Aim::first_item(const Instance& representation, std::string_view entity,
+                                std::string_view name) {
+  const auto list = get(representation, "items");
+  if (!list || !list->is_list()) return nullptr;
+  for (const p21::Value v : model_.items(*list)) {
+    const Instance* i = v.is_reference() ? model_.find(v.id()) : nullptr;
+    if (i != nullptr && is_a(*i, entity) && (name.empty() || text_is(*i, "name", name))) return i;
+  }
+  return nullptr;
 }
 
 std::vector<const Instance*> Aim::items(const Instance& representation) {
@@ -146,15 +210,26 @@ std::vector<const Instance*> Aim::items(const Instance& representation) {
 }
 
 const Instance* Aim::item(const Property& p, std::string_view entity, std::string_view name) {
-  for (const Instance* rep : p.representations)
-    for (const Instance* i : items(*rep))
-      if (is_a(*i, entity) && (name.empty() || text_is(*i, "name", name))) return i;
-  return nullptr;
+  const Instance* found = nullptr;
+  p.representations.for_each([&](const Instance& rep) {
+    if (found == nullptr) found = first_item(rep, entity, name);
+  });
+  return found;
 }
 
 std::optional<std::string> Aim::description_of(const Instance* item) {
   if (item == nullptr || !is_a(*item, "descriptive_representation_item")) return std::nullopt;
   return text(*item, "description");
+}
+
+const std::string& Aim::described(const Property& p) {
+  static const std::string kNoText;
+  if (p.representations.empty()) return kNoText;
+  const std::uint64_t rep = p.representations.front()->id;
+  if (const auto known = descriptions_.find(rep); known != descriptions_.end())
+    return known->second;
+  std::string text = description_of(item(p, "descriptive_representation_item")).value_or("");
+  return descriptions_.emplace(rep, std::move(text)).first->second;
 }
 
 std::optional<Quantity> Aim::measure(const Instance& item) {

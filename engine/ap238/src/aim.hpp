@@ -58,11 +58,34 @@ struct ContextUnits {
   double radians_per_angle = 1;
 };
 
+// The representations that give a property its value: almost always one, kept inline (a
+// program has a property per toolpath and kind); more go to a vector.
+class Representations {
+ public:
+  void push_back(const Instance* r) {
+    if (first_ == nullptr)
+      first_ = r;
+    else
+      rest_.push_back(r);
+  }
+  [[nodiscard]] bool empty() const { return first_ == nullptr; }
+  [[nodiscard]] const Instance* front() const { return first_; }
+  template <class F>
+  void for_each(F&& f) const {
+    if (first_ != nullptr) f(*first_);
+    for (const Instance* r : rest_) f(*r);
+  }
+
+ private:
+  const Instance* first_ = nullptr;
+  std::vector<const Instance*> rest_;
+};
+
 // A property of an AIM object: its name and the representations that give its value.
 struct Property {
   const Instance* instance = nullptr;  // action_property or resource_property
   std::string name;
-  std::vector<const Instance*> representations;
+  Representations representations;
 };
 
 // A conversion-based unit defined through this many others is refused (a cycle, or hostile).
@@ -100,6 +123,10 @@ class Aim {
                              std::string_view wanted);
   [[nodiscard]] const Instance* ref(const Instance& i, std::string_view attribute);
 
+  // Every instance of `entity` or of a subtype, in file order (keyword by keyword: the entity
+  // of a keyword is looked up once, not per instance).
+  [[nodiscard]] std::vector<const Instance*> instances_of(std::string_view entity) const;
+
   // ---- links ----
   // The instances of `entity` whose `attribute` refers to `target`, in file order.
   [[nodiscard]] std::vector<const Instance*> referring(const Instance& target,
@@ -110,10 +137,19 @@ class Aim {
   // AP238-012 warning at `method`), the others in file order.
   [[nodiscard]] std::vector<const Instance*> related(const Instance& method,
                                                      std::string_view relationship);
-  // The properties (action_property, resource_property) that describe `owner`.
+  // The properties (action_property, resource_property) that describe `owner`; the second
+  // form refills `out`, keeping its storage (the interpreter reads every toolpath's).
   [[nodiscard]] std::vector<Property> properties(const Instance& owner);
+  void properties(const Instance& owner, std::vector<Property>& out);
+  // The related_method of the first relationship of kind `relationship` from `method` (in
+  // file order), and how many there are; no allocation.
+  [[nodiscard]] const Instance* first_related(const Instance& method, std::string_view relationship,
+                                              std::size_t& count);
   // The representation items of a representation.
   [[nodiscard]] std::vector<const Instance*> items(const Instance& representation);
+  // Its first item that is `entity` and, when `name` is not empty, is named so; null if none.
+  [[nodiscard]] const Instance* first_item(const Instance& representation, std::string_view entity,
+                                           std::string_view name = {});
   // The first item of the property's representations that is `entity` and, when `name` is not
   // empty, is named so.
   [[nodiscard]] const Instance* item(const Property& p, std::string_view entity,
@@ -122,6 +158,9 @@ class Aim {
   // ---- values ----
   // A descriptive_representation_item's text, or nullopt.
   [[nodiscard]] std::optional<std::string> description_of(const Instance* item);
+  // The text of the property's first descriptive item ("" without one), remembered per
+  // representation: writers share one representation among thousands of toolpaths.
+  [[nodiscard]] const std::string& described(const Property& p);
   // A measure (measure_representation_item, measure_with_unit) in base units; nullopt when its
   // value is not a number or its unit cannot be read (the caller reports AP238-008).
   [[nodiscard]] std::optional<Quantity> measure(const Instance& item);
@@ -136,6 +175,7 @@ class Aim {
   Links links_;
   std::unordered_map<std::uint64_t, std::optional<Unit>> units_;
   std::unordered_map<std::uint64_t, ContextUnits> contexts_;
+  std::unordered_map<std::uint64_t, std::string> descriptions_;  // by representation id
   std::vector<std::uint64_t> sequence_warned_;
 };
 

@@ -180,6 +180,7 @@ class Interpreter {
   // Properties of `owner`, each counted once per instance for the end-of-program lists of what
   // was not mapped (AP238-009) and what a vendor documents (AP238-010).
   std::vector<Property> properties(const Instance& owner, Owner kind);
+  void properties(const Instance& owner, Owner kind, std::vector<Property>& out);
   void report_properties();
 
   // ---- program ----
@@ -231,7 +232,8 @@ class Interpreter {
   };
   std::map<std::pair<std::string, std::string>, std::size_t> tally_index_;
   std::vector<Tally> tallies_;
-  std::unordered_set<std::uint64_t> tallied_owners_;
+  std::unordered_set<std::uint64_t> tallied_tools_;
+  std::vector<Property> path_properties_;  // the current toolpath's, storage kept
   std::size_t errors_checked_ = 0;
   std::size_t errors_ = 0;
   bool stopped_ = false;
@@ -282,48 +284,51 @@ bool Interpreter::stopped() {
 // coordinates (X radius, Z axial) are not a milling machine's, and posting them would move the
 // wrong axes.
 bool Interpreter::refuse_non_milling() {
-  const Instance* first = nullptr;
-  std::string what;
-  std::size_t count = 0;
-  for (const Instance& i : m_.instances()) {
-    if (i.id == 0) continue;
-    std::string kind;
-    if (aim_.is_a(i, "turning_type_operation")) {
-      kind = "a turning operation";
-    } else if (aim_.is_a(i, "machining_workingstep") || aim_.is_a(i, "machining_technology") ||
-               aim_.is_a(i, "machining_functions")) {
-      const std::string d = aim_.text(i, "description");
-      if (d == "turning")
-        kind = "a turning " + std::string(aim_.is_a(i, "machining_workingstep") ? "workingstep"
-                                          : aim_.is_a(i, "machining_technology")
-                                              ? "technology"
-                                              : "machine functions");
-      else if (!d.empty() && d != "milling" && d != "machining" &&
-               !aim_.is_a(i, "machining_workingstep"))
-        kind = "a '" + d + "' " +
-               (aim_.is_a(i, "machining_technology") ? "technology" : "machine functions");
+  std::vector<std::pair<const Instance*, std::string>> found;  // instance, what it is
+  for (const Instance* i : aim_.instances_of("turning_type_operation"))
+    found.emplace_back(i, "a turning operation");
+  static constexpr std::pair<const char*, const char*> kDescribed[] = {
+      {"machining_workingstep", "workingstep"},
+      {"machining_technology", "technology"},
+      {"machining_functions", "machine functions"}};
+  for (const auto& [entity, noun] : kDescribed) {
+    const bool workingstep = std::string_view(noun) == "workingstep";
+    for (const Instance* i : aim_.instances_of(entity)) {
+      if (aim_.text_is(*i, "description", "turning")) {
+        found.emplace_back(i, std::string("a turning ") + noun);
+      } else if (!workingstep && !aim_.text_is(*i, "description", "milling")) {
+        // Technology and functions say what they are for; an empty description says nothing.
+        const std::string d = aim_.text(*i, "description");
+        if (!d.empty()) found.emplace_back(i, "a '" + d + "' " + noun);
+      }
     }
-    if (kind.empty()) continue;
-    if (first == nullptr) {
-      first = &i;
-      what = kind;
-    }
-    ++count;
   }
-  if (first == nullptr) return false;
+  if (found.empty()) return false;
+  const auto first = std::min_element(found.begin(), found.end(), [](const auto& a, const auto& b) {
+    return a.first->offset < b.first->offset;
+  });
+  const bool turning = first->second.find("turning") != std::string::npos;
   aim_.report(
-      diag::Code::Ap238NotMilling, *first,
-      named(*first) + " is " + what +
-          (what.find("turning") != std::string::npos ? ": turning programs are not supported"
-                                                     : ": only milling programs are supported") +
+      diag::Code::Ap238NotMilling, *first->first,
+      named(*first->first) + " is " + first->second +
+          (turning ? ": turning programs are not supported"
+                   : ": only milling programs are supported") +
           " (ncpost posts milling programs); the program is refused before any motion" +
-          (count > 1 ? " (" + std::to_string(count) + " such instances)" : ""));
+          (found.size() > 1 ? " (" + std::to_string(found.size()) + " such instances)" : ""));
   return true;
 }
 
 std::vector<Property> Interpreter::properties(const Instance& owner, Owner kind) {
-  std::vector<Property> list = aim_.properties(owner);
-  if (!tallied_owners_.insert(owner.id).second) return list;
+  std::vector<Property> list;
+  properties(owner, kind, list);
+  return list;
+}
+
+void Interpreter::properties(const Instance& owner, Owner kind, std::vector<Property>& list) {
+  aim_.properties(owner, list);
+  // Everything but a tool is read once (technologies and functions are remembered by id); a
+  // tool is read at each load, and counted at its first.
+  if (kind == Owner::Tool && !tallied_tools_.insert(owner.id).second) return;
   for (const Property& p : list) {
     if (standard(kind, p.name)) continue;
     const detail::VendorAdapter* vendor = vendor_of(p.name);
@@ -341,7 +346,6 @@ std::vector<Property> Interpreter::properties(const Instance& owner, Owner kind)
     }
     ++tallies_[it->second].count;
   }
-  return list;
 }
 
 void Interpreter::report_properties() {
@@ -388,6 +392,10 @@ void Interpreter::executable(const Instance& e, unsigned depth) {
     return;
   }
   const std::string description = aim_.text(e, "description");
+  const bool structure =
+      !aim_.is_a(e, "machining_workplan") && !aim_.is_a(e, "machining_workingstep") &&
+      !aim_.is_a(e, "machining_rapid_movement") && !aim_.is_a(e, "machining_nc_function");
+  if (structure) properties(e, Owner::Executable);  // the others read their own
   if (aim_.is_a(e, "machining_workplan")) {
     workplan(e, depth);
   } else if (aim_.is_a(e, "machining_workingstep")) {
@@ -424,7 +432,6 @@ void Interpreter::executable(const Instance& e, unsigned depth) {
   } else {
     not_implemented(e, "this executable ('" + description + "')");
   }
-  properties(e, Owner::Executable);
   on_path_.erase(e.id);
 }
 
@@ -609,13 +616,14 @@ bool Interpreter::tool(const Instance& t) {
 
 // The technology of an operation or a toolpath (its MACHINING_TECHNOLOGY_RELATIONSHIP).
 void Interpreter::technology(const Instance& owner) {
-  const auto list = aim_.related(owner, "machining_technology_relationship");
-  if (list.empty()) return;
-  if (list.size() > 1)
+  std::size_t count = 0;
+  const Instance* tech = aim_.first_related(owner, "machining_technology_relationship", count);
+  if (tech == nullptr) return;
+  if (count > 1)
     aim_.report(diag::Code::Ap238Ambiguous, owner,
-                named(owner) + " has " + std::to_string(list.size()) + " technologies; " +
-                    aim_.describe(*list.front()) + " is used");
-  const Technology& t = read_technology(*list.front());
+                named(owner) + " has " + std::to_string(count) + " technologies; " +
+                    aim_.describe(*tech) + " is used");
+  const Technology& t = read_technology(*tech);
   if (t.feed) machine_.feed_rate(*t.feed);
   if (t.spindle) machine_.spindle(*t.spindle);
 }
@@ -668,14 +676,15 @@ const Technology& Interpreter::read_technology(const Instance& tech) {
 }
 
 void Interpreter::functions(const Instance& owner) {
-  const auto list = aim_.related(owner, "machining_functions_relationship");
-  if (list.empty()) return;
-  if (list.size() > 1)
+  std::size_t count = 0;
+  const Instance* f = aim_.first_related(owner, "machining_functions_relationship", count);
+  if (f == nullptr) return;
+  if (count > 1)
     aim_.report(diag::Code::Ap238Ambiguous, owner,
-                named(owner) + " has " + std::to_string(list.size()) + " machine functions; " +
-                    aim_.describe(*list.front()) + " is used");
-  const Functions& f = read_functions(*list.front());
-  machine_.coolant(f.flood, f.mist);
+                named(owner) + " has " + std::to_string(count) + " machine functions; " +
+                    aim_.describe(*f) + " is used");
+  const Functions& read = read_functions(*f);
+  machine_.coolant(read.flood, read.mist);
 }
 
 // 'coolant' ('coolant on'/'coolant off') is flood coolant unless 'coolant type' (ISO 10303-238
@@ -744,17 +753,17 @@ void Interpreter::toolpaths(const Instance& operation, const Frame& frame, bool 
       not_implemented(*path, "a toolpath sequence element that is not a MACHINING_TOOLPATH");
       continue;
     }
-    const auto props = properties(*path, Owner::Toolpath);
+    properties(*path, Owner::Toolpath, path_properties_);
+    const std::vector<Property>& props = path_properties_;
     const std::string kind = aim_.text(*path, "description");
     const auto find = [&](std::string_view name) -> const Property* {
       for (const Property& p : props)
         if (p.name == name) return &p;
       return nullptr;
     };
-    const auto text_of = [&](std::string_view name) -> std::string {
+    const auto text_of = [&](std::string_view name) -> std::string_view {
       const Property* p = find(name);
-      return p ? aim_.description_of(aim_.item(*p, "descriptive_representation_item")).value_or("")
-               : std::string();
+      return p ? std::string_view(aim_.described(*p)) : std::string_view();
     };
     if (kind == "feedstop") {
       // A pause in the path: the tool dwells where it is.
@@ -775,8 +784,7 @@ void Interpreter::toolpaths(const Instance& operation, const Frame& frame, bool 
     }
     bool rapid_speed = false;
     if (const Property* speed = find("speed profile")) {
-      rapid_speed =
-          aim_.description_of(aim_.item(*speed, "descriptive_representation_item")) == "rapid";
+      rapid_speed = aim_.described(*speed) == "rapid";
       if (!rapid_speed) not_implemented(*path, "a speed profile other than 'rapid'");
     }
     technology(*path);
@@ -806,14 +814,15 @@ std::optional<std::vector<Segment>> Interpreter::toolpath_geometry(
     const Instance& operation, const Instance& path, const std::vector<Property>& props) {
   for (const Property& p : props) {
     if (p.name != "basic curve") continue;
-    for (const Instance* rep : p.representations) {
-      for (const Instance* item : aim_.items(*rep)) {
-        if (!aim_.is_a(*item, "bounded_curve")) continue;
-        const auto units = aim_.context_units(*rep);
-        curves_.set_units(units.mm_per_length, units.radians_per_angle);
-        return curves_.segments(*item);
-      }
-    }
+    const Instance* curve = nullptr;
+    const Instance* in = nullptr;
+    p.representations.for_each([&](const Instance& rep) {
+      if (curve == nullptr && (curve = aim_.first_item(rep, "bounded_curve")) != nullptr) in = &rep;
+    });
+    if (curve == nullptr) continue;
+    const auto units = aim_.context_units(*in);
+    curves_.set_units(units.mm_per_length, units.radians_per_angle);
+    return curves_.segments(*curve);
   }
   for (const Property& p : props) {
     const detail::VendorAdapter* vendor = vendor_of(p.name);

@@ -30,10 +30,7 @@ const Instance* product_of(Aim& aim, const Instance& definition) {
 }
 
 std::optional<Project> find_project(Aim& aim) {
-  const p21::Model& m = aim.model();
-  std::vector<const Instance*> projects;
-  for (const Instance& i : m.instances())
-    if (i.id != 0 && aim.is_a(i, "machining_project")) projects.push_back(&i);
+  const std::vector<const Instance*> projects = aim.instances_of("machining_project");
   if (projects.empty()) {
     aim.report_unplaced(diag::Code::Ap238NoProject,
                         "no MACHINING_PROJECT: not an AP238 CNC program");
@@ -91,18 +88,14 @@ const Instance* operation_of(Aim& aim, const Instance& workingstep) {
 }
 
 std::vector<const Instance*> tools_of(Aim& aim, const Instance& user) {
+  // Links follows no other attribute of an action resource than its usage: a MACHINING_TOOL
+  // among the referrers names `user` there (no scan of usage lists, which may be long: one
+  // tool serves every operation that uses it).
   std::vector<const Instance*> out;
-  const p21::Model& m = aim.model();
   for (const std::uint32_t index : aim.links().referrers(user)) {
     const Instance& tool = aim.links().instance(index);
-    if ((!out.empty() && out.back() == &tool) || !aim.is_a(tool, "machining_tool")) continue;
-    const auto usage = aim.get(tool, "usage");
-    if (!usage || !usage->is_list()) continue;
-    for (const p21::Value v : m.items(*usage))
-      if (v.is_reference() && v.id() == user.id) {
-        out.push_back(&tool);
-        break;
-      }
+    if ((out.empty() || out.back() != &tool) && aim.is_a(tool, "machining_tool"))
+      out.push_back(&tool);
   }
   return out;
 }
@@ -140,16 +133,16 @@ ToolData tool_data(Aim& aim, const Instance& tool) {
     } else if (p.name == "tool body") {
       // The body representation names the kind of tool; its dimensions are in the
       // MACHINING_TOOL_DIMENSION_REPRESENTATION it is related to (rep_1 → rep_2).
-      for (const Instance* body : p.representations) {
-        if (data.body.empty()) data.body = aim.text(*body, "name");
-        for (const Instance* rr : aim.referring(*body, "representation_relationship", "rep_1")) {
+      p.representations.for_each([&](const Instance& body) {
+        if (data.body.empty()) data.body = aim.text(body, "name");
+        for (const Instance* rr : aim.referring(body, "representation_relationship", "rep_1")) {
           const Instance* dimensions = aim.ref(*rr, "rep_2");
           if (dimensions == nullptr) continue;
           if (!data.diameter) data.diameter = length_item(aim, *dimensions, "diameter");
           if (!data.corner_radius)
             data.corner_radius = length_item(aim, *dimensions, "edge radius");
         }
-      }
+      });
     }
   }
   return data;
