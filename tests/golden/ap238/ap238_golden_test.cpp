@@ -15,6 +15,7 @@
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/verify/verify.hpp"
 
 namespace ncpost::ap238 {
 namespace {
@@ -228,6 +229,36 @@ TEST(Ap238Own, NumbersCheckedByHand) {
   EXPECT_TRUE(has_line(inch.trace, "DWELL(1.5000)"));
   EXPECT_TRUE(has_line(inch.trace, "ARC_FEED(50.8000, 25.4000, 25.4000, 25.4000, 1, 0.0000)"));
   EXPECT_TRUE(has_line(inch.trace, "USE_TOOL_LENGTH_OFFSET(76.2000)"));
+}
+
+// What `ncpost verify` can do with an AIM program once the pipeline interprets it with
+// engine/ap238 and hands the calls to verify::verify_calls: the verifier reads features and
+// operations through ISO 14649 attributes (its_feature, its_operation), which AIM workingsteps
+// do not have, and builds its stock from WORKPIECE instances, which AIM programs do not have.
+// So it finds no feature and no stock: every workingstep and motion is counted, nothing is
+// checked, and the result is ok. Both the AIM program and its ARM twin are run, to show what
+// is lost: the ARM twin's planar face is read as a feature, the AIM's INSTANCED_FEATURE is not.
+TEST(Ap238Own, VerifyFindsNoFeaturesInAnAimProgram) {
+  const fs::path cases = test::source_dir() / "tests/golden/ap238/cases";
+  const auto verified = [&](const fs::path& file, bool aim) {
+    pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry());
+    EXPECT_TRUE(loaded.ok());
+    const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+    canon::ProgramBuffer buffer;
+    const auto interpreted = aim ? ap238::interpret(loaded.model, attributes, buffer)
+                                 : stepnc::interpret(loaded.model, attributes, buffer);
+    EXPECT_TRUE(interpreted.ok());
+    return verify::verify_calls(loaded.model, attributes, buffer.calls());
+  };
+  const verify::VerifyResult aim = verified(cases / "own-mill-mm.aim.stp", true);
+  EXPECT_TRUE(aim.ok());
+  EXPECT_EQ(aim.workingsteps, 3u);  // ROUGH, FINISH and the rapid movement
+  EXPECT_EQ(aim.motions, 18u);
+  EXPECT_TRUE(aim.features.empty());
+  EXPECT_TRUE(aim.findings.empty());
+  const verify::VerifyResult arm = verified(cases / "own-mill-mm.arm.stp", false);
+  EXPECT_EQ(arm.motions, aim.motions);
+  EXPECT_EQ(arm.features.size(), 1u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, ArmEqualsAim, ::testing::Values("own-mill-mm", "own-mill-inch"),
