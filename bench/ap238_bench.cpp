@@ -6,10 +6,12 @@
 // the same motions.
 //
 //   ap238_bench ARM.stp AIM.stp [RUNS]
+//   ap238_bench - AIM.stp [RUNS]     the AIM file alone (for a profiler)
 
 #include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <string_view>
 #include <vector>
 
 #include "bench_support.hpp"
@@ -100,6 +102,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   const int runs = argc > 3 ? std::max(1, std::stoi(argv[3])) : 3;
+  if (std::string_view(argv[1]) == "-") {
+    print("aim", measure(argv[2], runs, true));
+    return 0;
+  }
   const Measured arm = measure(argv[1], runs, false);
   print("arm", arm);
   const Measured aim = measure(argv[2], runs, true);

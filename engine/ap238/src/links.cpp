@@ -62,18 +62,25 @@ Links::Links(const p21::Model& model, const stepnc::AttributeReader& attributes)
     }
   }
 
-  // (target, source, link) in file order of the sources, then a stable counting sort by target.
-  struct Pair {
-    std::uint32_t target;
-    std::uint32_t source;
-    Link link;
-  };
-  std::vector<Pair> pairs;
-  const auto follow = [&](p21::Value v, std::uint32_t source, Link link) {
+  // Two passes over the links, counting then filling (a counting sort by target, stable, so
+  // each target's referrers stay in file order), rather than one pass into a list of pairs:
+  // the pairs of a 100 MB program would be another 36 MB to fault in and zero.
+  std::uint32_t filling_source = 0;
+  bool filling = false;
+  start_.assign(instances.size() + 1, 0);
+  const auto follow = [&](p21::Value v, Link link) {
     const auto add = [&](p21::Value ref) {
       if (!ref.is_reference()) return;
-      if (const p21::Instance* target = model.find(ref.id()))
-        pairs.push_back({index_of(*target), source, link});
+      const p21::Instance* target = model.find(ref.id());
+      if (target == nullptr) return;
+      const std::uint32_t t = index_of(*target);
+      if (!filling) {
+        ++start_[t + 1];
+        return;
+      }
+      const std::uint32_t at = start_[t]++;
+      from_[at] = filling_source;
+      link_[at] = link;
     };
     if (v.is_list()) {
       for (p21::Value item : model.items(v)) add(item);
@@ -81,33 +88,32 @@ Links::Links(const p21::Model& model, const stepnc::AttributeReader& attributes)
       add(v);
     }
   };
-  for (std::uint32_t i = 0; i < instances.size(); ++i) {
-    const p21::Instance& instance = instances[i];
-    if (model.is_complex(instance)) {
-      // Rare in AIM programs (units, contexts): read through the schema, record by record.
-      for (std::size_t r = 0; r < std::size(kRules); ++r)
-        if (rule_entities[r] != nullptr && attributes.is_a(instance, rule_entities[r]))
-          if (const auto v = attributes.get(instance, kRules[r].attribute))
-            follow(*v, i, kRules[r].link);
-      continue;
+  const auto pass = [&] {
+    for (std::uint32_t i = 0; i < instances.size(); ++i) {
+      const p21::Instance& instance = instances[i];
+      filling_source = i;
+      if (model.is_complex(instance)) {
+        // Rare in AIM programs (units, contexts): read through the schema, record by record.
+        for (std::size_t r = 0; r < std::size(kRules); ++r)
+          if (rule_entities[r] != nullptr && attributes.is_a(instance, rule_entities[r]))
+            if (const auto v = attributes.get(instance, kRules[r].attribute))
+              follow(*v, kRules[r].link);
+        continue;
+      }
+      if (instance.keyword >= positions.size()) continue;
+      const auto params = model.params(instance);
+      for (const auto& [p, link] : positions[instance.keyword])
+        if (p < params.size()) follow(params[p], link);
     }
-    if (instance.keyword >= positions.size()) continue;
-    const auto params = model.params(instance);
-    for (const auto& [p, link] : positions[instance.keyword])
-      if (p < params.size()) follow(params[p], i, link);
-  }
-
-  start_.assign(instances.size() + 1, 0);
-  for (const Pair& p : pairs) ++start_[p.target + 1];
+  };
+  pass();
   for (std::size_t i = 1; i < start_.size(); ++i) start_[i] += start_[i - 1];
-  from_.resize(pairs.size());
-  link_.resize(pairs.size());
-  std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
-  for (const Pair& p : pairs) {
-    const std::uint32_t at = next[p.target]++;
-    from_[at] = p.source;
-    link_[at] = p.link;
-  }
+  from_.resize(start_.back());
+  link_.resize(start_.back());
+  filling = true;
+  pass();  // start_[t] moves from t's first slot to the next target's first
+  for (std::size_t i = start_.size() - 1; i > 0; --i) start_[i] = start_[i - 1];
+  start_[0] = 0;
 }
 
 std::span<const std::uint32_t> Links::referrers(const p21::Instance& target) const {
