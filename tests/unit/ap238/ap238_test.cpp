@@ -394,14 +394,14 @@ TEST(Ap238, InspectListsToolData) {
   ASSERT_TRUE(read.ok());
   const auto info = ap238::inspect(read.model, registry().builtin_aim().set());
   EXPECT_TRUE(info.diagnostics.empty());
-  ASSERT_EQ(info.json["tools"].size(), 1u);
-  const auto& tool = info.json["tools"][0];
-  EXPECT_EQ(tool["number"], 3);
-  EXPECT_EQ(tool["body"], "bullnose endmill");
-  EXPECT_EQ(tool["diameter"], 12.0);
-  EXPECT_EQ(tool["corner_radius"], 1.5);
-  EXPECT_EQ(tool["length"], 90.0);
-  EXPECT_EQ(tool["used_by"], nlohmann::ordered_json::array({46}));
+  ASSERT_EQ(info.tools.size(), 1u);
+  const auto& tool = info.tools[0];
+  EXPECT_EQ(tool.number, 3);
+  EXPECT_EQ(tool.body, "bullnose endmill");
+  EXPECT_EQ(tool.diameter, 12.0);
+  EXPECT_EQ(tool.corner_radius, 1.5);
+  EXPECT_EQ(tool.length, 90.0);
+  EXPECT_EQ(tool.used_by, (std::vector<std::uint64_t>{46}));
   // The trace loads the same tool with its length.
   EXPECT_TRUE(run(text).has("USE_TOOL_LENGTH_OFFSET(90.0000)"));
 }
