@@ -10,6 +10,7 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -746,6 +747,47 @@ TEST(DialectCheck, Executables) {
 TEST(DialectCheck, NistEx1E) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
   check_file(corpus / "p21" / "nist_toolkit_ex1E.stp", "ex1E", 400);
+}
+
+// AP238 AIM programs (issue 18), through engine/ap238, in every dialect. heidenhain-tnc640
+// refuses arcs outside the XY plane (its post.xsl: tool axis Z, no CC in XZ or YZ): for a
+// program that has one, the refusal is what is checked.
+bool has_arc_outside_xy(const std::vector<canon::Call>& calls) {
+  return std::any_of(calls.begin(), calls.end(), [](const canon::Call& c) {
+    const auto* arc = std::get_if<canon::ArcFeed>(&c);
+    if (arc == nullptr) return false;
+    const auto p = canon::plane_arc(*arc);
+    return !p || p->plane != canon::Plane::Xy;
+  });
+}
+
+TEST(DialectCheck, Ap238Programs) {
+  std::size_t refused = 0;
+  for (const fs::path& input : ap238_programs()) {
+    const std::string label = input.stem().string();
+    for (const char* id : kDialects) {
+      SCOPED_TRACE(std::string(id) + " " + label);
+      const bool xy_only = std::string(id) == "heidenhain-tnc640";
+      const Posted posted = post_file(input, id, !xy_only);
+      if (!posted.profile) continue;
+      if (xy_only && has_arc_outside_xy(posted.calls)) {
+        ASSERT_TRUE(diag::has_errors(posted.render_diagnostics));
+        std::string all;
+        for (const auto& d : posted.render_diagnostics) all += diag::format(d) + "\n";
+        EXPECT_NE(all.find("ARC_FEED outside the XY plane"), std::string::npos) << all;
+        ++refused;
+        continue;
+      }
+      EXPECT_FALSE(diag::has_errors(posted.render_diagnostics));
+      const auto o = check_text(id, posted.profile->profile, posted.calls, posted.text);
+      EXPECT_GE(o.compared, 1u);
+      std::printf("[ dialect  ] %s %s: %zu motions compared, max deviation %.6f\n", id,
+                  label.c_str(), o.compared, o.max_deviation);
+    }
+  }
+  if (test::corpus_dir()) {
+    EXPECT_EQ(refused, 3u);  // the programs with XZ or YZ arcs
+  }
 }
 
 // None of the four inputs has a drilling cycle: a hand-made program with every kind, rendered

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "corpus.hpp"
+#include "ncpost/ap238/ap238.hpp"
 #include "ncpost/canon/cycle.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
@@ -200,7 +201,8 @@ Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<M
   return outcome;
 }
 
-Posted post_file(const std::filesystem::path& input, const std::string& profile_id) {
+Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
+                 bool expect_rendered) {
   xslt::initialise();
   static const express::SchemaRegistry registry;
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
@@ -215,13 +217,37 @@ Posted post_file(const std::filesystem::path& input, const std::string& profile_
   if (!loaded.ok()) return posted;
   const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
   canon::ProgramBuffer buffer;
-  EXPECT_TRUE(stepnc::interpret(loaded.model, attributes, buffer, {}).ok()) << input;
+  // AP238 AIM programs through engine/ap238, as the pipeline will take them (docs/ap238.md).
+  const auto interpreted = ap238::is_aim(loaded.model)
+                               ? ap238::interpret(loaded.model, attributes, buffer, {})
+                               : stepnc::interpret(loaded.model, attributes, buffer, {});
+  EXPECT_TRUE(interpreted.ok()) << input;
   posted.calls = buffer.calls();
-  std::vector<diag::FileDiagnostic> render_diagnostics;
-  posted.text = render::render_program(*posted.profile, posted.calls, render_diagnostics);
-  EXPECT_FALSE(diag::has_errors(render_diagnostics))
-      << profile_id << ": " << diag::format(render_diagnostics.front());
+  posted.text = render::render_program(*posted.profile, posted.calls, posted.render_diagnostics);
+  if (expect_rendered) {
+    EXPECT_FALSE(diag::has_errors(posted.render_diagnostics))
+        << profile_id << ": " << diag::format(posted.render_diagnostics.front());
+  }
   return posted;
+}
+
+std::vector<std::filesystem::path> ap238_programs() {
+  std::vector<std::filesystem::path> out;
+  const auto own = test::source_dir() / "tests" / "golden" / "ap238" / "cases";
+  for (const char* name : {"own-mill-mm.aim.stp", "own-mill-inch.aim.stp"})
+    out.push_back(own / name);
+  if (const auto corpus = test::corpus_dir()) {
+    std::vector<std::filesystem::path> milling;
+    for (const auto& e : std::filesystem::directory_iterator(*corpus / "p21-aim")) {
+      const std::string stem = e.path().stem().string();
+      if (e.path().extension() == ".stpnc" && stem != "nextnc_autodesk-face" &&
+          stem != "nextnc_autodesk-profile")  // the two turning programs, refused
+        milling.push_back(e.path());
+    }
+    std::sort(milling.begin(), milling.end());
+    out.insert(out.end(), milling.begin(), milling.end());
+  }
+  return out;
 }
 
 std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,

@@ -95,12 +95,19 @@ struct Posted {
   std::shared_ptr<const profile::LoadedProfile> profile;
   std::vector<canon::Call> calls;
   std::string text;
+  std::vector<diag::FileDiagnostic> render_diagnostics;
 };
 
-// Loads the built-in profile `profile_id`, interprets `input` (STEP-NC) and renders it. Adds
-// gtest failures for load, interpretation or rendering errors; `profile` is null when the
-// profile does not load.
-[[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id);
+// Loads the built-in profile `profile_id`, interprets `input` (STEP-NC: ISO 14649, or AP238 AIM
+// through engine/ap238) and renders it. Adds gtest failures for load, interpretation or (unless
+// `expect_rendered` is false) rendering errors; `profile` is null when the profile does not load.
+[[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
+                               bool expect_rendered = true);
+
+// The AP238 AIM programs every checker posts: the project's own (tests/golden/ap238/cases)
+// and, when the corpus is there, its 17 milling programs of p21-aim/ (the two turning ones are
+// refused and not posted).
+[[nodiscard]] std::vector<std::filesystem::path> ap238_programs();
 
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,

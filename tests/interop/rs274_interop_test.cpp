@@ -184,5 +184,37 @@ TEST(Rs274Interop, HaasNgcProfile) {
   check_ex1e(corpus, "haas-ngc");
 }
 
+// AP238 AIM programs (issue 18): the project's own and the corpus's milling programs, posted
+// through engine/ap238. Lines in three planes, full circles, multi-turn helices, dwells, tool
+// changes.
+void check_ap238(const std::string& profile_id) {
+  std::size_t compared = 0;
+  for (const fs::path& input : ap238_programs()) {
+    SCOPED_TRACE(input.filename().string());
+    const std::string name = input.stem().string();
+    const auto o = compare_with_rs274(input, name, profile_id);
+    EXPECT_GT(o.compared, 0u);
+    compared += o.compared;
+    std::printf("[ rs274    ] %s %s: %zu motions compared, max deviation %.6f\n",
+                profile_id.c_str(), name.c_str(), o.compared, o.max_deviation);
+  }
+  EXPECT_GT(compared, 30u);
+}
+
+TEST(Rs274Interop, LinuxcncAp238Programs) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_ap238("linuxcnc");
+}
+
+TEST(Rs274Interop, FanucAp238Programs) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_ap238("fanuc-0i");
+}
+
+TEST(Rs274Interop, HaasNgcAp238Programs) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_ap238("haas-ngc");
+}
+
 }  // namespace
 }  // namespace ncpost::interop

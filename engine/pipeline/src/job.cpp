@@ -1,5 +1,6 @@
 #include "ncpost/pipeline/job.hpp"
 
+#include "ncpost/ap238/ap238.hpp"
 #include "ncpost/stepnc/attributes.hpp"
 #include "ncpost/stepnc/program_info.hpp"
 
@@ -82,7 +83,7 @@ Program read_model(Input input, const JobContext& context, const ReadOptions& op
   LoadedModel& loaded = program.loaded;
   // Say what the file is, too, when it is not a program at all (an AP238 AIM excerpt, say).
   if (options.name_what_is_not_a_program && options.validate && !loaded.ok() &&
-      loaded.model.instances_of("PROJECT").empty())
+      loaded.model.instances_of("PROJECT").empty() && !ap238::is_aim(loaded.model))
     loaded.diagnostics.push_back(stepnc::no_program_diagnostic(loaded.model));
   append(program.diagnostics, diag::with_file(loaded.diagnostics, program.name));
   return program;
@@ -96,7 +97,11 @@ Interpretation interpret_model(const Program& program, canon::Sink& sink, const 
   options.stop_at_first_error = settings.stop_at_first_error;
   const p21::Model& model = program.loaded.model;
   const stepnc::AttributeReader attributes(model, *program.loaded.schema);
-  const stepnc::InterpretResult result = stepnc::interpret(model, attributes, sink, options);
+  // An AP238 AIM program (FILE_SCHEMA integrated_cnc_schema) says the same things with other
+  // entities; its interpreter drives the same machine.
+  const stepnc::InterpretResult result = ap238::is_aim(model)
+                                             ? ap238::interpret(model, attributes, sink, options)
+                                             : stepnc::interpret(model, attributes, sink, options);
   Interpretation out;
   out.diagnostics = diag::with_file(result.diagnostics, program.name);
   out.calls = result.calls;

@@ -1,5 +1,6 @@
 #include "ncpost/pipeline/jobs.hpp"
 
+#include "ncpost/ap238/ap238.hpp"
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/canon/xml.hpp"
 #include "ncpost/pipeline/diagnostics.hpp"
@@ -61,6 +62,7 @@ json to_json(const stepnc::Executable& x) {
       if (x.tool) j["tool"] = to_json(*x.tool);
       break;
     case Shape::Sequence:
+      if (x.setup) j["setup"] = to_json(*x.setup);
       j["elements"] = children();
       break;
     case Shape::Parallel:
@@ -110,6 +112,11 @@ json to_json(const stepnc::ProgramInfo& info) {
   for (const auto& t : info.tools) {
     json j = to_json(t.self);
     j["used_by"] = t.used_by;
+    if (t.number) j["number"] = *t.number;
+    if (t.body) j["body"] = *t.body;
+    if (t.diameter) j["diameter"] = *t.diameter;
+    if (t.corner_radius) j["corner_radius"] = *t.corner_radius;
+    if (t.length) j["length"] = *t.length;
     tools.push_back(std::move(j));
   }
   json& statistics = out["statistics"];
@@ -197,7 +204,9 @@ Inspection inspect(Input input, const JobContext& context) {
   inspection.job = read_result(program);
   if (program.cancelled) return inspection;
   const auto started = Clock::now();
-  inspection.info = stepnc::inspect(program.loaded.model, *program.loaded.schema);
+  const p21::Model& model = program.loaded.model;
+  inspection.info = ap238::is_aim(model) ? ap238::inspect(model, *program.loaded.schema)
+                                         : stepnc::inspect(model, *program.loaded.schema);
   inspection.job.work_time = Clock::now() - started;
   append(inspection.job.diagnostics, diag::with_file(inspection.info.diagnostics, program.name));
   inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);
