@@ -10,6 +10,7 @@ build_packages=(
   libxml2-dev libxslt1-dev                    # libxml2, libxslt and libexslt
   nlohmann-json3-dev libspdlog-dev libfmt-dev
   libpolyclipping-dev                         # Clipper 1: offsets of general feature profiles
+  libre2-dev                                  # RE2: the CL checks' tool- and operation-name patterns
 )
 test_packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
