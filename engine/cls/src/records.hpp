@@ -112,6 +112,7 @@ class RecordAssembler {
       comment_column = static_cast<std::uint32_t>(comment.data() - line.data()) + 1;
     }
     if (!open_ && !continued) {
+      if (content.size() > max_bytes_) return on_too_long(line_);
       single_[0] = Segment{0, line_, 1};
       Record r{content, comment, line_, comment_column, &single_};
       on_record(static_cast<const Record&>(r));
