@@ -200,28 +200,41 @@ Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<M
   return outcome;
 }
 
-Posted post_file(const std::filesystem::path& input, const std::string& profile_id) {
+namespace {
+
+std::shared_ptr<const profile::LoadedProfile> builtin_profile(const std::string& profile_id) {
   xslt::initialise();
-  static const express::SchemaRegistry registry;
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  Posted posted;
   std::vector<diag::FileDiagnostic> diagnostics;
-  posted.profile = store.load(profile_id, diagnostics);
-  EXPECT_TRUE(posted.profile) << profile_id << ": "
-                              << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
+  auto loaded = store.load(profile_id, diagnostics);
+  EXPECT_TRUE(loaded) << profile_id << ": "
+                      << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
+  return loaded;
+}
+
+}  // namespace
+
+Posted post_calls(std::vector<canon::Call> calls, const std::string& profile_id) {
+  Posted posted;
+  posted.profile = builtin_profile(profile_id);
   if (!posted.profile) return posted;
-  auto loaded = pipeline::load(test::read_file(input), registry);
-  EXPECT_TRUE(loaded.ok()) << input;
-  if (!loaded.ok()) return posted;
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
-  canon::ProgramBuffer buffer;
-  EXPECT_TRUE(stepnc::interpret(loaded.model, attributes, buffer, {}).ok()) << input;
-  posted.calls = buffer.calls();
+  posted.calls = std::move(calls);
   std::vector<diag::FileDiagnostic> render_diagnostics;
   posted.text = render::render_program(*posted.profile, posted.calls, render_diagnostics);
   EXPECT_FALSE(diag::has_errors(render_diagnostics))
       << profile_id << ": " << diag::format(render_diagnostics.front());
   return posted;
+}
+
+Posted post_file(const std::filesystem::path& input, const std::string& profile_id) {
+  static const express::SchemaRegistry registry;
+  auto loaded = pipeline::load(test::read_file(input), registry);
+  EXPECT_TRUE(loaded.ok()) << input;
+  if (!loaded.ok()) return {builtin_profile(profile_id), {}, {}};
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  canon::ProgramBuffer buffer;
+  EXPECT_TRUE(stepnc::interpret(loaded.model, attributes, buffer, {}).ok()) << input;
+  return post_calls(std::move(buffer).take(), profile_id);
 }
 
 std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,

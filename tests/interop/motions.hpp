@@ -101,6 +101,9 @@ struct Posted {
 // gtest failures for load, interpretation or rendering errors; `profile` is null when the
 // profile does not load.
 [[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id);
+// Renders a canonical program (from any reader: the CL reader's, a hand-made one) with the
+// built-in profile `profile_id`, with the same gtest failures.
+[[nodiscard]] Posted post_calls(std::vector<canon::Call> calls, const std::string& profile_id);
 
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
