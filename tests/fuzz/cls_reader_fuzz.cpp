@@ -33,6 +33,23 @@ const ncpost::cls::CheckConfig& checks() {
   return config;
 }
 
+// Counts the structure markers on their way to the trace.
+class Markers final : public ncpost::canon::Sink {
+ public:
+  explicit Markers(ncpost::canon::Sink& next) : next_(next) {}
+  void call(const ncpost::canon::Call& c) override {
+    if (std::holds_alternative<ncpost::canon::Begin>(c)) ++open;
+    if (std::holds_alternative<ncpost::canon::End>(c)) --open;
+    if (std::holds_alternative<ncpost::canon::ProgramEnd>(c)) ++program_ends;
+    next_.call(c);
+  }
+  long open = 0;
+  int program_ends = 0;
+
+ private:
+  ncpost::canon::Sink& next_;
+};
+
 std::string text_of(const ncpost::cls::ReadResult& r, const std::string& trace) {
   std::string out = trace;
   for (const auto& d : r.diagnostics) out += ncpost::diag::format(d, "f") + "\n";
@@ -50,7 +67,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   std::string whole_trace;
   ncpost::canon::TraceWriter whole_writer([&](std::string_view s) { whole_trace += s; });
-  const auto whole = ncpost::cls::read(text, whole_writer, options);
+  Markers whole_markers(whole_writer);
+  const auto whole = ncpost::cls::read(text, whole_markers, options);
 
   std::string piece_trace;
   ncpost::canon::TraceWriter piece_writer([&](std::string_view s) { piece_trace += s; });
@@ -65,19 +83,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto pieces = reader.finish();
   if (text_of(whole, whole_trace) != text_of(pieces, piece_trace)) __builtin_trap();
 
-  // A read that ran to its end closes what it opened: as many *_BEGIN as *_END.
-  if (!ncpost::diag::has_errors(whole.diagnostics) && !whole.cancelled) {
-    std::size_t begins = 0, ends = 0;
-    for (std::size_t at = 0; (at = whole_trace.find("_BEGIN(", at)) != std::string::npos; ++at)
-      ++begins;
-    for (std::size_t at = 0; (at = whole_trace.find("_END(", at)) != std::string::npos; ++at)
-      ++ends;
-    // PROGRAM_END() is rs274's M2, not a marker: there is exactly one.
-    std::size_t program_ends = 0;
-    for (std::size_t at = 0; (at = whole_trace.find("PROGRAM_END(", at)) != std::string::npos; ++at)
-      ++program_ends;
-    if (program_ends != 1 || begins != ends - program_ends) __builtin_trap();
-  }
+  // A read that ran to its end closes what it opened and ends with one PROGRAM_END.
+  if (!ncpost::diag::has_errors(whole.diagnostics) && !whole.cancelled &&
+      (whole_markers.open != 0 || whole_markers.program_ends != 1))
+    __builtin_trap();
   (void)ncpost::cls::looks_like_cl(text.substr(0, 4096));
   return 0;
 }

@@ -358,8 +358,10 @@ class Reader::Impl {
   void statement(const Record& r, std::string_view text) {
     const std::size_t slash = text.find('/');
     std::string_view word = detail::trim(text.substr(0, slash));
+    // Without a slash the arguments are the empty text at the end of the statement, so that a
+    // "missing argument" diagnostic still points into the record.
     std::string_view args =
-        slash == std::string_view::npos ? std::string_view{} : text.substr(slash + 1);
+        slash == std::string_view::npos ? text.substr(text.size()) : text.substr(slash + 1);
     if (slash == std::string_view::npos) {
       // APT's text statements without a slash: PARTNO name, PPRINT text, REMARK text.
       const std::size_t space = text.find_first_of(" \t");
@@ -470,25 +472,29 @@ class Reader::Impl {
   // ------------------------------------------------------------------------------------
 
   void goto_(const Record& r, std::string_view args) {
-    detail::split_fields(args, fields_);
-    const std::size_t n = fields_.size();
-    if (n != 3 && n != 6) {
-      at(diag::Code::ClsBadArguments, r.at(args), "GOTO/ takes x, y, z or x, y, z, i, j, k");
-      return;
-    }
     double v[6];
-    if (!numbers(r, args, 0, n, v, "GOTO/")) return;
+    // Most of a file: plain numbers read in one pass; anything else is split and reported.
+    std::size_t n = detail::fast_numbers(args, v, 6);
+    if (n != 3 && n != 6) {
+      detail::split_fields(args, fields_);
+      n = fields_.size();
+      if (n != 3 && n != 6) {
+        at(diag::Code::ClsBadArguments, r.at(args), "GOTO/ takes x, y, z or x, y, z, i, j, k");
+        return;
+      }
+      if (!numbers(r, args, 0, n, v, "GOTO/")) return;
+    }
     Vec to{v[0], v[1], v[2]};
     if (incremental_) to = position_ + to;
     if (n == 6) {
       const Vec axis{v[3], v[4], v[5]};
       if (norm(axis) == 0) {
-        at(diag::Code::ClsBadArguments, r.at(fields_[3]), "GOTO/: the tool axis is zero");
+        at(diag::Code::ClsBadArguments, r.at(args), "GOTO/: the tool axis is zero");
         return;
       }
       axis_ = axis;
     }
-    const Position where = r.at(fields_[0]);
+    const Position where = r.at(args);
     if (circle_) return arc(to, where);
     if (cycle_) return hole(to, where);
     move(to, rapid_next_, where);

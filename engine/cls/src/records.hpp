@@ -179,6 +179,13 @@ class RecordAssembler {
 // A number as APT writes it: optional sign, digits with an optional point, optional exponent
 // (E or D). nullopt for anything else and for non-finite values.
 [[nodiscard]] std::optional<double> parse_number(std::string_view text) noexcept;
+// A plain decimal ([sign] digits [. digits], at most 15 significant digits) exactly as
+// from_chars reads it, fast; nullopt for anything else (parse_number then takes the slow way).
+[[nodiscard]] std::optional<double> fast_decimal(std::string_view text) noexcept;
+// The fields of `args` when all are plain decimals and there are at most `max`: their count,
+// values in `out`; 0 otherwise (the caller then splits and reports).
+[[nodiscard]] std::size_t fast_numbers(std::string_view args, double* out,
+                                       std::size_t max) noexcept;
 // Splits `args` at commas into trimmed fields (reuses `out`).
 void split_fields(std::string_view args, std::vector<std::string_view>& out);
 // A quoted text ('...' or "...") without its quotes; other text trimmed.

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 
 #include "../../../engine/cls/src/records.hpp"
@@ -96,6 +97,17 @@ TEST(ClsReader, LastLineWithoutNewlineAndContinuationPositions) {
   EXPECT_EQ(r.result.diagnostics[0].column, 3u);
   EXPECT_NE(r.trace.find("COMMENT(\"remark\")"), std::string::npos) << r.trace;
   EXPECT_NE(r.trace.find("STRAIGHT_FEED(4.0000, 5.0000, 6.0000)"), std::string::npos) << r.trace;
+}
+
+// Found by the fuzzer: a word without a slash (and so without arguments) at the end of the text
+// reported a column computed from no text at all.
+TEST(ClsReader, WordWithoutArgumentsPointsIntoTheRecord) {
+  for (const char* text : {"UNITS/MM\nCYCLE", "UNITS/MM\nCYCLE\n", "UNITS/MM\nGOTO"}) {
+    const Read r = read_whole(text);
+    ASSERT_EQ(r.result.diagnostics.size(), 1u) << text;
+    EXPECT_EQ(r.result.diagnostics[0].line, 2u);
+    EXPECT_LE(r.result.diagnostics[0].column, 6u) << diagnostics_text(r.result);
+  }
 }
 
 TEST(ClsReader, OpenContinuationAtTheEnd) {
@@ -237,6 +249,29 @@ TEST(ClsReader, Numbers) {
   EXPECT_EQ(parse_number("2E2"), 200.0);
   for (const char* bad : {"", "-", "--1", "+-1", "1,2", "nan", "inf", "1e999", "x", "1 2"})
     EXPECT_FALSE(parse_number(bad)) << bad;
+  // The fast path gives exactly what from_chars gives, for every length of mantissa it takes.
+  std::uint64_t state = 12345;
+  for (int i = 0; i < 200000; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const int digits = 1 + static_cast<int>((state >> 33) % 16);
+    const int point = static_cast<int>((state >> 20) % (digits + 1));
+    std::string text = (state & 1) ? "-" : "";
+    std::uint64_t d = state;
+    for (int k = 0; k < digits; ++k) {
+      if (k == point) text += '.';
+      text += static_cast<char>('0' + (d % 10));
+      d = d / 10 + (state >> 40);
+    }
+    double expected = 0;
+    const char* begin = text.data() + (text[0] == '-' ? 1 : 0);
+    std::from_chars(begin, text.data() + text.size(), expected);
+    if (text[0] == '-') expected = -expected;
+    const auto fast = detail::fast_decimal(text);
+    if (fast) {
+      ASSERT_EQ(*fast, expected) << text;
+    }
+    ASSERT_EQ(parse_number(text), expected) << text;
+  }
 }
 
 // The sense of CIRCLE/ (clockwise seen from the tip of its axis) against the files themselves:
