@@ -1032,7 +1032,23 @@ class Reader::Impl {
     if (checks_) checks_->end_operation();
   }
 
-  std::optional<std::int32_t> tool_number(const Record& r, std::string_view f) {
+  // The tool number of LOAD/TOOL,n / SELECT/TOOL,n (`word` is LOAD or SELECT) or of LOADTL/n /
+  // SELCTL/n (`word` empty); reports and returns nullopt when there is none.
+  std::optional<std::int32_t> tool_argument(const Record& r, std::string_view args,
+                                            std::string_view word) {
+    detail::split_fields(args, fields_);
+    if (!word.empty() && !is_word(fields_[0], "TOOL")) {
+      at(diag::Code::ClsUnsupportedOption, r.at(fields_[0]),
+         std::string(word) + "/" + std::string(fields_[0]) + " is not supported (" +
+             std::string(word) + "/TOOL,n); ignored");
+      return std::nullopt;
+    }
+    const std::size_t at_field = word.empty() ? 0 : 1;
+    if (fields_.size() <= at_field) {
+      at(diag::Code::ClsBadTool, r.at(args), "no tool number");
+      return std::nullopt;
+    }
+    const std::string_view f = fields_[at_field];
     const auto v = detail::parse_number(f);
     if (!v || *v != std::floor(*v) || *v < 1 || *v > 2147483647.0) {
       at(diag::Code::ClsBadTool, r.at(f), "'" + std::string(f) + "' is not a tool number");
@@ -1043,18 +1059,7 @@ class Reader::Impl {
 
   // LOAD/TOOL,n[,...] or LOADTL/n[,...].
   void load(const Record& r, std::string_view args, bool with_word) {
-    detail::split_fields(args, fields_);
-    if (with_word && !is_word(fields_[0], "TOOL")) {
-      at(diag::Code::ClsUnsupportedOption, r.at(fields_[0]),
-         "LOAD/" + std::string(fields_[0]) + " is not supported (LOAD/TOOL,n); ignored");
-      return;
-    }
-    const std::size_t at_field = with_word ? 1 : 0;
-    if (fields_.size() <= at_field) {
-      at(diag::Code::ClsBadTool, r.at(args), "LOAD/TOOL without a tool number");
-      return;
-    }
-    const auto slot = tool_number(r, fields_[at_field]);
+    const auto slot = tool_argument(r, args, with_word ? "LOAD" : "");
     if (!slot) return;
     // In an NX operation whose tool change is still to come, LOAD/TOOL gives its number; in
     // APT CL each tool load starts an operation of its own.
@@ -1069,18 +1074,7 @@ class Reader::Impl {
   }
 
   void select(const Record& r, std::string_view args, bool with_word) {
-    detail::split_fields(args, fields_);
-    if (with_word && !is_word(fields_[0], "TOOL")) {
-      at(diag::Code::ClsUnsupportedOption, r.at(fields_[0]),
-         "SELECT/" + std::string(fields_[0]) + " is not supported (SELECT/TOOL,n); ignored");
-      return;
-    }
-    const std::size_t at_field = with_word ? 1 : 0;
-    if (fields_.size() <= at_field) {
-      at(diag::Code::ClsBadTool, r.at(args), "SELECT/TOOL without a tool number");
-      return;
-    }
-    const auto slot = tool_number(r, fields_[at_field]);
+    const auto slot = tool_argument(r, args, with_word ? "SELECT" : "");
     if (!slot) return;
     emit(canon::SelectTool{*slot});
     selected_ = *slot;
