@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "check_run.hpp"
+#include "records.hpp"
 
 namespace ncpost::cls {
 namespace {
@@ -239,12 +240,6 @@ std::optional<double> group_number(std::string_view text) {
   return value;
 }
 
-std::string number_text(double v) {
-  char buffer[64];
-  const int n = std::snprintf(buffer, sizeof buffer, "%.4f", v);
-  return std::string(buffer, static_cast<std::size_t>(n > 0 ? n : 0));
-}
-
 }  // namespace
 
 const HeadType* CheckConfig::head(std::string_view name) const noexcept {
@@ -361,9 +356,9 @@ void CheckRun::tool_data(const ToolDimensions& data, std::string_view word, std:
     if (!named || !stated || std::fabs(*named - *stated) <= config_.tolerance) return;
     report_(diag::make(diag::Code::ClsCheckToolName, line, 1,
                        std::string(what) + ": tool name '" + tool_name_ + "' (line " +
-                           std::to_string(tool_name_line_) + ") says " + number_text(*named) +
-                           ", " + std::string(word) + "/ (line " + std::to_string(line) +
-                           ") says " + number_text(*stated)));
+                           std::to_string(tool_name_line_) + ") says " +
+                           detail::format_number(*named) + ", " + std::string(word) + "/ (line " +
+                           std::to_string(line) + ") says " + detail::format_number(*stated)));
   };
   compare(from_name_->diameter, data.diameter, "diameter");
   compare(from_name_->corner_radius, data.corner_radius, "corner radius");

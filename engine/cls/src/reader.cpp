@@ -219,12 +219,6 @@ struct PendingTool {
   bool explicit_load = false;  // LOAD/TOOL or LOADTL/: always changed, even to the same tool
 };
 
-std::string format_number(double v) {
-  char buffer[64];
-  const int n = std::snprintf(buffer, sizeof buffer, "%.4f", v);
-  return std::string(buffer, static_cast<std::size_t>(n > 0 ? n : 0));
-}
-
 }  // namespace
 
 class Reader::Impl {
@@ -602,10 +596,10 @@ class Reader::Impl {
     if (std::fabs(norm(start) - c.radius) > tolerance ||
         std::fabs(norm(end) - c.radius) > tolerance) {
       at(diag::Code::ClsBadCircle, where,
-         "the arc's start and end are " + format_number(norm(start)) + " and " +
-             format_number(norm(end)) + " from the axis of CIRCLE/ (line " +
-             std::to_string(c.where.line) + "), whose radius is " + format_number(c.radius) +
-             "; fed as a straight line");
+         "the arc's start and end are " + detail::format_number(norm(start)) + " and " +
+             detail::format_number(norm(end)) + " from the axis of CIRCLE/ (line " +
+             std::to_string(c.where.line) + "), whose radius is " +
+             detail::format_number(c.radius) + "; fed as a straight line");
       indirv_.reset();
       return move(to, false, where);
     }

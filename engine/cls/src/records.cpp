@@ -1,6 +1,8 @@
 #include "records.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace ncpost::cls::detail {
 
@@ -118,6 +120,13 @@ std::size_t fast_numbers(std::string_view args, double* out, std::size_t max) no
     start = i + 1;
   }
   return n;
+}
+
+std::string format_number(double value) {
+  char buffer[64];
+  const bool plain = std::fabs(value) < 1e15;
+  const int n = std::snprintf(buffer, sizeof buffer, plain ? "%.4f" : "%.6g", value);
+  return std::string(buffer, static_cast<std::size_t>(std::clamp(n, 0, int{sizeof buffer} - 1)));
 }
 
 std::string_view unquote(std::string_view text) noexcept {

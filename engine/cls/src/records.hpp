@@ -188,6 +188,8 @@ class RecordAssembler {
                                        std::size_t max) noexcept;
 // Splits `args` at commas into trimmed fields (reuses `out`).
 void split_fields(std::string_view args, std::vector<std::string_view>& out);
+// A number for a message: 4 decimals, or %g when that would be long (any finite double fits).
+[[nodiscard]] std::string format_number(double value);
 // A quoted text ('...' or "...") without its quotes; other text trimmed.
 [[nodiscard]] std::string_view unquote(std::string_view text) noexcept;
 
