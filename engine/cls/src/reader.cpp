@@ -755,10 +755,7 @@ class Reader::Impl {
       }
     }
     flush_tool();
-    if (off) {
-      spindle_on_ = false;
-      return emit(canon::StopSpindleTurning{});
-    }
+    if (off) return emit(canon::StopSpindleTurning{});
     if (speed) {
       double rpm = *speed;
       if (per != Per::Rpm) {
@@ -780,7 +777,6 @@ class Reader::Impl {
     }
     if (clockwise) clockwise_ = *clockwise;
     if (speed || clockwise || on) {
-      spindle_on_ = true;
       if (clockwise_)
         emit(canon::StartSpindleClockwise{});
       else
@@ -1076,7 +1072,6 @@ class Reader::Impl {
 
   void tool_data(ToolDimensions data, std::string_view word, std::uint32_t line) {
     if (data.diameter) tool_diameter_ = *data.diameter;
-    if (data.length) tool_length_ = *data.length;
     tool_data_ = data;
     if (checks_) checks_->tool_data(data, word, line);
   }
@@ -1300,7 +1295,6 @@ class Reader::Impl {
   FeedPer feed_per_ = FeedPer::Minute;
   double rpm_ = 0;
   bool clockwise_ = true;
-  bool spindle_on_ = false;
   bool flood_ = false;
   bool mist_ = false;
   // cycles
@@ -1310,7 +1304,6 @@ class Reader::Impl {
   std::optional<PendingTool> pending_tool_;
   ToolDimensions tool_data_;
   double tool_diameter_ = 0;
-  double tool_length_ = 0;
   std::int32_t spindle_tool_ = 0;
   std::int32_t selected_ = 0;
   std::unordered_map<std::string, std::int32_t> slots_;
