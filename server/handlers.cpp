@@ -153,18 +153,28 @@ std::string timing_ms(std::chrono::nanoseconds d) {
 
 // The context of a job route's pipeline call: the server's schemas and worker pool, the
 // request's cancel flag, and `strict=true`. Nullopt after a 400 for a malformed `strict`.
+// A true/false query parameter: its value (`otherwise` when absent), or nullopt after a 400.
+std::optional<bool> bool_query(const Request& request, std::string_view name, bool otherwise,
+                               Exchange& exchange) {
+  const auto value = query_param(request.target(), name);
+  if (!value) return otherwise;
+  if (*value != "true" && *value != "false") {
+    exchange.respond(
+        bad_request("the query parameter '" + std::string(name) + "' must be true or false"));
+    return std::nullopt;
+  }
+  return *value == "true";
+}
+
 std::optional<pipeline::JobContext> job_context(const Request& request, Services& services,
                                                 Exchange& exchange) {
   pipeline::JobContext context;
   context.schemas = services.schemas;
   context.cancel = exchange.cancel_flag();
   context.helpers = &services.helpers;
-  const auto strict = query_param(request.target(), "strict");
-  if (strict && *strict != "true" && *strict != "false") {
-    exchange.respond(bad_request("the query parameter 'strict' must be true or false"));
-    return std::nullopt;
-  }
-  context.strict = strict == "true";
+  const auto strict = bool_query(request, "strict", false, exchange);
+  if (!strict) return std::nullopt;
+  context.strict = *strict;
   return context;
 }
 
@@ -421,11 +431,12 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
 // blocks to the workingsteps they came from (the browser front end's view).
 void post_json(Services& services, Exchange& exchange, pipeline::Input input,
                const pipeline::JobContext& context, const profile::LoadedProfile& profile,
-               const std::string& filename) {
+               const std::string& filename, bool shop_checks) {
   std::string text;
   std::vector<pipeline::WorkingstepMark> marks;
   pipeline::PostOptions options;
   options.workingstep_marks = &marks;
+  options.shop_checks = shop_checks;
   const pipeline::PostJobResult result = pipeline::post(
       std::move(input), context, profile, [&text](std::string_view piece) { text.append(piece); },
       options);
@@ -471,6 +482,9 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   if (!loaded_profile) return;
   const auto context = job_context(request, services, exchange);
   if (!context) return;
+  // checks=false: without the profile's pre-post checks of CL input (docs/cls.md).
+  const auto shop_checks = bool_query(request, "checks", true, exchange);
+  if (!shop_checks) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   // The same input, profile version and engine give the same program. A large upload was
@@ -478,7 +492,8 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   const std::uint64_t input_hash =
       upload->streamed ? upload->streamed->hash() : body_hash(upload->bytes);
   const std::uint64_t context_hash = body_hash(
-      loaded_profile->version + "/" + services.engine_version + (context->strict ? "/strict" : ""));
+      loaded_profile->version + "/" + services.engine_version + (context->strict ? "/strict" : "") +
+      (*shop_checks ? "" : "/no-checks"));
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
   if (request[http::field::if_none_match] == etag && !as_json) {
@@ -489,7 +504,8 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   }
   const std::string filename = file_stem(upload->name) + loaded_profile->profile.extension;
   if (as_json) {
-    post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename);
+    post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename,
+              *shop_checks);
     return;
   }
 
@@ -505,6 +521,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   bool begun = false;
   bool alive = true;
   pipeline::PostOptions options;
+  options.shop_checks = *shop_checks;
   // One thread per job: --workers bounds the threads doing CPU work, which a render thread of
   // the job's own would not respect (docs/architecture.md, "Two threads in a post").
   options.render_thread_min_instances = 0;

@@ -201,34 +201,48 @@ Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<M
   return outcome;
 }
 
-Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
-                 bool expect_rendered) {
+namespace {
+
+std::shared_ptr<const profile::LoadedProfile> builtin_profile(const std::string& profile_id) {
   xslt::initialise();
-  static const express::SchemaRegistry registry;
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  Posted posted;
   std::vector<diag::FileDiagnostic> diagnostics;
-  posted.profile = store.load(profile_id, diagnostics);
-  EXPECT_TRUE(posted.profile) << profile_id << ": "
-                              << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
+  auto loaded = store.load(profile_id, diagnostics);
+  EXPECT_TRUE(loaded) << profile_id << ": "
+                      << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
+  return loaded;
+}
+
+}  // namespace
+
+Posted post_calls(std::vector<canon::Call> calls, const std::string& profile_id,
+                  bool expect_rendered) {
+  Posted posted;
+  posted.profile = builtin_profile(profile_id);
   if (!posted.profile) return posted;
-  auto loaded = pipeline::load(test::read_file(input), registry);
-  EXPECT_TRUE(loaded.ok()) << input;
-  if (!loaded.ok()) return posted;
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
-  canon::ProgramBuffer buffer;
-  // AP238 AIM programs through engine/ap238, as the pipeline will take them (docs/ap238.md).
-  const auto interpreted = ap238::is_aim(loaded.model)
-                               ? ap238::interpret(loaded.model, attributes, buffer, {})
-                               : stepnc::interpret(loaded.model, attributes, buffer, {});
-  EXPECT_TRUE(interpreted.ok()) << input;
-  posted.calls = buffer.calls();
+  posted.calls = std::move(calls);
   posted.text = render::render_program(*posted.profile, posted.calls, posted.render_diagnostics);
   if (expect_rendered) {
     EXPECT_FALSE(diag::has_errors(posted.render_diagnostics))
         << profile_id << ": " << diag::format(posted.render_diagnostics.front());
   }
   return posted;
+}
+
+Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
+                 bool expect_rendered) {
+  static const express::SchemaRegistry registry;
+  auto loaded = pipeline::load(test::read_file(input), registry);
+  EXPECT_TRUE(loaded.ok()) << input;
+  if (!loaded.ok()) return {builtin_profile(profile_id), {}, {}, {}};
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  canon::ProgramBuffer buffer;
+  // AP238 AIM programs through engine/ap238, as the pipeline takes them (docs/ap238.md).
+  const auto interpreted = ap238::is_aim(loaded.model)
+                               ? ap238::interpret(loaded.model, attributes, buffer, {})
+                               : stepnc::interpret(loaded.model, attributes, buffer, {});
+  EXPECT_TRUE(interpreted.ok()) << input;
+  return post_calls(std::move(buffer).take(), profile_id, expect_rendered);
 }
 
 std::vector<std::filesystem::path> ap238_programs() {

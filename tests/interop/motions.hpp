@@ -108,6 +108,10 @@ struct Posted {
 // and, when the corpus is there, its 17 milling programs of p21-aim/ (the two turning ones are
 // refused and not posted).
 [[nodiscard]] std::vector<std::filesystem::path> ap238_programs();
+// Renders a canonical program (from any reader: the CL reader's, a hand-made one) with the
+// built-in profile `profile_id`, with the same gtest failures.
+[[nodiscard]] Posted post_calls(std::vector<canon::Call> calls, const std::string& profile_id,
+                                bool expect_rendered = true);
 
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +18,7 @@
 
 #include "corpus.hpp"
 #include "motions.hpp"
+#include "ncpost/cls/reader.hpp"
 
 namespace ncpost::interop {
 namespace {
@@ -57,10 +59,9 @@ std::string read_all(const fs::path& p) {
   return test::read_file(p);
 }
 
-Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
-                           const std::string& profile_id) {
-  // Ours: the canonical program, and the posted text.
-  const Posted posted = post_file(input, profile_id);
+// Ours (the canonical program `posted` was rendered from) against rs274's reading of the text.
+Outcome compare_posted_with_rs274(const Posted& posted, const std::string& case_name,
+                                  const std::string& profile_id) {
   if (!posted.profile) return {};
   const auto ours = motions_of(posted.calls, options_for(posted.profile->profile));
   std::set<int> tools;
@@ -102,12 +103,38 @@ Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
   const std::string canon_text = read_all(dir / "canon.txt");
   EXPECT_NE(canon_text.find("PROGRAM_END()"), std::string::npos) << "rs274 stopped early:\n"
                                                                  << read_all(dir / "rs274.log");
-  const auto theirs = parse_rs274(canon_text);
+  auto theirs = parse_rs274(canon_text);
+  // rs274 prints millimetres whatever the program's unit: an inch program's are scaled back.
+  const bool inches = std::any_of(posted.calls.begin(), posted.calls.end(), [](const auto& c) {
+    const auto* u = std::get_if<canon::UseLengthUnits>(&c);
+    return u && u->units == canon::Units::Inches;
+  });
+  for (auto& m : theirs) {
+    if (!inches) break;
+    for (std::size_t i = 0; i < m.values.size(); ++i)
+      if (m.kind != "ARC_FEED" || i != 4) m.values[i] /= 25.4;  // not the turn count
+    m.feed /= 25.4;
+  }
 
   const Outcome outcome = expect_same_motions(ours, theirs, "rs274");
   std::error_code ec;
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
   return outcome;
+}
+
+Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
+                           const std::string& profile_id) {
+  return compare_posted_with_rs274(post_file(input, profile_id), case_name, profile_id);
+}
+
+// A CL file read by engine/cls and posted.
+Outcome compare_cl_with_rs274(const fs::path& input, const std::string& case_name,
+                              const std::string& profile_id) {
+  canon::ProgramBuffer buffer;
+  const auto read = cls::read(test::read_file(input), buffer);
+  EXPECT_TRUE(read.ok()) << input;
+  return compare_posted_with_rs274(post_calls(std::move(buffer).take(), profile_id), case_name,
+                                   profile_id);
 }
 
 bool rs274_available() {
@@ -214,6 +241,32 @@ TEST(Rs274Interop, FanucAp238Programs) {
 TEST(Rs274Interop, HaasNgcAp238Programs) {
   NCPOST_REQUIRE_RS274_OR_SKIP();
   check_ap238("haas-ngc");
+}
+
+// Cutter-location files (issue 20): every file of the corpus's cls/ folder and the project's own
+// CL programs that a 3-axis machine can run, read by engine/cls and posted for LinuxCNC.
+TEST(Rs274Interop, LinuxcncClFiles) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "cls" / "cases";
+  for (const char* name :
+       {"arcs-planes", "apt-cycles", "feeds-spindle", "inch", "continuation", "five-axis"}) {
+    SCOPED_TRACE(name);
+    const auto o = compare_cl_with_rs274(cases / (std::string(name) + ".cls"), name, "linuxcnc");
+    EXPECT_GT(o.compared, 0u);
+    std::printf("[ rs274    ] linuxcnc %s.cls: %zu motions compared, max deviation %.6f\n", name,
+                o.compared, o.max_deviation);
+  }
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(corpus / "cls")) {
+    SCOPED_TRACE(e.path().filename().string());
+    const auto o = compare_cl_with_rs274(e.path(), e.path().stem().string(), "linuxcnc");
+    EXPECT_GT(o.compared, 50u);
+    std::printf("[ rs274    ] linuxcnc %s: %zu motions compared, max deviation %.6f\n",
+                e.path().filename().string().c_str(), o.compared, o.max_deviation);
+    ++files;
+  }
+  EXPECT_EQ(files, 4u);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <cctype>
 
+#include "ncpost/cls/reader.hpp"
+
 namespace ncpost::pipeline {
 
 InputFormat detect_format(std::string_view bytes) noexcept {
@@ -22,6 +24,7 @@ InputFormat detect_format(std::string_view bytes) noexcept {
   // precisely what is wrong (P21-020) instead of "not a format ncpost reads".
   if (bytes.starts_with("ISO-10303-21") || bytes.starts_with("HEADER;")) return InputFormat::P21;
   if (bytes.starts_with("<")) return InputFormat::P28;
+  if (cls::looks_like_cl(bytes)) return InputFormat::Cl;
   return InputFormat::Unknown;
 }
 
@@ -31,6 +34,8 @@ std::string_view to_string(InputFormat format) noexcept {
       return "p21";
     case InputFormat::P28:
       return "p28";
+    case InputFormat::Cl:
+      return "cl";
     case InputFormat::Unknown:
       break;
   }

@@ -1,6 +1,9 @@
 #include "ncpost/pipeline/job.hpp"
 
 #include "ncpost/ap238/ap238.hpp"
+#include "ncpost/cls/checks.hpp"
+#include "ncpost/cls/reader.hpp"
+#include "ncpost/profile/profile.hpp"
 #include "ncpost/stepnc/attributes.hpp"
 #include "ncpost/stepnc/program_info.hpp"
 
@@ -57,6 +60,16 @@ JobResult read_result(const Program& program) {
   return result;
 }
 
+bool require_model(Program& program, std::string_view job, std::string_view instead) {
+  if (program.format == InputFormat::P21 || program.format == InputFormat::P28) return true;
+  program.diagnostics.push_back(
+      {program.name, diag::make(diag::Code::IoFormatNotAccepted, 1, 1,
+                                std::string(job) + " reads STEP-NC programs (ISO 10303-21 or -28); "
+                                "this input is " + std::string(to_string(program.format)) + ": " +
+                                    std::string(instead))});
+  return false;
+}
+
 bool Program::ok() const {
   return !cancelled && !diag::has_errors(diagnostics);
 }
@@ -109,6 +122,46 @@ Interpretation interpret_model(const Program& program, canon::Sink& sink, const 
   return out;
 }
 
+// ---- cutter-location files (APT CL, NX CLSF) -------------------------------------------------
+
+// CL records become canonical calls as they are read: the read stage keeps the text, the
+// interpret stage reads it (engine/cls, docs/cls.md).
+Program read_cl(Input input, const JobContext& context, const ReadOptions&) {
+  Program program;
+  program.name = std::move(input.name);
+  program.format = InputFormat::Cl;
+  program.diagnostics = context.schemas->reports;
+  program.text = input.arriving != nullptr ? input.arriving->take_text() : std::move(input.bytes);
+  return program;
+}
+
+// The profile's checks section, or why it cannot be used (an error: a shop that wrote checks
+// does not want a post that skipped them).
+std::optional<cls::CheckConfig> shop_checks(const profile::LoadedProfile* profile,
+                                            std::vector<diag::FileDiagnostic>& diagnostics) {
+  if (profile == nullptr || !profile->profile.checks_json) return std::nullopt;
+  std::vector<diag::Diagnostic> found;
+  auto config = cls::parse_checks(*profile->profile.checks_json, found);
+  append(diagnostics, diag::with_file(found, profile->profile.id + "/profile.json"));
+  return config;
+}
+
+Interpretation interpret_cl(const Program& program, canon::Sink& sink, const JobContext& context,
+                            const InterpretSettings& settings) {
+  Interpretation out;
+  const std::optional<cls::CheckConfig> checks = shop_checks(settings.checks_of, out.diagnostics);
+  if (diag::has_errors(out.diagnostics)) return out;
+  cls::ReadOptions options;
+  options.cancel = context.cancel;
+  options.stop_at_first_error = settings.stop_at_first_error;
+  options.checks = checks ? &*checks : nullptr;
+  const cls::ReadResult result = cls::read(program.text, sink, options);
+  append(out.diagnostics, diag::with_file(result.diagnostics, program.name));
+  out.calls = result.calls;
+  out.ok = result.ok();
+  return out;
+}
+
 // ---- the registry ----------------------------------------------------------------------------
 
 // How one input format is read into a Program and interpreted into canonical calls. A new
@@ -123,6 +176,7 @@ struct Reader {
 constexpr Reader kReaders[] = {
     {InputFormat::P21, read_model, interpret_model},
     {InputFormat::P28, read_model, interpret_model},
+    {InputFormat::Cl, read_cl, interpret_cl},
 };
 
 const Reader* reader_for(InputFormat format) {

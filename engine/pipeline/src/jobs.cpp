@@ -199,10 +199,13 @@ std::vector<diag::FileDiagnostic> verify_diagnostics(const VerifyOutcome& outcom
 Inspection inspect(Input input, const JobContext& context) {
   ReadOptions options;
   options.name_what_is_not_a_program = false;  // the structure report below says it
-  const Program program = read(std::move(input), context, options);
+  Program program = read(std::move(input), context, options);
+  const bool has_model =
+      program.cancelled ||
+      require_model(program, "inspect", "trace it (ncpost trace, POST /v1/traces) instead");
   Inspection inspection;
   inspection.job = read_result(program);
-  if (program.cancelled) return inspection;
+  if (program.cancelled || !has_model) return inspection;
   const auto started = Clock::now();
   const p21::Model& model = program.loaded.model;
   inspection.info = ap238::is_aim(model) ? ap238::inspect(model, *program.loaded.schema)
@@ -230,7 +233,8 @@ std::string inspection_text(const Inspection& inspection) {
 JobResult convert(Input input, const JobContext& context, ConvertTo to, const TextSink& out) {
   ReadOptions options;
   options.validate = false;
-  const Program program = read(std::move(input), context, options);
+  Program program = read(std::move(input), context, options);
+  if (program.ok()) (void)require_model(program, "convert", "it has no P21/P28 form to convert to");
   JobResult result = read_result(program);
   if (!result.ok) return result;
   const auto started = Clock::now();

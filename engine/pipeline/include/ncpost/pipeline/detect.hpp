@@ -10,6 +10,7 @@ enum class InputFormat : std::uint8_t {
   Unknown,
   P21,  // ISO 10303-21: "ISO-10303-21;" after optional comments and whitespace
   P28,  // XML: "<" after an optional byte-order mark and whitespace
+  Cl,   // APT/CLSF cutter-location records (cls::looks_like_cl)
 };
 
 [[nodiscard]] InputFormat detect_format(std::string_view bytes) noexcept;

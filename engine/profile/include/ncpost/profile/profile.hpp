@@ -78,6 +78,9 @@ struct Profile {
     bool arc = false;
     [[nodiscard]] bool any() const noexcept { return traverse || feed || arc; }
   } motion_runs{};
+  // The `checks` section as JSON text, for cls::parse_checks (the pre-post checks of CL input;
+  // validated there, docs/cls.md). Empty when the profile has none.
+  std::optional<std::string> checks_json;
 };
 
 // Parses and validates profile.json. On any problem returns nullopt and adds PROFILE-001/002
