@@ -555,9 +555,36 @@ double Converter::length_word(const Block& b, WordId w) const noexcept {
 
 // The block's axis words as a target in the current coordinate system (mm), from the current
 // position: absolute or incremental, or (machine) in machine coordinates (G53).
+bool Converter::polar(const Block& b, double& x, double& y) const {
+  const WordId wr = dialect_.polar_radius, wa = dialect_.polar_angle;
+  const bool has_r = wr != kNoWord && b.has(wr);
+  const bool has_a = wa != kNoWord && b.has(wa);
+  if (!has_r && !has_a) return false;
+  // LinuxCNC: about the origin of the current coordinate system; in G91 the distance and the
+  // angle add to the current point's.
+  const double r0 = std::hypot(pos_[0], pos_[1]);
+  const double a0 = std::atan2(pos_[1], pos_[0]) * 180 / std::numbers::pi;
+  double r = r0, a = a0;
+  if (incremental_) {
+    if (has_r) r += length_word(b, wr);
+    if (has_a) a += b.value(wa);
+  } else {
+    if (has_r) r = length_word(b, wr);
+    if (has_a) a = b.value(wa);
+  }
+  x = r * std::cos(a * std::numbers::pi / 180);
+  y = r * std::sin(a * std::numbers::pi / 180);
+  return true;
+}
+
 bool Converter::word_target(const Block& b, Axes& target, bool machine) const {
   target = pos_;
   bool any = false;
+  if (double x = 0, y = 0; polar(b, x, y)) {
+    target[0] = x;
+    target[1] = y;
+    any = true;
+  }
   const Axes offset = machine ? total_offset() : Axes{};
   for (int k = 0; k < kAxes; ++k) {
     const WordId w = axis_word(k);
@@ -575,6 +602,13 @@ bool Converter::word_target(const Block& b, Axes& target, bool machine) const {
 
 bool Converter::convert_motion(const CodeSpec& motion, const Block& b, const Where& where,
                                bool machine_coordinates) {
+  const std::uint8_t plane_bit = plane_ == canon::Plane::Xy   ? 1
+                                 : plane_ == canon::Plane::Xz ? 2
+                                                              : 4;
+  if ((motion.planes & plane_bit) == 0)
+    return error(where, b.first_column, diag::Code::GcodeUnsupported,
+                 motion.text + " in the " + (plane_bit == 2 ? "XZ" : "YZ") + " plane" +
+                     (motion.refusal.empty() ? "" : " (" + motion.refusal + ")"));
   switch (motion.action) {
     case Action::Rapid:
     case Action::Linear: {
@@ -776,8 +810,8 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
   const CycleRules& rules = dialect_.cycles;
   for (int k = 3; k < kAxes; ++k)
     if (b.has(axis_word(k)))
-      return error(where, b.word(axis_word(k)).column, diag::Code::GcodeUnsupported,
-                   std::string("a ") + kAxisLetters[static_cast<std::size_t>(k)] +
+      return error(where, b.word(axis_word(k)).column, diag::Code::GcodeUnusedWord,
+                   std::string("cannot put an ") + kAxisLetters[static_cast<std::size_t>(k)] +
                        " word in a canned cycle");
   if (b.has(drill_word)) cycle_bottom_ = scaled(b, drill_word);
   if (b.has(rules.r_plane)) cycle_r_ = scaled(b, rules.r_plane);
@@ -801,9 +835,10 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
   const auto fi = static_cast<std::size_t>(first), si = static_cast<std::size_t>(second),
              di = static_cast<std::size_t>(drill);
   const double old = from_mm(pos_[di]);
+  const double initial = from_mm(cycle_initial_);
   double r = 0, bottom = 0;
   if (incremental_) {
-    r = old + from_mm(to_mm(*cycle_r_));
+    r = initial + *cycle_r_;
     bottom = r + *cycle_bottom_;
   } else {
     r = *cycle_r_;
@@ -821,7 +856,7 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
     pos_ = up;
     emit(canon::StraightTraverse{pose(pos_)});
   }
-  const double clear = retract_r_ ? r : std::max(old, r);
+  const double clear = retract_r_ ? r : std::max(initial, r);
   CycleCall c;
   c.kind = motion.cycle.kind;
   c.clear = clear;
@@ -846,7 +881,13 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
   const double inc_second = b.has(axis_word(second)) ? length_word(b, axis_word(second)) : 0;
   for (int n = 0; n < repeat; ++n) {
     double a = pos_[fi], bb = pos_[si];
-    if (incremental_) {
+    if (double px = 0, py = 0; polar(b, px, py)) {
+      if (plane_ != canon::Plane::Xy)
+        return error(where, column, diag::Code::GcodeUnsupported,
+                     "polar coordinates outside the XY plane");
+      a = px;
+      bb = py;
+    } else if (incremental_) {
       a += inc_first;
       bb += inc_second;
     } else {
@@ -859,6 +900,12 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
     t[fi] = a;
     t[si] = bb;
     check_limits(t, where, column);
+    // Above the level the cycle returns to (G99 from higher up): over the hole at the current
+    // level first, then down — the canonical cycle travels at its safe level, which is R here.
+    if (pos_[di] > to_mm(clear) + 1e-9) {
+      pos_ = t;
+      emit(canon::StraightTraverse{pose(pos_)});
+    }
     if (exact) {
       if (!cycle(c, where, column)) return false;
     } else {
@@ -979,7 +1026,11 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     else if (non_motion_count < std::size(non_motion))
       non_motion[non_motion_count++] = &spec;
   }
-  bool axes = false;
+  bool axes = (dialect_.polar_radius != kNoWord && b.has(dialect_.polar_radius)) ||
+              (dialect_.polar_angle != kNoWord && b.has(dialect_.polar_angle));
+  if (axes && (b.has(kX) || b.has(kY)))
+    return error(where, b.first_column, diag::Code::GcodeConflictingWords,
+                 "polar coordinates (@, ^) with X or Y in one block");
   for (int k = 0; k < kAxes; ++k) axes = axes || b.has(axis_word(k));
   const CodeSpec* uses_axes = nullptr;  // a non-motion code that takes the axis words
   for (std::size_t i = 0; i < non_motion_count; ++i) {
@@ -988,7 +1039,14 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
         a == Action::Home || a == Action::Home2 || a == Action::MacroCall)
       uses_axes = non_motion[i];
   }
-  const CodeSpec* effective_motion = motion ? motion : (axes && !uses_axes ? motion_ : nullptr);
+  // An arc may have only its centre words: a full circle where the tool stands (LinuxCNC).
+  const bool centre_words = b.has(kI) || b.has(kJ) || b.has(kK) ||
+                            (dialect_.arcs.radius != kNoWord && b.has(dialect_.arcs.radius));
+  const CodeSpec* modal = motion ? motion : motion_;
+  const bool arc_mode =
+      modal && (modal->action == Action::ArcCw || modal->action == Action::ArcCcw);
+  const CodeSpec* effective_motion =
+      motion ? motion : ((axes || (arc_mode && centre_words)) && !uses_axes ? motion_ : nullptr);
   if (axes && !uses_axes && (!effective_motion || effective_motion->action == Action::CycleCancel))
     return error(where, b.first_column, diag::Code::GcodeUnusedWord,
                  "axis words without a code that uses them (no motion mode in force)");
@@ -1024,7 +1082,8 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     const WordKind kind = dialect_.words[w].kind;
     if (kind == WordKind::Feed || kind == WordKind::Speed || kind == WordKind::Tool ||
         kind == WordKind::GCode || kind == WordKind::MCode || kind == WordKind::LineNumber ||
-        kind == WordKind::Program || kind == WordKind::Axis)
+        kind == WordKind::Program || kind == WordKind::Axis || kind == WordKind::PolarRadius ||
+        kind == WordKind::PolarAngle)
       continue;
     bool used = false;
     for (const CodeRef& c : b.codes)
@@ -1222,13 +1281,15 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
       cycle_bottom_.reset();
     } else {
       if (motion->action == Action::Cycle && motion_ != motion) {
-        // A new cycle starts: LinuxCNC and FANUC keep R, Q, P and the depth of the last one.
+        // A new series of cycles starts: its initial level (G98 returns there; G91's R counts
+        // from it) is where the tool stands now. R, Q, P and the depth stay from the last one.
+        cycle_initial_ = pos_[static_cast<std::size_t>(plane_axes(plane_).normal)];
       }
       motion_ = motion;
     }
   }
   if (effective_motion && effective_motion->action != Action::CycleCancel &&
-      (axes || (motion && motion->action == Action::Cycle && axes))) {
+      (axes || (arc_mode && centre_words))) {
     if (machine_coordinates && effective_motion->action != Action::Rapid &&
         effective_motion->action != Action::Linear)
       return error(where, b.first_column, diag::Code::GcodeUnsupported,

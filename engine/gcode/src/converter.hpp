@@ -144,6 +144,8 @@ class Converter final : public StateView {
 
   // Word-address conversion steps.
   bool word_target(const Block& b, Axes& target, bool machine) const;
+  // LinuxCNC's polar words @ (distance) and ^ (angle) as X and Y (mm); false without them.
+  bool polar(const Block& b, double& x, double& y) const;
   bool convert_motion(const CodeSpec& motion, const Block& b, const Where& where,
                       bool machine_coordinates);
   bool convert_arc(const CodeSpec& motion, const Block& b, const Where& where);
@@ -199,6 +201,7 @@ class Converter final : public StateView {
   // Canned cycle's sticky values (program units as written, converted at use).
   std::optional<double> cycle_r_, cycle_bottom_;
   double cycle_q_ = 0, cycle_p_ = 0;
+  double cycle_initial_ = 0;  // mm, along the cycle's axis: where the series of cycles began
 
   std::optional<double> return_value_;
 };

@@ -201,6 +201,8 @@ const std::vector<std::pair<const char*, WordKind>> kWordKinds = {
     {"tool", WordKind::Tool},
     {"g", WordKind::GCode},
     {"m", WordKind::MCode},
+    {"polar_radius", WordKind::PolarRadius},
+    {"polar_angle", WordKind::PolarAngle},
     {"line_number", WordKind::LineNumber},
     {"program", WordKind::Program},
 };
@@ -341,12 +343,23 @@ void read_words(Checker& c, const json& j, Dialect& d) {
     d.words[static_cast<std::size_t>(i)].name = std::string(1, char('A' + i));
   for (const auto& [name, value] : j.items()) {
     const std::string path = p + "/" + name;
-    if (!valid_word_name(name)) {
-      c.fail(path, "a word name is 1 to 8 upper-case letters");
+    const bool polar = name == "@" || name == "^";
+    if (!valid_word_name(name) && !polar) {
+      c.fail(path, "a word name is 1 to 8 upper-case letters, or @ or ^");
       continue;
     }
     const auto kind = c.choice(value, path, kWordKinds);
     if (!kind) continue;
+    if (polar != (*kind == WordKind::PolarRadius || *kind == WordKind::PolarAngle)) {
+      c.fail(path, "@ and ^ are the polar words, and only they are");
+      continue;
+    }
+    if (polar) {
+      (*kind == WordKind::PolarRadius ? d.polar_radius : d.polar_angle) =
+          static_cast<WordId>(d.words.size());
+      d.words.push_back({name, *kind, false});
+      continue;
+    }
     if (name.size() == 1) {
       const auto w = letter_word(name[0]);
       d.words[w].kind = *kind;
@@ -557,7 +570,7 @@ void read_codes(Checker& c, const json& j, Dialect& d) {
     }
     if (!c.object(value, q,
                   {"group", "action", "index", "cycle", "requires", "requires_one_of", "allows",
-                   "refusal", "warn"},
+                   "refusal", "warn", "planes"},
                   {"action"}))
       continue;
     CodeSpec spec;
@@ -594,6 +607,18 @@ void read_codes(Checker& c, const json& j, Dialect& d) {
       if (auto v = c.string(value["refusal"], q + "/refusal")) spec.refusal = *v;
     if (value.contains("warn"))
       if (auto v = c.boolean(value["warn"], q + "/warn")) spec.warn = *v;
+    if (value.contains("planes")) {
+      const auto& planes = value["planes"];
+      if (!planes.is_array() || planes.empty()) {
+        c.fail(q + "/planes", "must be a non-empty array of xy, xz, yz");
+      } else {
+        spec.planes = 0;
+        for (std::size_t i = 0; i < planes.size(); ++i)
+          if (auto b = c.choice<std::uint8_t>(planes[i], q + "/planes/" + std::to_string(i),
+                                              {{"xy", 1}, {"xz", 2}, {"yz", 4}}))
+            spec.planes = static_cast<std::uint8_t>(spec.planes | *b);
+      }
+    }
     auto& index = m ? d.m_index : d.g_index;
     if (index[static_cast<std::size_t>(number)] >= 0) {
       c.fail(q, "the same code twice");

@@ -69,7 +69,7 @@ bool Evaluator::fail(std::size_t pos, diag::Code code, std::string message) {
 const OperatorSpec* Evaluator::match_operator(std::string_view text, std::size_t pos) const {
   for (const auto& spec : dialect_.expressions.operators) {
     const auto& s = spec.spelling;
-    if (text.compare(pos, s.size(), s) != 0) continue;
+    if (pos > text.size() || text.compare(pos, s.size(), s) != 0) continue;
     if (is_letter(s.front()) && !dialect_.ignore_whitespace) {
       const std::size_t after = pos + s.size();
       if (after < text.size() && is_ident_char(text[after])) continue;
@@ -86,7 +86,7 @@ const FunctionSpec* Evaluator::match_function(std::string_view text, std::size_t
   length = 0;
   for (const auto& spec : dialect_.expressions.functions) {
     const auto& s = spec.name;
-    if (s.size() <= length || text.compare(pos, s.size(), s) != 0) continue;
+    if (s.size() <= length || pos > text.size() || text.compare(pos, s.size(), s) != 0) continue;
     if (!dialect_.ignore_whitespace) {
       const std::size_t after = pos + s.size();
       if (after < text.size() && is_ident_char(text[after])) continue;
@@ -215,16 +215,29 @@ bool Evaluator::read_operand(std::string_view text, std::size_t& pos, bool& push
       std::size_t p = pos;
       while (p < text.size() && text[p] == ' ') ++p;
       if (f->function == Function::Exists) {
-        // EXISTS[#<name>]: whether the named parameter is set; the name is not evaluated.
+        // EXISTS[#<name>]: whether the named parameter is set (the name is not evaluated);
+        // EXISTS[#n]: whether n is a parameter number.
         if (p >= text.size() || text[p] != ex.open || p + 2 >= text.size() || text[p + 1] != '#')
-          return fail(p, diag::Code::GcodeBadExpression, "expected #<name> in EXISTS");
+          return fail(p, diag::Code::GcodeBadExpression, "expected # reading parameter in EXISTS");
         std::size_t q = p + 2;
-        if (text[q] != '<')
-          return fail(q, diag::Code::GcodeBadExpression, "expected #<name> in EXISTS");
-        if (!read_parameter_name(text, q, name_)) return false;
+        bool exists = false;
+        if (text[q] == '<') {
+          if (!read_parameter_name(text, q, name_)) return false;
+          exists = parameters_.exists_named(name_);
+        } else {
+          // The number may itself be an expression (##2): evaluated with fresh stacks.
+          Evaluator inner(dialect_, parameters_, max_depth_ > 0 ? max_depth_ - 1 : 0);
+          Value n;
+          if (max_depth_ == 0 || !inner.evaluate(text, q, Mode::Primary, n)) {
+            error_ = inner.error();
+            return false;
+          }
+          exists = n.number >= 0 && n.number < static_cast<double>(dialect_.parameters.count) &&
+                   std::abs(n.number - std::round(n.number)) < 1e-4;
+        }
         if (q >= text.size() || text[q] != ex.close)
-          return fail(q, diag::Code::GcodeBadExpression, "expected ] after EXISTS[#<name>");
-        values_.push_back(Value::of(parameters_.exists_named(name_) ? 1 : 0));
+          return fail(q, diag::Code::GcodeBadExpression, "expected ] reading bracketed parameter");
+        values_.push_back(Value::of(exists ? 1 : 0));
         pos = q + 1;
         pushed_value = true;
         return true;
@@ -242,9 +255,6 @@ bool Evaluator::read_operand(std::string_view text, std::size_t& pos, bool& push
       ops_.push_back({OpKind::Unary, Operator::Add, UnaryOp::Fn, f->function, kUnaryPrecedence, 1,
                       false, start});
       return true;
-    }
-    if (const OperatorSpec* o = match_operator(text, pos); o && o->op == Operator::Eq) {
-      (void)o;  // a binary operator where a value belongs: reported below
     }
     if (style == ParameterStyle::R || style == ParameterStyle::Q) {
       // Rn / Qn (QLn, QRn: Heidenhain's local and remanent Q), or a user variable name.

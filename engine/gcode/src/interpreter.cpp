@@ -19,7 +19,7 @@ std::string number_key(double number) {
 }
 
 bool starts_with(std::string_view text, std::size_t pos, std::string_view word) {
-  return text.compare(pos, word.size(), word) == 0;
+  return pos <= text.size() && text.compare(pos, word.size(), word) == 0;
 }
 
 std::string_view trim(std::string_view s) {
@@ -32,6 +32,15 @@ std::string upper_copy(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = upper(c);
   return out;
+}
+
+// A file's name without folder and extension, upper case: what calls name it by.
+std::string stem_of(std::string_view name) {
+  if (const auto slash = name.find_last_of("/\\"); slash != std::string_view::npos)
+    name.remove_prefix(slash + 1);
+  if (const auto dot = name.rfind('.'); dot != std::string_view::npos && dot > 0)
+    name = name.substr(0, dot);
+  return upper_copy(name);
 }
 
 // Whether the text (outside comments) has a rotary axis word: then every canonical motion
@@ -253,7 +262,7 @@ bool Interpreter::skip_to(const std::vector<std::string_view>& keywords, std::st
     std::size_t p = pos;
     std::string l;
     // A label that does not parse is not ours.
-    if (!read_o_label(p, l)) continue;
+    if (!read_o_label(t, p, l)) continue;
     if (l != label) continue;
     while (p < t.size() && t[p] == ' ') ++p;
     for (const std::string_view k : keywords) {
@@ -275,14 +284,8 @@ bool Interpreter::skip_to(const std::vector<std::string_view>& keywords, std::st
 std::optional<std::size_t> Interpreter::find_file(std::string_view name) {
   // By the name without folder and extension, case-insensitive.
   const std::string wanted = upper_copy(name);
-  for (std::size_t i = 1; i < sources_.size(); ++i) {
-    std::string_view n = sources_[i].name;
-    if (const auto slash = n.find_last_of("/\\"); slash != std::string_view::npos)
-      n.remove_prefix(slash + 1);
-    if (const auto dot = n.rfind('.'); dot != std::string_view::npos && dot > 0)
-      n = n.substr(0, dot);
-    if (upper_copy(n) == wanted) return i;
-  }
+  for (std::size_t i = 1; i < sources_.size(); ++i)
+    if (stem_of(sources_[i].name) == wanted) return i;
   return std::nullopt;
 }
 
@@ -290,6 +293,7 @@ void Interpreter::index_subprograms(Source& s) {
   s.subprograms.emplace();
   LineCursor c(s.text);
   Line line;
+  int percents = 0;
   while (!c.at_end()) {
     const std::size_t offset = c.offset();
     std::uint32_t number = 0;
@@ -304,6 +308,8 @@ void Interpreter::index_subprograms(Source& s) {
       while (pos < t.size() && (is_digit(t[pos]) || t[pos] == '.')) ++pos;
     }
     if (pos >= t.size()) continue;
+    // Nothing after the second '%' is part of the file's program.
+    if (dialect_.percent_delimits && t[pos] == '%' && ++percents == 2) break;
     const Position after{static_cast<std::size_t>(&s - sources_.data()), c.offset(), number + 1};
     (void)offset;
     if (t[pos] == 'O' || (t[pos] == ':' && dialect_.flow.fanuc_subprograms)) {
@@ -318,13 +324,17 @@ void Interpreter::index_subprograms(Source& s) {
         std::from_chars(t.data() + p, t.data() + q, v);
         label = number_key(v);
         p = q;
-      } else if (!read_o_label(p, label)) {
+      } else if (!read_o_label(t, p, label)) {
         continue;
       }
       while (p < t.size() && t[p] == ' ') ++p;
       const bool sub = starts_with(t, p, "SUB") && (p + 3 >= t.size() || !is_letter(t[p + 3]));
       const bool bare = p >= t.size();
-      if (sub && dialect_.flow.o_words) s.subprograms->try_emplace("o:" + label, after);
+      // A subroutine file holds its one subroutine, named as the file: LinuxCNC does not see
+      // others defined after it there.
+      if (sub && dialect_.flow.o_words &&
+          (&s == &sources_[0] || label == "<" + stem_of(s.name) + ">" || label == stem_of(s.name)))
+        s.subprograms->try_emplace("o:" + label, after);
       if (bare && dialect_.flow.fanuc_subprograms && label.front() != '<')
         s.subprograms->try_emplace("f:" + label, after);
     }
@@ -345,12 +355,9 @@ std::optional<Position> Interpreter::find_fanuc_program(double number, std::size
   if (auto p = look(0)) return p;
   // A file of its own: O1234.nc, 1234, o1234.ngc ...
   for (std::size_t i = 1; i < sources_.size(); ++i) {
-    std::string_view n = sources_[i].name;
-    if (const auto slash = n.find_last_of("/\\"); slash != std::string_view::npos)
-      n.remove_prefix(slash + 1);
-    if (const auto dot = n.rfind('.'); dot != std::string_view::npos && dot > 0)
-      n = n.substr(0, dot);
-    if (!n.empty() && (n.front() == 'O' || n.front() == 'o')) n.remove_prefix(1);
+    const std::string stem = stem_of(sources_[i].name);
+    std::string_view n = stem;
+    if (!n.empty() && n.front() == 'O') n.remove_prefix(1);
     if (n.empty() || !std::all_of(n.begin(), n.end(), [](char c) { return is_digit(c); })) continue;
     double v = 0;
     std::from_chars(n.data(), n.data() + n.size(), v);
@@ -529,18 +536,22 @@ bool Interpreter::read_words(std::size_t pos, Block& b) {
       b.assignments.push_back(std::move(a));
       continue;
     }
-    if (!is_letter(c))
+    WordId id = kNoWord;
+    if (c == '@' && dialect_.polar_radius != kNoWord) id = dialect_.polar_radius;
+    if (c == '^' && dialect_.polar_angle != kNoWord) id = dialect_.polar_angle;
+    if (!is_letter(c) && id == kNoWord)
       return error(column(pos), diag::Code::GcodeBadCharacter,
                    std::string("bad character '") + c + "' used");
     // A multi-letter word the dialect declares (Sinumerik CR=, TURN=): name then '='.
-    WordId id = kNoWord;
     std::size_t length = 1;
-    for (std::size_t w = 26; w < dialect_.words.size(); ++w) {
-      const std::string& name = dialect_.words[w].name;
-      if (name.size() > length && starts_with(t, pos, name) && pos + name.size() < t.size() &&
-          t[pos + name.size()] == '=') {
-        id = static_cast<WordId>(w);
-        length = name.size();
+    if (id == kNoWord) {
+      for (std::size_t w = 26; w < dialect_.words.size(); ++w) {
+        const std::string& name = dialect_.words[w].name;
+        if (name.size() > length && starts_with(t, pos, name) && pos + name.size() < t.size() &&
+            t[pos + name.size()] == '=') {
+          id = static_cast<WordId>(w);
+          length = name.size();
+        }
       }
     }
     if (id == kNoWord) {
@@ -614,6 +625,10 @@ bool Interpreter::read_words(std::size_t pos, Block& b) {
 
 bool Interpreter::assign(const Assignment& a) {
   if (a.named) {
+    for (const auto& prefix : dialect_.parameters.machine_name_prefixes)
+      if (a.name.compare(0, prefix.size(), prefix) == 0)
+        return error(a.column, diag::Code::GcodeBadParameter,
+                     "#<" + a.name + "> is the machine's: it cannot be assigned");
     parameters_.set_named(a.name, a.value);
     return true;
   }
@@ -784,8 +799,7 @@ void Interpreter::do_flow(const FlowRequest& flow) {
 
 // ---- LinuxCNC O-words ------------------------------------------------------------------------
 
-bool Interpreter::read_o_label(std::size_t& pos, std::string& label) {
-  const std::string_view t = text();
+bool Interpreter::read_o_label(std::string_view t, std::size_t& pos, std::string& label) {
   if (pos >= t.size() || t[pos] != 'O') return false;
   ++pos;
   if (pos < t.size() && t[pos] == '<') {
@@ -817,7 +831,7 @@ bool Interpreter::o_word_statement(std::size_t pos) {
   const std::string_view t = text();
   const std::size_t start = pos;
   std::string label;
-  if (!read_o_label(pos, label))
+  if (!read_o_label(t, pos, label))
     return error(column(start), diag::Code::GcodeBadStatement, "malformed O-word");
   while (pos < t.size() && t[pos] == ' ') ++pos;
   std::size_t kw_end = pos;
@@ -892,8 +906,10 @@ bool Interpreter::o_word_statement(std::size_t pos) {
       if (!evaluate_at(pos, Evaluator::Mode::Primary, v)) return false;
       value = v.number;
     }
+    // ENDSUB names its subroutine; RETURN may carry any label (LinuxCNC writes the label of
+    // the IF it stands in).
     if (frames_.size() < 2 || frames_.back().kind != FrameKind::OWord ||
-        frames_.back().label != label)
+        (keyword == "ENDSUB" && frames_.back().label != label))
       return error(column(start), diag::Code::GcodeBadFlow,
                    "o" + label + " " + keyword + " outside its subroutine");
     return_from_call(value, std::nullopt);
@@ -1194,7 +1210,7 @@ void Interpreter::step_block() {
                                       : "comment not closed on its line");
     return;
   }
-  if (line_.block_delete) return;  // the block delete switch is taken as on (docs/gcode.md)
+  if (line_.block_delete && options_.block_delete) return;
   if (observer_) observer_->begin_block(sources_[position_.source].name, line_.number, line_.raw);
   struct End {
     BlockObserver* o;

@@ -122,7 +122,7 @@ class Interpreter {
 
   // LinuxCNC O-words.
   bool o_word_statement(std::size_t pos);
-  bool read_o_label(std::size_t& pos, std::string& label);
+  bool read_o_label(std::string_view t, std::size_t& pos, std::string& label);
   // FANUC macro B.
   bool macro_statement(std::size_t pos, bool& handled);
 

@@ -34,16 +34,18 @@ inline constexpr std::size_t kMaxWords = 64;
 // What a word's value is, which decides how a plain integer literal reads and which values are
 // valid.
 enum class WordKind : std::uint8_t {
-  Axis,        // a coordinate (X Y Z A B C U V W): least-increment scaling applies
-  Length,      // another length (I J K R Q ...): least-increment scaling applies
-  Number,      // any number (P, L, D, H, ...)
-  Feed,        // F
-  Speed,       // S
-  Tool,        // T: a non-negative integer
-  GCode,       // G
-  MCode,       // M
-  LineNumber,  // N
-  Program,     // O (a program number or, in LinuxCNC, an O-word statement)
+  Axis,         // a coordinate (X Y Z A B C U V W): least-increment scaling applies
+  Length,       // another length (I J K R Q ...): least-increment scaling applies
+  Number,       // any number (P, L, D, H, ...)
+  Feed,         // F
+  Speed,        // S
+  Tool,         // T: a non-negative integer
+  GCode,        // G
+  MCode,        // M
+  LineNumber,   // N
+  Program,      // O (a program number or, in LinuxCNC, an O-word statement)
+  PolarRadius,  // LinuxCNC @: distance from the origin in the XY plane
+  PolarAngle,   // LinuxCNC ^: angle from the X axis, degrees
 };
 
 struct WordSpec {
@@ -140,6 +142,9 @@ struct CodeSpec {
   std::vector<WordId> allows;           // words this code uses (besides the always-free ones)
   std::string refusal;                  // Unsupported / Lathe: what is refused, by name
   bool warn = false;                    // accepted without effect, with a warning (first use)
+  // Planes a motion code is converted in (bits: 1 XY, 2 XZ, 4 YZ); in another it is refused,
+  // `refusal` saying why.
+  std::uint8_t planes = 7;
 };
 
 // How parameters (variables) are written and what an unset one reads as.
@@ -313,6 +318,8 @@ struct Dialect {
   std::unordered_map<std::string, std::string> comment_commands;  // "MSG," → "message"
 
   std::vector<WordSpec> words;          // index = WordId
+  WordId polar_radius = kNoWord;        // '@' when the dialect reads polar coordinates
+  WordId polar_angle = kNoWord;         // '^'
   std::array<bool, 26> letter_known{};  // a letter this dialect reads
   std::vector<std::string> modal_groups;
   std::vector<CodeSpec> codes;        // G and M codes

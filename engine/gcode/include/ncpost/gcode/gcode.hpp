@@ -69,6 +69,9 @@ struct ReadOptions {
   std::size_t max_call_depth = 64;            // nested subprogram calls and loops
   std::size_t max_expression_depth = 64;      // nested brackets and function calls
   std::size_t max_line_length = 65536;        // bytes in one line (block)
+  // The operator's block delete switch: on, blocks starting with '/' are skipped; off (as
+  // LinuxCNC's rs274 starts), they run like any other.
+  bool block_delete = false;
   // rs274's tool table lengths by tool number (G43 H), when known; see docs/gcode.md.
   std::vector<std::pair<int, double>> tool_lengths;
 };
