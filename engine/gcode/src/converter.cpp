@@ -539,6 +539,21 @@ bool Converter::cycle(const CycleCall& c, const Where& where, std::uint32_t colu
 
 // ---- Word-address blocks ---------------------------------------------------------------------
 
+// Where a motion's diagnostics point: its motion code, or its first axis word.
+std::uint32_t Converter::motion_column(const Block& b) const noexcept {
+  for (const CodeRef& c : b.codes)
+    if (is_motion_action(c.spec->action)) return c.column;
+  std::uint32_t column = 0;
+  for (std::size_t w = 0; w < dialect_.words.size(); ++w) {
+    const WordKind k = dialect_.words[w].kind;
+    if ((k == WordKind::Axis || k == WordKind::PolarRadius || k == WordKind::PolarAngle) &&
+        b.has(static_cast<WordId>(w)) &&
+        (column == 0 || b.word(static_cast<WordId>(w)).column < column))
+      column = b.word(static_cast<WordId>(w)).column;
+  }
+  return column == 0 ? b.first_column : column;
+}
+
 double Converter::scaled(const Block& b, WordId w) const noexcept {
   const Word& word = b.word(w);
   if (dialect_.integer_literal_increments && word.integer_literal) {
@@ -606,7 +621,7 @@ bool Converter::convert_motion(const CodeSpec& motion, const Block& b, const Whe
                                  : plane_ == canon::Plane::Xz ? 2
                                                               : 4;
   if ((motion.planes & plane_bit) == 0)
-    return error(where, b.first_column, diag::Code::GcodeUnsupported,
+    return error(where, motion_column(b), diag::Code::GcodeUnsupported,
                  motion.text + " in the " + (plane_bit == 2 ? "XZ" : "YZ") + " plane" +
                      (motion.refusal.empty() ? "" : " (" + motion.refusal + ")"));
   switch (motion.action) {
@@ -614,7 +629,7 @@ bool Converter::convert_motion(const CodeSpec& motion, const Block& b, const Whe
     case Action::Linear: {
       Axes target;
       if (!word_target(b, target, machine_coordinates)) return true;
-      const std::uint32_t column = b.first_column;
+      const std::uint32_t column = motion_column(b);
       return motion.action == Action::Rapid ? rapid(target, where, column)
                                             : linear(target, where, column);
     }
@@ -630,7 +645,7 @@ bool Converter::convert_motion(const CodeSpec& motion, const Block& b, const Whe
 
 bool Converter::convert_arc(const CodeSpec& motion, const Block& b, const Where& where) {
   const PlaneAxes pa = plane_axes(plane_);
-  const std::uint32_t column = b.first_column;
+  const std::uint32_t column = motion_column(b);
   Axes target;
   word_target(b, target, false);
   const auto f = static_cast<std::size_t>(pa.first);
@@ -802,7 +817,7 @@ void Converter::expand_cycle_motions(const CycleCall& c, const CodeSpec* spec, i
 }
 
 bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Where& where) {
-  const std::uint32_t column = b.first_column;
+  const std::uint32_t column = motion_column(b);
   // The cycle's plane: positions in the plane, the drill along its normal (toward minus).
   const PlaneAxes pa = plane_axes(plane_);
   const int first = pa.first, second = pa.second, drill = pa.normal;
@@ -1017,10 +1032,7 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
       return error(where, c.column, diag::Code::GcodeLathe,
                    spec.text + ": " + (spec.refusal.empty() ? "a lathe cycle" : spec.refusal) +
                        " (lathe programs are out of scope)");
-    if (spec.warn)
-      warn(where, c.column, diag::Code::GcodeIgnored,
-           spec.text + " has no effect on the canonical program" +
-               (spec.refusal.empty() ? "" : " (" + spec.refusal + ")"));
+
     if (is_motion_action(spec.action))
       motion = &spec;
     else if (non_motion_count < std::size(non_motion))
@@ -1085,10 +1097,20 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
         kind == WordKind::Program || kind == WordKind::Axis || kind == WordKind::PolarRadius ||
         kind == WordKind::PolarAngle)
       continue;
+    // A word two codes of the block could take is ambiguous (LinuxCNC: G64 and M19 both take R).
     bool used = false;
-    for (const CodeRef& c : b.codes)
-      used = used ||
-             std::find(c.spec->allows.begin(), c.spec->allows.end(), w) != c.spec->allows.end();
+    const CodeSpec* user = nullptr;
+    for (const CodeRef& c : b.codes) {
+      if (std::find(c.spec->allows.begin(), c.spec->allows.end(), w) == c.spec->allows.end())
+        continue;
+      if (user)
+        return error(where, b.word(static_cast<WordId>(w)).column,
+                     diag::Code::GcodeConflictingWords,
+                     dialect_.words[w].name + " word is ambiguous: " + user->text + " and " +
+                         c.spec->text + " both use it (use separate blocks)");
+      user = c.spec;
+      used = true;
+    }
     if (!used && effective_motion && !motion)
       used = std::find(effective_motion->allows.begin(), effective_motion->allows.end(), w) !=
              effective_motion->allows.end();
@@ -1113,6 +1135,11 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   }
 
   // ---- Convert, in LinuxCNC's order of execution ----
+  for (const CodeRef& c : b.codes)
+    if (c.spec->warn)
+      warn(where, c.column, diag::Code::GcodeIgnored,
+           c.spec->text + " has no effect on the canonical program" +
+               (c.spec->refusal.empty() ? "" : " (" + c.spec->refusal + ")"));
   if (!started_) start(options_.program_name);
   for (const Comment& c : comments) {
     // (MSG, ...) and the other command comments are the interpreter's business; plain ones are

@@ -155,6 +155,7 @@ class Converter final : public StateView {
   void expand_cycle_motions(const CycleCall& c, const CodeSpec* spec, int first, int second,
                             int drill);
   [[nodiscard]] double scaled(const Block& b, WordId w) const noexcept;
+  [[nodiscard]] std::uint32_t motion_column(const Block& b) const noexcept;
   [[nodiscard]] double length_word(const Block& b, WordId w) const noexcept;
 
   const Dialect& dialect_;
