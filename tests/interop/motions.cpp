@@ -324,4 +324,91 @@ std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
   return std::move(m.motions);
 }
 
+ReadBackOptions read_back_options(const std::string& profile_id, const profile::Profile& p) {
+  ReadBackOptions c{options_for(p), options_for(p)};
+  if (p.nurbs == profile::NurbsMode::Native) {
+    c.ours.nurbs_samples = kNurbsSamples;
+    c.theirs.nurbs_samples = kNurbsSamples;
+  }
+  if (profile_id == "hnc-21" || profile_id == "okuma-osp") c.ours.split_multi_turn_degrees = 180;
+  if (profile_id == "hnc-21") c.ours.setup = &p.setup;
+  return c;
+}
+
+std::vector<canon::Call> cycles_program() {
+  std::vector<canon::Call> calls;
+  calls.emplace_back(canon::Begin{canon::Scope::Project, {1, "PROJECT", "CYCLES"}});
+  calls.emplace_back(canon::UseLengthUnits{canon::Units::Millimetres});
+  calls.emplace_back(canon::SelectPlane{canon::Plane::Xy});
+  calls.emplace_back(
+      canon::Begin{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "HOLES"}});
+  calls.emplace_back(canon::SelectTool{3});
+  calls.emplace_back(canon::ChangeTool{3});
+  calls.emplace_back(canon::UseToolLengthOffset{80});
+  calls.emplace_back(canon::SetFeedRate{400});
+  calls.emplace_back(canon::SetSpindleSpeed{1200});
+  calls.emplace_back(canon::StartSpindleClockwise{});
+  calls.emplace_back(canon::FloodOn{});
+  calls.emplace_back(canon::StraightTraverse{{0, 0, 50}});
+  canon::Cycle c;
+  c.x = 10;
+  c.y = 20;
+  c.safe_z = 50;
+  c.r_z = 2;
+  c.bottom_z = -15;
+  c.feed = 150;
+  calls.emplace_back(c);  // G81
+  c.x = 30;
+  c.dwell = 0.5;
+  calls.emplace_back(c);  // G82
+  c.kind = canon::CycleKind::PeckDrill;
+  c.x = 50;
+  c.dwell = 0;
+  c.peck = 6;
+  c.peck_clearance = 1.0;
+  calls.emplace_back(c);  // G83
+  c.x = 70;
+  c.peck_clearance = 0;
+  c.peck_retract = 0.5;
+  c.safe_z = 2;           // back to the R plane (G99)
+  calls.emplace_back(c);  // G73
+  c = canon::Cycle{};
+  c.kind = canon::CycleKind::Ream;
+  c.x = 90;
+  c.y = 20;
+  c.safe_z = 50;
+  c.r_z = 2;
+  c.bottom_z = -12;
+  c.feed = 120;
+  calls.emplace_back(c);  // G85
+  c.kind = canon::CycleKind::Tap;
+  c.x = 110;
+  c.pitch = 1.5;
+  c.spindle_speed = 300;
+  c.feed = 450;
+  calls.emplace_back(c);  // G84
+  c.kind = canon::CycleKind::Bore;
+  c.x = 130;
+  c.spindle_stop = true;
+  c.feed = 100;
+  calls.emplace_back(c);  // G86
+  calls.emplace_back(canon::SetFeedRate{300});
+  calls.emplace_back(canon::StraightFeed{{130, 40, 50}});
+  calls.emplace_back(canon::End{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "HOLES"}});
+  calls.emplace_back(canon::StopSpindleTurning{});
+  calls.emplace_back(canon::FloodOff{});
+  calls.emplace_back(canon::ProgramEnd{});
+  calls.emplace_back(canon::End{canon::Scope::Project, {1, "PROJECT", "CYCLES"}});
+  return calls;
+}
+
+std::shared_ptr<const profile::LoadedProfile> load_profile(const std::string& id) {
+  static profile::ProfileStore store(test::source_dir() / "stylesheets");
+  xslt::initialise();
+  std::vector<diag::FileDiagnostic> diagnostics;
+  auto p = store.load(id, diagnostics);
+  EXPECT_TRUE(p) << id;
+  return p;
+}
+
 }  // namespace ncpost::interop

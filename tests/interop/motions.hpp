@@ -147,6 +147,26 @@ struct Posted {
 // profile does not load.
 [[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id);
 
+// How a canonical program maps onto a dialect's output, for reading the output back: `ours`
+// for the canonical program (the profile's set-up transform for dialects that write machine
+// axes, multi-turn arcs cut where the dialect cuts them, splines sampled where it writes them),
+// `theirs` for the calls read back (the text already has all that).
+struct ReadBackOptions {
+  MotionOptions ours;
+  MotionOptions theirs;
+};
+inline constexpr int kNurbsSamples = 33;
+[[nodiscard]] ReadBackOptions read_back_options(const std::string& profile_id,
+                                                const profile::Profile& profile);
+
+// None of the golden inputs has a drilling cycle: a hand-made canonical program with every
+// kind (drill, drill with dwell, G83 with a 1 mm clearance, G73 with a 0.5 mm back-off back to
+// R, ream, tap, bore with spindle stop).
+[[nodiscard]] std::vector<canon::Call> cycles_program();
+
+// A built-in profile, loaded once per test program (adds a failure when it does not load).
+[[nodiscard]] std::shared_ptr<const profile::LoadedProfile> load_profile(const std::string& id);
+
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
                                              const MotionOptions& options);

@@ -186,12 +186,12 @@ double Converter::machine_position(int axis) const {
   return out(axis, m);
 }
 double Converter::work_offset(int index, int axis) const {
-  if (index < 1 || index > 9 || axis < 0 || axis >= kAxes) return 0;
+  if (index < 1 || index >= kWorkOffsets || axis < 0 || axis >= kAxes) return 0;
   Axes v = work_offsets_[static_cast<std::size_t>(index)];
   return out(axis, v);
 }
 void Converter::set_work_offset(int index, int axis, double value) {
-  if (index < 1 || index > 9 || axis < 0 || axis >= kAxes) return;
+  if (index < 1 || index >= kWorkOffsets || axis < 0 || axis >= kAxes) return;
   work_offsets_[static_cast<std::size_t>(index)][static_cast<std::size_t>(axis)] =
       is_rotary(axis) ? value : to_mm(value);
 }
@@ -336,11 +336,15 @@ void Converter::tool_length(bool on, int h, const Where& where) {
     }
   }
   // The length lives in the machine's tool table. The canonical call needs a number: the
-  // dialect's documented assumption (docs/gcode.md), which no motion depends on.
-  report_.add(where.file, diag::Code::GcodeMachineValue, where.line, 0,
-              "the length of tool offset H" + std::to_string(h) +
-                  " is the machine's: USE_TOOL_LENGTH_OFFSET carries the assumed " +
-                  number_text(dialect_.assumed_tool_length));
+  // dialect's documented assumption (docs/gcode.md), which no motion depends on. Said once.
+  if (!warned_tool_length_) {
+    warned_tool_length_ = true;
+    report_.add(where.file, diag::Code::GcodeMachineValue, where.line, 0,
+                "tool lengths (H" + std::to_string(h) +
+                    " and any other) are the machine's: USE_TOOL_LENGTH_OFFSET carries the "
+                    "assumed " +
+                    number_text(dialect_.assumed_tool_length));
+  }
   emit(canon::UseToolLengthOffset{dialect_.assumed_tool_length});
 }
 
@@ -930,7 +934,11 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
   return true;
 }
 
-bool Converter::convert_g10(const Block& b, const Where& where, std::uint32_t column) {
+// G10: L2 sets work offset P (LinuxCNC and FANUC; P0 the current one in LinuxCNC); L20 sets
+// it so that the current point gets the given coordinates (LinuxCNC) or, in a dialect whose
+// G10 has index 1, sets additional work offset P (FANUC, G54.1 P); L1/L10..L13 the tool table.
+bool Converter::convert_g10(const Block& b, const Where& where, std::uint32_t column,
+                            const CodeSpec& spec) {
   if (!b.has(kL))
     return error(where, column, diag::Code::GcodeMissingWord, "G10 without its L word");
   const int l = static_cast<int>(std::lround(b.value(kL)));
@@ -946,11 +954,20 @@ bool Converter::convert_g10(const Block& b, const Where& where, std::uint32_t co
   if (!b.has(kP))
     return error(where, column, diag::Code::GcodeMissingWord,
                  "G10 L" + std::to_string(l) + " without P");
+  const bool fanuc_additional = spec.index == 1 && l == 20;
   int p = static_cast<int>(std::lround(b.value(kP)));
-  if (p == 0) p = work_index_;
-  if (p < 1 || p > 9)
-    return error(where, b.word(kP).column, diag::Code::GcodeBadWordValue,
-                 "G10 P must select a coordinate system 0..9");
+  if (fanuc_additional) {
+    if (p < 1 || p > kWorkOffsets - 10)
+      return error(where, b.word(kP).column, diag::Code::GcodeBadWordValue,
+                   "G10 L20 P must be 1 to " + std::to_string(kWorkOffsets - 10));
+    p += 9;
+  } else {
+    if (p == 0 && spec.index == 0) p = work_index_;
+    if (p < 1 || p > 9)
+      return error(where, b.word(kP).column, diag::Code::GcodeBadWordValue,
+                   "G10 P must select a coordinate system " +
+                       std::string(spec.index == 0 ? "0..9" : "1..6"));
+  }
   if (b.has(kR) && std::abs(b.value(kR)) > 1e-12)
     return error(where, b.word(kR).column, diag::Code::GcodeUnsupported,
                  "coordinate system rotation (G10 ... R)");
@@ -960,7 +977,7 @@ bool Converter::convert_g10(const Block& b, const Where& where, std::uint32_t co
     if (!b.has(w)) continue;
     const auto i = static_cast<std::size_t>(k);
     const double v = is_rotary(k) ? scaled(b, w) : length_word(b, w);
-    if (l == 2) {
+    if (l == 2 || fanuc_additional) {
       offset[i] = incremental_ ? offset[i] + v : v;
     } else {
       // L20: the current position becomes v in coordinate system p.
@@ -1050,6 +1067,10 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     if (a == Action::SetCoordinateData || a == Action::AxisOffset || a == Action::LocalOffset ||
         a == Action::Home || a == Action::Home2 || a == Action::MacroCall)
       uses_axes = non_motion[i];
+    // FANUC G4 X1.5: the X is the dwell's time.
+    if (a == Action::Dwell)
+      for (const auto& [w, scale] : dialect_.dwell.words)
+        if (b.has(w) && dialect_.words[w].kind == WordKind::Axis) uses_axes = non_motion[i];
   }
   // An arc may have only its centre words: a full circle where the tool stands (LinuxCNC).
   const bool centre_words = b.has(kI) || b.has(kJ) || b.has(kK) ||
@@ -1143,7 +1164,9 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   if (!started_) start(options_.program_name);
   for (const Comment& c : comments) {
     // (MSG, ...) and the other command comments are the interpreter's business; plain ones are
-    // COMMENT calls.
+    // COMMENT calls. Where ( ) is the comment form, ';' only ends the block (FANUC's EOB, a
+    // LinuxCNC remark): rs274 prints no COMMENT for it.
+    if (c.text.empty() || (c.semicolon && dialect_.parenthesis_comments)) continue;
     comment(c.text, where);
   }
   auto find = [&](Action a) -> const CodeRef* {
@@ -1227,13 +1250,15 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   if (const CodeRef* c = find(Action::WorkOffset)) {
     int index = c->spec->index;
     if (index == 0) {
+      // G54.1 P1..P48: the additional work offsets, after the nine standard ones.
       if (!b.has(kP))
         return error(where, c->column, diag::Code::GcodeMissingWord, c->spec->text + " without P");
-      index = static_cast<int>(std::lround(b.value(kP)));
+      const double p = b.value(kP);
+      if (p < 1 || p > kWorkOffsets - 10 || std::abs(p - std::round(p)) > 1e-9)
+        return error(where, b.word(kP).column, diag::Code::GcodeBadWordValue,
+                     c->spec->text + " P must be 1 to " + std::to_string(kWorkOffsets - 10));
+      index = 9 + static_cast<int>(std::lround(p));
     }
-    if (index < 1 || index > 9)
-      return error(where, c->column, diag::Code::GcodeUnsupported,
-                   "work offset number " + std::to_string(index) + " (1 to 9 are supported)");
     const Axes before = total_offset();
     work_index_ = index;
     const Axes now = total_offset();
@@ -1263,7 +1288,7 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     machine_coordinates = true;
   }
   if (const CodeRef* c = find(Action::SetCoordinateData))
-    if (!convert_g10(b, where, c->column)) return false;
+    if (!convert_g10(b, where, c->column, *c->spec)) return false;
   if (const CodeRef* c = find(Action::Home))
     if (!convert_home(*c->spec, b, where)) return false;
   if (const CodeRef* c = find(Action::Home2))

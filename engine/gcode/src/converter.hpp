@@ -150,7 +150,7 @@ class Converter final : public StateView {
                       bool machine_coordinates);
   bool convert_arc(const CodeSpec& motion, const Block& b, const Where& where);
   bool convert_cycle(const CodeSpec& motion, const Block& b, const Where& where);
-  bool convert_g10(const Block& b, const Where& where, std::uint32_t column);
+  bool convert_g10(const Block& b, const Where& where, std::uint32_t column, const CodeSpec& spec);
   bool convert_home(const CodeSpec& code, const Block& b, const Where& where);
   void expand_cycle_motions(const CycleCall& c, const CodeSpec* spec, int first, int second,
                             int drill);
@@ -185,13 +185,16 @@ class Converter final : public StateView {
   double spindle_speed_ = 0;
   int spindle_dir_ = 0;
   bool warned_spindle_ = false;
+  bool warned_tool_length_ = false;
   int tool_selected_ = 0;
   int tool_in_spindle_ = 0;
   bool uses_rotary_ = false;
 
   // Positions and offsets in mm (rotary axes in degrees).
-  Axes pos_{};                           // current coordinate system
-  std::array<Axes, 10> work_offsets_{};  // [1..9]; [0] stays zero (no settable offset)
+  Axes pos_{};  // current coordinate system
+  // [1..9] G54..G59.3, [10..57] the additional ones (G54.1 P1..P48); [0] stays zero.
+  static constexpr int kWorkOffsets = 58;
+  std::array<Axes, kWorkOffsets> work_offsets_{};
   int work_index_ = 1;
   Axes axis_offset_{};        // G92 / G52
   Axes axis_offset_saved_{};  // G92.2 keeps it for G92.3

@@ -189,7 +189,8 @@ const std::vector<std::pair<const char*, Function>> kFunctions = {
     {"square", Function::Square}, {"trunc", Function::Trunc}, {"not", Function::Not},
     {"min", Function::Min},       {"max", Function::Max},     {"sign", Function::Sign},
     {"frac", Function::Frac},     {"log10", Function::Log10}, {"neg", Function::Neg},
-    {"bin", Function::Bin},       {"bcd", Function::Bcd},
+    {"bin", Function::Bin},       {"bcd", Function::Bcd},     {"away", Function::Away},
+    {"pow", Function::Pow},
 };
 
 const std::vector<std::pair<const char*, WordKind>> kWordKinds = {
@@ -385,7 +386,7 @@ void read_parameters(Checker& c, const json& j, Dialect& d) {
   const std::string p = "/parameters";
   if (!c.object(j, p,
                 {"style", "count", "named", "vacant", "zero_read_only", "locals", "ranges",
-                 "machine_names"},
+                 "machine_names", "alarm", "stop_message"},
                 {"style"}))
     return;
   auto& r = d.parameters;
@@ -448,6 +449,12 @@ void read_parameters(Checker& c, const json& j, Dialect& d) {
       }
     }
   }
+  if (j.contains("alarm"))
+    if (auto v = c.integer(j["alarm"], p + "/alarm", 1, 1000000))
+      r.alarm = static_cast<std::uint32_t>(*v);
+  if (j.contains("stop_message"))
+    if (auto v = c.integer(j["stop_message"], p + "/stop_message", 1, 1000000))
+      r.stop_message = static_cast<std::uint32_t>(*v);
   if (j.contains("machine_names")) {
     const auto& m = j["machine_names"];
     if (!m.is_array()) {

@@ -315,7 +315,8 @@ bool Evaluator::function(Function fn, const Value* a, std::size_t count, Value& 
   const auto need = [&](std::size_t n) {
     return count == n ? true : fail(0, diag::Code::GcodeBadExpression, "wrong argument count");
   };
-  const bool two = fn == Function::Atan2 || fn == Function::Min || fn == Function::Max;
+  const bool two =
+      fn == Function::Atan2 || fn == Function::Min || fn == Function::Max || fn == Function::Pow;
   if (!need(two ? 2 : 1)) return false;
   const double x = a[0].number;
   const bool machine = a[0].machine || (two && a[1].machine);
@@ -409,6 +410,12 @@ bool Evaluator::function(Function fn, const Value* a, std::size_t count, Value& 
       r = static_cast<double>(result);
       break;
     }
+    case Function::Away:
+      r = x < 0 ? std::floor(x) : std::ceil(x);
+      break;
+    case Function::Pow:
+      r = std::pow(x, a[1].number);
+      break;
     case Function::Exists:
       return fail(0, diag::Code::GcodeBadExpression, "EXISTS takes #<name>");
   }

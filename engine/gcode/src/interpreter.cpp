@@ -632,6 +632,25 @@ bool Interpreter::assign(const Assignment& a) {
     parameters_.set_named(a.name, a.value);
     return true;
   }
+  const auto& rules = dialect_.parameters;
+  const bool alarm = rules.alarm != 0 && std::abs(a.number - rules.alarm) < 1e-9;
+  const bool stop = rules.stop_message != 0 && std::abs(a.number - rules.stop_message) < 1e-9;
+  if (alarm || stop) {
+    // FANUC #3000 = n (TEXT): alarm n, the program ends; #3006 = 1 (TEXT): a stop with a
+    // message. The text is the block's comment.
+    const std::string text =
+        line_.comments.empty() ? std::string() : std::string(trim(line_.comments.front().text));
+    if (alarm) {
+      error(a.column, diag::Code::GcodeAbort,
+            "alarm " + number_key(a.value.number) + (text.empty() ? "" : ": " + text));
+      done_ = true;
+      return false;
+    }
+    if (!converter_.started()) converter_.start(program_name_);
+    converter_.message(text);
+    converter_.stop(Action::ProgramStop);
+    return true;
+  }
   switch (parameters_.set(a.number, a.value)) {
     case ParamStatus::Ok:
       return true;
@@ -725,6 +744,7 @@ void Interpreter::execute_block(Block& b) {
   const bool empty = b.present.none() && b.codes.empty() && !b.has_line_number;
   if (empty && plain_comments_.empty()) return;
   if (!empty) executed_any_ = true;
+  if (!converter_.started()) converter_.start(program_name_);
   FlowRequest flow;
   if (!converter_.execute(b, plain_comments_, where(), flow)) {
     if (report_.full()) done_ = true;
@@ -774,9 +794,14 @@ void Interpreter::do_flow(const FlowRequest& flow) {
             {'T', 20}, {'U', 21}, {'V', 22}, {'W', 23}, {'X', 24}, {'Y', 25}, {'Z', 26}};
         for (const auto& [letter, number_of] : kArgs) {
           const WordId w = letter_word(letter);
-          if (args.has(w))
-            (void)parameters_.set(number_of,
-                                  Value{args.word(w).value, false, args.word(w).machine});
+          if (!args.has(w)) continue;
+          const Word& word = args.word(w);
+          double value = word.value;
+          const WordKind kind = dialect_.words[w].kind;
+          if (dialect_.integer_literal_increments && word.integer_literal &&
+              (kind == WordKind::Axis || kind == WordKind::Length))
+            value *= converter_.metric_units() ? dialect_.increment_mm : dialect_.increment_inch;
+          (void)parameters_.set(number_of, Value{value, false, word.machine});
         }
       }
       return;
@@ -1177,6 +1202,27 @@ bool Interpreter::macro_statement(std::size_t pos, bool& handled) {
     report_.add(sources_[position_.source].name, diag::Code::GcodeBadFlow, from, 0,
                 "WHILE .. DO" + number_key(m.number) + " without END" + number_key(m.number));
     return false;
+  }
+  if (keyword_at(pos, "DO") && pos + 2 < t.size() && (is_digit(t[pos + 2]) || t[pos + 2] == '#')) {
+    // DO m alone: a loop without a condition (left with GOTO); END m goes back.
+    handled = true;
+    pos += 2;
+    Value m;
+    if (!evaluate_at(pos, Evaluator::Mode::Primary, m)) return false;
+    const std::string label = "DO" + number_key(m.number);
+    if (std::none_of(frame.loops.begin(), frame.loops.end(),
+                     [&](const Loop& l) { return l.label == label; })) {
+      if (frame.loops.size() >= options_.max_call_depth)
+        return error(column(start), diag::Code::GcodeNestingLimit, "loops nested too deep");
+      frame.loops.push_back({label,
+                             LoopKind::Loop,
+                             Position{position_.source, cursor_.offset(), position_.line + 1},
+                             0,
+                             {},
+                             -1,
+                             0});
+    }
+    return true;
   }
   if (keyword_at(pos, "END") && pos + 3 < t.size() && (is_digit(t[pos + 3]) || t[pos + 3] == '#')) {
     handled = true;

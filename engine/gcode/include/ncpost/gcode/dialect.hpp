@@ -187,6 +187,9 @@ struct ParameterRules {
   std::vector<ParameterRange> ranges;
   // Named system values: `$AA_IM[Z]`, `#<_hal[...]>`: prefixes of names only the machine knows.
   std::vector<std::string> machine_name_prefixes;
+  // FANUC: assigning #3000 stops the program with an alarm; #3006 with a message.
+  std::uint32_t alarm = 0;
+  std::uint32_t stop_message = 0;
 };
 
 // Expression operators. Comparison and logic give 1 or 0.
@@ -239,6 +242,8 @@ enum class Function : std::uint8_t {
   Neg,
   Bin,
   Bcd,
+  Away,  // FANUC FUP: away from zero
+  Pow,   // two arguments
 };
 
 struct OperatorSpec {
