@@ -1156,6 +1156,18 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   }
 
   // ---- Convert, in LinuxCNC's order of execution ----
+  // A macro call's words are its arguments (FANUC G65 P9010 X.. F..): nothing else happens.
+  for (const CodeRef& c : b.codes) {
+    if (c.spec->action != Action::MacroCall) continue;
+    if (!started_) start(options_.program_name);
+    flow.kind = FlowRequest::Kind::Call;
+    flow.macro = true;
+    flow.column = c.column;
+    flow.has_program = b.has(kP);
+    flow.program = b.value(kP);
+    if (b.has(kL)) flow.repeat = static_cast<int>(std::lround(b.value(kL)));
+    return true;
+  }
   for (const CodeRef& c : b.codes)
     if (c.spec->warn)
       warn(where, c.column, diag::Code::GcodeIgnored,
@@ -1362,16 +1374,6 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     }
     if (b.has(kL)) flow.repeat = static_cast<int>(std::lround(b.value(kL)));
     if (b.has(kK) && !b.has(kL)) flow.repeat = static_cast<int>(std::lround(b.value(kK)));
-  }
-  if (const CodeRef* c = find(Action::MacroCall)) {
-    flow.kind = FlowRequest::Kind::Call;
-    flow.macro = true;
-    flow.column = c->column;
-    if (b.has(kP)) {
-      flow.program = b.value(kP);
-      flow.has_program = true;
-    }
-    if (b.has(kL)) flow.repeat = static_cast<int>(std::lround(b.value(kL)));
   }
   if (const CodeRef* c = find(Action::SubprogramReturn)) {
     flow.kind = FlowRequest::Kind::Return;

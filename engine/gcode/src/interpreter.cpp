@@ -50,36 +50,35 @@ bool has_rotary_words(std::string_view text, const Dialect& dialect) {
     const WordId w = letter_word(letter);
     if (!dialect.letter_known[w] || dialect.words[w].kind != WordKind::Axis) return false;
   }
-  bool paren = false;
-  bool semicolon = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '\n') {
-      paren = semicolon = false;
-      continue;
+  LineCursor lines(text);
+  while (!lines.at_end()) {
+    std::uint32_t number = 0;
+    const std::string_view line = lines.next(number);
+    // A macro call's letters are its arguments (G65 P9010 A15.), not axes.
+    const std::string up = upper_copy(line);
+    if (up.find("G65") != std::string::npos || up.find("G66") != std::string::npos) continue;
+    bool paren = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (paren) {
+        paren = c != ')';
+        continue;
+      }
+      if (c == '(' && dialect.parenthesis_comments) {
+        paren = true;
+        continue;
+      }
+      if (c == ';' && dialect.semicolon_comments) break;
+      const char u = upper(c);
+      if (u != 'A' && u != 'B' && u != 'C') continue;
+      if (i > 0 && (is_letter(line[i - 1]) || line[i - 1] == '_' || line[i - 1] == '$')) continue;
+      std::size_t j = i + 1;
+      while (j < line.size() && (line[j] == ' ' || line[j] == '\t')) ++j;
+      if (j >= line.size()) continue;
+      const char n = line[j];
+      if (is_digit(n) || n == '-' || n == '+' || n == '.' || n == '#' || n == '[' || n == '=')
+        return true;
     }
-    if (semicolon) continue;
-    if (paren) {
-      paren = c != ')';
-      continue;
-    }
-    if (c == '(' && dialect.parenthesis_comments) {
-      paren = true;
-      continue;
-    }
-    if (c == ';' && dialect.semicolon_comments) {
-      semicolon = true;
-      continue;
-    }
-    const char u = upper(c);
-    if (u != 'A' && u != 'B' && u != 'C') continue;
-    if (i > 0 && (is_letter(text[i - 1]) || text[i - 1] == '_' || text[i - 1] == '$')) continue;
-    std::size_t j = i + 1;
-    while (j < text.size() && (text[j] == ' ' || text[j] == '\t')) ++j;
-    if (j >= text.size()) continue;
-    const char n = text[j];
-    if (is_digit(n) || n == '-' || n == '+' || n == '.' || n == '#' || n == '[' || n == '=')
-      return true;
   }
   return false;
 }
