@@ -1115,6 +1115,15 @@ bool Interpreter::o_word_statement(std::size_t pos) {
 
 // ---- FANUC macro B ---------------------------------------------------------------------------
 
+// Whether a block is one of macro B's statements (IF, WHILE/WH, DO, END, GOTO) rather than words.
+bool Interpreter::starts_macro_statement(std::string_view t, std::size_t pos) const {
+  for (const std::string_view k : {"IF", "GOTO", "END", "DO"})
+    if (starts_with(t, pos, k)) return true;
+  for (const std::string& w : dialect_.flow.while_spellings)
+    if (starts_with(t, pos, w)) return true;
+  return false;
+}
+
 bool Interpreter::macro_statement(std::size_t pos, bool& handled) {
   const std::string_view t = text();
   handled = false;
@@ -1249,20 +1258,23 @@ bool Interpreter::macro_statement(std::size_t pos, bool& handled) {
 // ---- The main loop ---------------------------------------------------------------------------
 
 void Interpreter::step_block() {
-  if (line_.has_error) {
-    error(line_.error.column, diag::Code::GcodeUnclosedComment,
-          line_.error.unclosed_string ? "string not closed on its line"
-                                      : "comment not closed on its line");
-    return;
-  }
   if (line_.block_delete && options_.block_delete) return;
-  if (observer_) observer_->begin_block(sources_[position_.source].name, line_.number, line_.raw);
+  if (observer_) {
+    observer_->begin_block(sources_[position_.source].name, line_.number, line_.raw);
+    for (const Comment& c : line_.comments) observer_->comment(c.text, c.column);
+  }
   struct End {
     BlockObserver* o;
     ~End() {
       if (o) o->end_block();
     }
   } end{observer_};
+  if (line_.has_error) {
+    error(line_.error.column, diag::Code::GcodeUnclosedComment,
+          line_.error.unclosed_string ? "string not closed on its line"
+                                      : "comment not closed on its line");
+    return;
+  }
   const std::string_view t = line_.text;
   if (dialect_.percent_delimits && !t.empty() && t[0] == '%') {
     if (frames_.size() == 1 && position_.source == 0) {
@@ -1293,6 +1305,7 @@ void Interpreter::step_block() {
     const char c = t[after_n];
     if (c == 'O' && (dialect_.flow.o_words || dialect_.flow.fanuc_subprograms)) {
       if (dialect_.flow.o_words || (after_n + 1 < t.size() && is_digit(t[after_n + 1]))) {
+        if (observer_) observer_->statement("o-word", t.substr(after_n));
         o_word_statement(after_n);
         return;
       }
@@ -1307,6 +1320,8 @@ void Interpreter::step_block() {
     }
     bool handled = false;
     if (dialect_.flow.macro_b) {
+      if (observer_ && starts_macro_statement(t, after_n))
+        observer_->statement("macro", t.substr(after_n));
       macro_statement(after_n, handled);
       if (handled) return;
     }

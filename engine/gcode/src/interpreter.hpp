@@ -10,6 +10,7 @@
 // label or calls a subprogram — an index of that file's labels and subprogram starts.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -34,6 +35,7 @@ class BlockObserver {
   virtual void begin_block(std::string_view file, std::uint32_t line, std::string_view raw) = 0;
   virtual void word(std::string_view name, std::string_view text, double value,
                     std::uint32_t column) = 0;
+  virtual void comment(std::string_view text, std::uint32_t column) = 0;
   virtual void statement(std::string_view kind, std::string_view text) = 0;
   virtual void end_block() = 0;
 };
@@ -48,6 +50,10 @@ class Interpreter {
  public:
   Interpreter(std::string_view text, const Dialect& dialect, canon::Sink& sink,
               const ReadOptions& options, BlockObserver* observer);
+  // Each diagnostic as it is added (the XML form places them in their block).
+  void on_diagnostic(std::function<void(const diag::FileDiagnostic&)> listener) {
+    report_.set_listener(std::move(listener));
+  }
   ~Interpreter();
   Interpreter(const Interpreter&) = delete;
   Interpreter& operator=(const Interpreter&) = delete;
@@ -125,6 +131,7 @@ class Interpreter {
   bool read_o_label(std::string_view t, std::size_t& pos, std::string& label);
   // FANUC macro B.
   bool macro_statement(std::size_t pos, bool& handled);
+  [[nodiscard]] bool starts_macro_statement(std::string_view t, std::size_t pos) const;
 
   // ---- Sinumerik (sinumerik.cpp) ----
   bool sinumerik_statement(std::size_t pos, bool& handled);

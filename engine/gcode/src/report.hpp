@@ -3,6 +3,7 @@
 // file, line and code, so a loop does not repeat them), each with the file it points at.
 
 #include <cstdint>
+#include <functional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -24,18 +25,24 @@ class Report {
   bool add(std::string_view file, diag::Code code, diag::Severity severity, std::uint32_t line,
            std::uint32_t column, std::string message);
 
+  // Called with each diagnostic kept, as it is kept.
+  void set_listener(std::function<void(const diag::FileDiagnostic&)> listener) {
+    listener_ = std::move(listener);
+  }
   [[nodiscard]] bool full() const noexcept { return errors_ >= max_errors_; }
   [[nodiscard]] std::size_t errors() const noexcept { return errors_; }
   [[nodiscard]] std::vector<diag::FileDiagnostic> take() && { return std::move(items_); }
   [[nodiscard]] const std::vector<diag::FileDiagnostic>& items() const noexcept { return items_; }
 
  private:
+  void keep(diag::FileDiagnostic d);
   std::vector<diag::FileDiagnostic> items_;
   std::set<std::tuple<std::string, std::uint32_t, diag::Code>> once_;
   std::size_t errors_ = 0;
   std::size_t others_ = 0;  // warnings and notes
   std::size_t max_errors_;
   bool dropped_ = false;
+  std::function<void(const diag::FileDiagnostic&)> listener_;
 };
 
 }  // namespace ncpost::gcode::detail
