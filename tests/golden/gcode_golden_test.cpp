@@ -49,8 +49,9 @@ TEST(GcodeGolden, Cases) {
     for (const auto& e : fs::directory_iterator(folder)) {
       const fs::path p = e.path();
       if (p.extension() == ".trace") continue;
-      if (p.stem().extension() == ".sub")
-        subprograms.push_back({p.filename().string(), test::read_file(p)});
+      if (p.stem().extension() == ".sub")  // HOLE.sub.spf is the file HOLE.spf
+        subprograms.push_back(
+            {p.stem().stem().string() + p.extension().string(), test::read_file(p)});
       else
         programs.push_back(p);
     }

@@ -83,6 +83,9 @@ TEST(GcodeLoop, Linuxcnc) {
 TEST(GcodeLoop, Fanuc0i) {
   check_profile("fanuc-0i");
 }
+TEST(GcodeLoop, Siemens840d) {
+  check_profile("siemens-840d");
+}
 
 }  // namespace
 }  // namespace ncpost::interop

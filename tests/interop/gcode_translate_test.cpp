@@ -83,6 +83,9 @@ void translate_all(const std::string& to) {
 TEST(GcodeTranslate, FanucToFanuc) {
   translate_all("fanuc-0i");
 }
+TEST(GcodeTranslate, FanucToSinumerik) {
+  translate_all("siemens-840d");
+}
 
 }  // namespace
 }  // namespace ncpost::interop

@@ -19,6 +19,8 @@ struct Word {
   std::uint32_t column = 0;      // 1-based column of the word's letter
   bool integer_literal = false;  // written as a plain integer literal (FANUC least increments)
   bool machine = false;          // derived from a value only the machine knows
+  // Sinumerik X=AC(..) / X=IC(..): this word absolute or incremental whatever G90/G91 says.
+  enum class Distance : std::uint8_t { Modal, Absolute, Incremental } distance = Distance::Modal;
 };
 
 struct CodeRef {

@@ -52,7 +52,8 @@ std::string number_text(double v) {
 
 bool is_motion_action(Action a) noexcept {
   return a == Action::Rapid || a == Action::Linear || a == Action::ArcCw || a == Action::ArcCcw ||
-         a == Action::Cycle || a == Action::CycleCancel;
+         a == Action::Cycle || a == Action::CycleCancel || a == Action::ArcThroughPoint ||
+         a == Action::SplineB || a == Action::SplineNurbs;
 }
 
 // Re-maps the cycle frame (first plane axis, second plane axis, drill axis) onto X Y Z, for
@@ -99,7 +100,8 @@ Converter::Converter(const Dialect& dialect, canon::Sink& sink, Report& report,
   retract_r_ = dialect.initial_retract_r;
   if (dialect.initial_motion >= 0)
     motion_ = &dialect.codes[static_cast<std::size_t>(dialect.initial_motion)];
-  for (const auto& [tool, length] : options.tool_lengths) (void)tool, (void)length;
+  spline_words_ = {dialect.word("PW"), dialect.word("PL"), dialect.word("SD")};
+  through_words_ = {dialect.word("I1"), dialect.word("J1"), dialect.word("K1")};
 }
 
 void Converter::emit(canon::Call call) {
@@ -120,6 +122,7 @@ void Converter::start(const std::string& program_name) {
 
 void Converter::finish() {
   if (!started_) start("program");
+  flush_spline();
   close_section();
   emit(canon::End{canon::Scope::Project, project_});
 }
@@ -558,6 +561,127 @@ std::uint32_t Converter::motion_column(const Block& b) const noexcept {
   return column == 0 ? b.first_column : column;
 }
 
+// Sinumerik CIP: the circle from here through the intermediate point (I1= J1= K1=) to the end
+// point, in whatever plane the three points span (a tilted plane is a 3D arc).
+bool Converter::convert_arc_through(const Block& b, const Where& where) {
+  const std::uint32_t column = motion_column(b);
+  Axes target;
+  word_target(b, target, false);
+  std::array<double, 3> mid{pos_[0], pos_[1], pos_[2]};
+  bool any = false;
+  for (int k = 0; k < 3; ++k) {
+    const WordId w = through_words_[static_cast<std::size_t>(k)];
+    if (w == kNoWord || !b.has(w)) continue;
+    any = true;
+    const double v = length_word(b, w);
+    mid[static_cast<std::size_t>(k)] = incremental_ ? pos_[static_cast<std::size_t>(k)] + v : v;
+  }
+  if (!any)
+    return error(where, column, diag::Code::GcodeMissingWord,
+                 "a circle through a point (CIP) without its intermediate point (I1, J1, K1)");
+  // Centre of the circle through a, m, e: a + (|u|² (v×w)... in the plane of u = m - a, v = e - a.
+  const std::array<double, 3> a{pos_[0], pos_[1], pos_[2]}, e{target[0], target[1], target[2]};
+  const std::array<double, 3> u{mid[0] - a[0], mid[1] - a[1], mid[2] - a[2]};
+  const std::array<double, 3> v{e[0] - a[0], e[1] - a[1], e[2] - a[2]};
+  const auto cross = [](const std::array<double, 3>& p, const std::array<double, 3>& q) {
+    return std::array<double, 3>{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2],
+                                 p[0] * q[1] - p[1] * q[0]};
+  };
+  const auto dot = [](const std::array<double, 3>& p, const std::array<double, 3>& q) {
+    return p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+  };
+  const std::array<double, 3> n = cross(u, v);
+  const double nn = dot(n, n);
+  if (nn < 1e-18)
+    return error(where, column, diag::Code::GcodeArcGeometry,
+                 "the three points of a CIP circle lie on one line");
+  // c - a = (|u|² (v × n) + |v|² (n × u)) / (2 |n|²)
+  const std::array<double, 3> vn = cross(v, n), nu = cross(n, u);
+  const double uu = dot(u, u), vv = dot(v, v);
+  canon::ArcFeed arc;
+  arc.centre = {from_mm(a[0] + (uu * vn[0] + vv * nu[0]) / (2 * nn)),
+                from_mm(a[1] + (uu * vn[1] + vv * nu[1]) / (2 * nn)),
+                from_mm(a[2] + (uu * vn[2] + vv * nu[2]) / (2 * nn))};
+  const double len = std::sqrt(nn);
+  // From a through m to e is counter-clockwise about u × v.
+  arc.normal = {n[0] / len, n[1] / len, n[2] / len};
+  // Snap a normal that is an axis to it exactly, so the arc has its plane form.
+  for (double* c : {&arc.normal.i, &arc.normal.j, &arc.normal.k})
+    if (std::abs(std::abs(*c) - 1) < 1e-12) *c = *c > 0 ? 1 : -1;
+  arc.turns = 1;
+  if (!check_feed_motion(where, column)) return false;
+  ensure_section(where);
+  check_limits(target, where, column);
+  arc.end = pose(target);
+  pos_ = target;
+  emit(arc);
+  return true;
+}
+
+// Sinumerik BSPLINE: each block is a control point (PW= its weight, PL= the knot step before the
+// next, SD= the degree in the first block); the curve is emitted as one NURBS_FEED when a block
+// that does not continue it comes.
+bool Converter::add_spline_point(const Block& b, const Where& where) {
+  const std::uint32_t column = motion_column(b);
+  Axes target;
+  word_target(b, target, false);
+  if (!spline_) {
+    if (!check_feed_motion(where, column)) return false;
+    ensure_section(where);
+    spline_.emplace();
+    spline_->points.push_back({from_mm(pos_[0]), from_mm(pos_[1]), from_mm(pos_[2]), 1.0});
+    spline_->degree = 3;
+    if (spline_words_[2] != kNoWord && b.has(spline_words_[2]))
+      spline_->degree = static_cast<int>(std::lround(b.value(spline_words_[2])));
+    spline_->where_file = std::string(where.file);
+    spline_->where_line = where.line;
+    spline_->column = column;
+  }
+  const double w =
+      spline_words_[0] != kNoWord && b.has(spline_words_[0]) ? b.value(spline_words_[0]) : 1.0;
+  const double pl =
+      spline_words_[1] != kNoWord && b.has(spline_words_[1]) ? b.value(spline_words_[1]) : 0.0;
+  if (w <= 0)
+    return error(where, column, diag::Code::GcodeBadWordValue,
+                 "a spline weight (PW) must be positive");
+  check_limits(target, where, column);
+  spline_->points.push_back({from_mm(target[0]), from_mm(target[1]), from_mm(target[2]), w});
+  spline_->intervals.push_back(pl);
+  spline_->end = target;
+  return true;
+}
+
+void Converter::flush_spline() {
+  if (!spline_) return;
+  Spline s = std::move(*spline_);
+  spline_.reset();
+  canon::NurbsFeed n;
+  n.degree = s.degree;
+  n.points = std::move(s.points);
+  // Clamped: degree + 1 equal knots, the steps PL in order, the end knot repeated up to
+  // points + degree + 1 knots (a PL left out is a step of 0: Sinumerik's default spacing
+  // is not modelled, docs/gcode.md).
+  n.knots.assign(static_cast<std::size_t>(std::max(s.degree, 0)) + 1, 0.0);
+  double u = 0;
+  for (const double pl : s.intervals)
+    if (pl > 0) n.knots.push_back(u += pl);
+  while (n.knots.size() < n.points.size() + static_cast<std::size_t>(std::max(s.degree, 0)) + 1)
+    n.knots.push_back(u > 0 ? u : 1.0);
+  if (u == 0)
+    for (std::size_t i = static_cast<std::size_t>(std::max(s.degree, 0)) + 1; i < n.knots.size();
+         ++i)
+      n.knots[i] = 1.0;
+  if (!canon::valid(n)) {
+    error(Where{s.where_file, s.where_line}, s.column, diag::Code::GcodeBadWordValue,
+          "a spline that makes no valid NURBS (degree " + std::to_string(s.degree) + ", " +
+              std::to_string(n.points.size()) + " points)");
+    return;
+  }
+  if (uses_rotary_) n.rotary = canon::Rotary{s.end[3], s.end[4], s.end[5]};
+  pos_ = s.end;
+  emit(n);
+}
+
 double Converter::scaled(const Block& b, WordId w) const noexcept {
   const Word& word = b.word(w);
   if (dialect_.integer_literal_increments && word.integer_literal) {
@@ -611,10 +735,13 @@ bool Converter::word_target(const Block& b, Axes& target, bool machine) const {
     any = true;
     const auto i = static_cast<std::size_t>(k);
     const double v = is_rotary(k) ? scaled(b, w) : length_word(b, w);
+    const Word::Distance d = b.word(w).distance;
+    const bool incremental =
+        d == Word::Distance::Modal ? incremental_ : d == Word::Distance::Incremental;
     if (machine)
       target[i] = v - offset[i];
     else
-      target[i] = incremental_ ? pos_[i] + v : v;
+      target[i] = incremental ? pos_[i] + v : v;
   }
   return any;
 }
@@ -642,6 +769,10 @@ bool Converter::convert_motion(const CodeSpec& motion, const Block& b, const Whe
       return convert_arc(motion, b, where);
     case Action::Cycle:
       return convert_cycle(motion, b, where);
+    case Action::ArcThroughPoint:
+      return convert_arc_through(b, where);
+    case Action::SplineB:
+      return add_spline_point(b, where);
     default:
       return true;
   }
@@ -662,10 +793,11 @@ bool Converter::convert_arc(const CodeSpec& motion, const Block& b, const Where&
   const bool has_centre = b.has(pa.first_offset) || b.has(pa.second_offset);
   int turns = 1;
   if (dialect_.arcs.turns != kNoWord && b.has(dialect_.arcs.turns)) {
-    const double p = scaled(b, dialect_.arcs.turns);
+    // LinuxCNC's P counts the turns (P1: the arc itself); Sinumerik's TURN= the extra ones.
+    const double p = scaled(b, dialect_.arcs.turns) + (dialect_.arcs.turns_extra ? 1 : 0);
     if (p < 1 || std::abs(p - std::round(p)) > 1e-9)
       return error(where, b.word(dialect_.arcs.turns).column, diag::Code::GcodeBadWordValue,
-                   "the number of turns of an arc must be a positive integer");
+                   "the number of turns of an arc must be a whole number, at least 1");
     turns = static_cast<int>(std::lround(p));
   }
   double cx = 0, cy = 0;
@@ -1065,7 +1197,8 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   for (std::size_t i = 0; i < non_motion_count; ++i) {
     const Action a = non_motion[i]->action;
     if (a == Action::SetCoordinateData || a == Action::AxisOffset || a == Action::LocalOffset ||
-        a == Action::Home || a == Action::Home2 || a == Action::MacroCall)
+        a == Action::Home || a == Action::Home2 || a == Action::MacroCall ||
+        a == Action::Translate || a == Action::TranslateAdd || a == Action::OnlyWithoutWords)
       uses_axes = non_motion[i];
     // FANUC G4 X1.5: the X is the dwell's time.
     if (a == Action::Dwell)
@@ -1116,7 +1249,7 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     if (kind == WordKind::Feed || kind == WordKind::Speed || kind == WordKind::Tool ||
         kind == WordKind::GCode || kind == WordKind::MCode || kind == WordKind::LineNumber ||
         kind == WordKind::Program || kind == WordKind::Axis || kind == WordKind::PolarRadius ||
-        kind == WordKind::PolarAngle)
+        kind == WordKind::PolarAngle || kind == WordKind::ToolOffset)
       continue;
     // A word two codes of the block could take is ambiguous (LinuxCNC: G64 and M19 both take R).
     bool used = false;
@@ -1156,6 +1289,9 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   }
 
   // ---- Convert, in LinuxCNC's order of execution ----
+  if (spline_ && (!effective_motion || effective_motion->action != Action::SplineB || !axes ||
+                  b.codes.size() > (motion ? 1u : 0u) || b.has(kT) || b.has(kS)))
+    flush_spline();
   // A macro call's words are its arguments (FANUC G65 P9010 X.. F..): nothing else happens.
   for (const CodeRef& c : b.codes) {
     if (c.spec->action != Action::MacroCall) continue;
@@ -1178,8 +1314,11 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     // (MSG, ...) and the other command comments are the interpreter's business; plain ones are
     // COMMENT calls. Where ( ) is the comment form, ';' only ends the block (FANUC's EOB, a
     // LinuxCNC remark): rs274 prints no COMMENT for it.
-    if (c.text.empty() || (c.semicolon && dialect_.parenthesis_comments)) continue;
-    comment(c.text, where);
+    std::string_view text = c.text;
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+    if (text.empty() || (c.semicolon && dialect_.parenthesis_comments)) continue;
+    comment(text, where);
   }
   auto find = [&](Action a) -> const CodeRef* {
     for (const CodeRef& c : b.codes)
@@ -1189,7 +1328,12 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   if (find(Action::FeedInverseTime)) feed_mode_ = FeedMode::InverseTime;
   if (find(Action::FeedPerMinute)) feed_mode_ = FeedMode::PerMinute;
   if (find(Action::FeedPerRevolution)) feed_mode_ = FeedMode::PerRevolution;
-  if (b.has(kF)) {
+  // Sinumerik G4 F2: the F is the dwell's time, not a feed.
+  bool f_is_dwell = false;
+  if (find(Action::Dwell))
+    for (const auto& [w, scale] : dialect_.dwell.words)
+      f_is_dwell = f_is_dwell || (w == kF && b.has(kF));
+  if (b.has(kF) && !f_is_dwell) {
     const double f = b.value(kF);
     if (f < 0)
       return error(where, b.word(kF).column, diag::Code::GcodeBadWordValue, "negative feed rate");
@@ -1220,6 +1364,13 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     (void)c;
   }
   if (const CodeRef* c = find(Action::ToolChange)) change_tool(where, c->column);
+  // Sinumerik D: the tool offset (its length) on, or off with D0.
+  if (b.has(kD) && dialect_.words[kD].kind == WordKind::ToolOffset) {
+    if (b.value(kD) == 0)
+      tool_length(false, 0, where);
+    else
+      tool_length(true, tool_in_spindle_, where);
+  }
   if (find(Action::SpindleCw)) spindle(1);
   if (find(Action::SpindleCcw)) spindle(-1);
   if (find(Action::SpindleStop)) spindle(0);
@@ -1324,6 +1475,34 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
     emit_offsets();
   }
+  if (const CodeRef* c = find(Action::OnlyWithoutWords)) {
+    // ROT, SCALE, MIRROR ...: alone they reset what this reader never sets; with values they
+    // would rotate, scale or mirror the coordinates.
+    bool words = false;
+    for (std::size_t w = 0; w < dialect_.words.size(); ++w) {
+      const WordKind k = dialect_.words[w].kind;
+      words = words || (b.has(static_cast<WordId>(w)) && k != WordKind::LineNumber &&
+                        k != WordKind::GCode && k != WordKind::MCode);
+    }
+    if (words)
+      return error(
+          where, c->column, diag::Code::GcodeUnsupported,
+          c->spec->text + ": " + (c->spec->refusal.empty() ? "not supported" : c->spec->refusal));
+  }
+  if (find(Action::Translate) || find(Action::TranslateAdd)) {
+    // Sinumerik TRANS replaces the programmable offset (TRANS alone cancels it), ATRANS adds
+    // to it; in the program's unit, along the current coordinate system.
+    Axes t{};
+    const bool add = find(Action::TranslateAdd) != nullptr;
+    for (int k = 0; k < kAxes; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      const double current = is_rotary(k) ? translation_[i] : from_mm(translation_[i]);
+      const WordId w = axis_word(k);
+      const double v = b.has(w) ? scaled(b, w) : 0;
+      t[i] = add ? current + v : v;
+    }
+    set_translation(t);
+  }
   if (find(Action::AxisOffsetCancel) || find(Action::AxisOffsetRestore)) {
     const Axes before = total_offset();
     if (find(Action::AxisOffsetRestore)) {
@@ -1354,6 +1533,8 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   }
   if (effective_motion && effective_motion->action != Action::CycleCancel &&
       (axes || (arc_mode && centre_words))) {
+    // A spline's control points are gathered while its blocks come one after the other.
+    if (effective_motion->action != Action::SplineB) flush_spline();
     if (machine_coordinates && effective_motion->action != Action::Rapid &&
         effective_motion->action != Action::Linear)
       return error(where, b.first_column, diag::Code::GcodeUnsupported,

@@ -150,6 +150,9 @@ class Converter final : public StateView {
                       bool machine_coordinates);
   bool convert_arc(const CodeSpec& motion, const Block& b, const Where& where);
   bool convert_cycle(const CodeSpec& motion, const Block& b, const Where& where);
+  bool convert_arc_through(const Block& b, const Where& where);
+  bool add_spline_point(const Block& b, const Where& where);
+  void flush_spline();
   bool convert_g10(const Block& b, const Where& where, std::uint32_t column, const CodeSpec& spec);
   bool convert_home(const CodeSpec& code, const Block& b, const Where& where);
   void expand_cycle_motions(const CycleCall& c, const CodeSpec* spec, int first, int second,
@@ -208,6 +211,20 @@ class Converter final : public StateView {
   double cycle_initial_ = 0;  // mm, along the cycle's axis: where the series of cycles began
 
   std::optional<double> return_value_;
+
+  // A spline being gathered (Sinumerik BSPLINE), in program units.
+  struct Spline {
+    int degree = 3;
+    std::vector<canon::ControlPoint> points;
+    std::vector<double> intervals;
+    Axes end{};
+    std::string where_file;
+    std::uint32_t where_line = 0;
+    std::uint32_t column = 0;
+  };
+  std::optional<Spline> spline_;
+  std::array<WordId, 3> spline_words_{kNoWord, kNoWord, kNoWord};   // PW, PL, SD
+  std::array<WordId, 3> through_words_{kNoWord, kNoWord, kNoWord};  // I1, J1, K1
 };
 
 }  // namespace ncpost::gcode::detail

@@ -166,6 +166,12 @@ const std::vector<std::pair<const char*, Action>>& action_names() {
       {"macro_call", Action::MacroCall},
       {"unsupported", Action::Unsupported},
       {"lathe", Action::Lathe},
+      {"arc_through_point", Action::ArcThroughPoint},
+      {"spline_b", Action::SplineB},
+      {"spline_nurbs", Action::SplineNurbs},
+      {"translate", Action::Translate},
+      {"translate_add", Action::TranslateAdd},
+      {"only_without_words", Action::OnlyWithoutWords},
   };
   return names;
 }
@@ -204,6 +210,7 @@ const std::vector<std::pair<const char*, WordKind>> kWordKinds = {
     {"m", WordKind::MCode},
     {"polar_radius", WordKind::PolarRadius},
     {"polar_angle", WordKind::PolarAngle},
+    {"tool_offset", WordKind::ToolOffset},
     {"line_number", WordKind::LineNumber},
     {"program", WordKind::Program},
 };
@@ -231,10 +238,12 @@ const std::vector<std::pair<const char*, ParameterSource>> kSources = {
     {"units", ParameterSource::Units},
 };
 
+// A letter, then up to seven letters, digits or underscores (X, CR, TURN, I1).
+// A letter, then up to seven letters, digits or underscores (X, CR, TURN, I1).
 bool valid_word_name(const std::string& s) {
-  if (s.empty() || s.size() > 8) return false;
+  if (s.empty() || s.size() > 8 || s[0] < 'A' || s[0] > 'Z') return false;
   for (const char c : s)
-    if (!((c >= 'A' && c <= 'Z') || c == '_')) return false;
+    if (!((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_')) return false;
   return true;
 }
 
@@ -386,7 +395,7 @@ void read_parameters(Checker& c, const json& j, Dialect& d) {
   const std::string p = "/parameters";
   if (!c.object(j, p,
                 {"style", "count", "named", "vacant", "zero_read_only", "locals", "ranges",
-                 "machine_names", "alarm", "stop_message"},
+                 "machine_names", "alarm", "stop_message", "assign_in_order"},
                 {"style"}))
     return;
   auto& r = d.parameters;
@@ -449,6 +458,8 @@ void read_parameters(Checker& c, const json& j, Dialect& d) {
       }
     }
   }
+  if (j.contains("assign_in_order"))
+    if (auto v = c.boolean(j["assign_in_order"], p + "/assign_in_order")) r.assign_in_order = *v;
   if (j.contains("alarm"))
     if (auto v = c.integer(j["alarm"], p + "/alarm", 1, 1000000))
       r.alarm = static_cast<std::uint32_t>(*v);
@@ -559,6 +570,63 @@ void read_flow(Checker& c, const json& j, Dialect& d) {
   }
 }
 
+// One entry of /codes or /keywords.
+std::optional<CodeSpec> read_code_spec(Checker& c, const Dialect& d, const json& value,
+                                       const std::string& q, const std::string& key) {
+  if (!c.object(value, q,
+                {"group", "action", "index", "cycle", "requires", "requires_one_of", "allows",
+                 "refusal", "warn", "planes"},
+                {"action"}))
+    return std::nullopt;
+  CodeSpec spec;
+  spec.text = key;
+  if (auto a = c.choice(value["action"], q + "/action", action_names())) spec.action = *a;
+  if (value.contains("group")) {
+    if (auto g = c.string(value["group"], q + "/group")) {
+      const auto it = std::find(d.modal_groups.begin(), d.modal_groups.end(), *g);
+      if (it == d.modal_groups.end())
+        c.fail(q + "/group", "'" + *g + "' is not in /modal_groups");
+      else
+        spec.group = static_cast<int>(it - d.modal_groups.begin());
+    }
+  }
+  if (value.contains("index"))
+    if (auto v = c.integer(value["index"], q + "/index", 0, 57)) spec.index = static_cast<int>(*v);
+  if (value.contains("cycle")) {
+    const auto& cy = value["cycle"];
+    if (c.object(cy, q + "/cycle", {"kind", "feed_out_to_clear"}, {"kind"})) {
+      if (auto k = c.choice(cy["kind"], q + "/cycle/kind", kCycleKinds)) spec.cycle.kind = *k;
+      if (cy.contains("feed_out_to_clear"))
+        if (auto v = c.boolean(cy["feed_out_to_clear"], q + "/cycle/feed_out_to_clear"))
+          spec.cycle.feed_out_to_clear = *v;
+    }
+  } else if (spec.action == Action::Cycle) {
+    c.fail(q + "/cycle", "a cycle code needs its cycle kind");
+  }
+  if (value.contains("requires"))
+    spec.requires_all = word_list(c, d, value["requires"], q + "/requires");
+  if (value.contains("requires_one_of"))
+    spec.requires_one_of = word_list(c, d, value["requires_one_of"], q + "/requires_one_of");
+  if (value.contains("allows")) spec.allows = word_list(c, d, value["allows"], q + "/allows");
+  if (value.contains("refusal"))
+    if (auto v = c.string(value["refusal"], q + "/refusal")) spec.refusal = *v;
+  if (value.contains("warn"))
+    if (auto v = c.boolean(value["warn"], q + "/warn")) spec.warn = *v;
+  if (value.contains("planes")) {
+    const auto& planes = value["planes"];
+    if (!planes.is_array() || planes.empty()) {
+      c.fail(q + "/planes", "must be a non-empty array of xy, xz, yz");
+    } else {
+      spec.planes = 0;
+      for (std::size_t i = 0; i < planes.size(); ++i)
+        if (auto b = c.choice<std::uint8_t>(planes[i], q + "/planes/" + std::to_string(i),
+                                            {{"xy", 1}, {"xz", 2}, {"yz", 4}}))
+          spec.planes = static_cast<std::uint8_t>(spec.planes | *b);
+    }
+  }
+  return spec;
+}
+
 void read_codes(Checker& c, const json& j, Dialect& d) {
   const std::string p = "/codes";
   if (!j.is_object()) {
@@ -575,64 +643,15 @@ void read_codes(Checker& c, const json& j, Dialect& d) {
       c.fail(q, "a code is G or M with up to four digits (G: and one decimal)");
       continue;
     }
-    if (!c.object(value, q,
-                  {"group", "action", "index", "cycle", "requires", "requires_one_of", "allows",
-                   "refusal", "warn", "planes"},
-                  {"action"}))
-      continue;
-    CodeSpec spec;
-    spec.text = key;
-    if (auto a = c.choice(value["action"], q + "/action", action_names())) spec.action = *a;
-    if (value.contains("group")) {
-      if (auto g = c.string(value["group"], q + "/group")) {
-        const auto it = std::find(d.modal_groups.begin(), d.modal_groups.end(), *g);
-        if (it == d.modal_groups.end())
-          c.fail(q + "/group", "'" + *g + "' is not in /modal_groups");
-        else
-          spec.group = static_cast<int>(it - d.modal_groups.begin());
-      }
-    }
-    if (value.contains("index"))
-      if (auto v = c.integer(value["index"], q + "/index", 0, 9)) spec.index = static_cast<int>(*v);
-    if (value.contains("cycle")) {
-      const auto& cy = value["cycle"];
-      if (c.object(cy, q + "/cycle", {"kind", "feed_out_to_clear"}, {"kind"})) {
-        if (auto k = c.choice(cy["kind"], q + "/cycle/kind", kCycleKinds)) spec.cycle.kind = *k;
-        if (cy.contains("feed_out_to_clear"))
-          if (auto v = c.boolean(cy["feed_out_to_clear"], q + "/cycle/feed_out_to_clear"))
-            spec.cycle.feed_out_to_clear = *v;
-      }
-    } else if (spec.action == Action::Cycle) {
-      c.fail(q + "/cycle", "a cycle code needs its cycle kind");
-    }
-    if (value.contains("requires"))
-      spec.requires_all = word_list(c, d, value["requires"], q + "/requires");
-    if (value.contains("requires_one_of"))
-      spec.requires_one_of = word_list(c, d, value["requires_one_of"], q + "/requires_one_of");
-    if (value.contains("allows")) spec.allows = word_list(c, d, value["allows"], q + "/allows");
-    if (value.contains("refusal"))
-      if (auto v = c.string(value["refusal"], q + "/refusal")) spec.refusal = *v;
-    if (value.contains("warn"))
-      if (auto v = c.boolean(value["warn"], q + "/warn")) spec.warn = *v;
-    if (value.contains("planes")) {
-      const auto& planes = value["planes"];
-      if (!planes.is_array() || planes.empty()) {
-        c.fail(q + "/planes", "must be a non-empty array of xy, xz, yz");
-      } else {
-        spec.planes = 0;
-        for (std::size_t i = 0; i < planes.size(); ++i)
-          if (auto b = c.choice<std::uint8_t>(planes[i], q + "/planes/" + std::to_string(i),
-                                              {{"xy", 1}, {"xz", 2}, {"yz", 4}}))
-            spec.planes = static_cast<std::uint8_t>(spec.planes | *b);
-      }
-    }
+    auto spec = read_code_spec(c, d, value, q, key);
+    if (!spec) continue;
     auto& index = m ? d.m_index : d.g_index;
     if (index[static_cast<std::size_t>(number)] >= 0) {
       c.fail(q, "the same code twice");
       continue;
     }
     index[static_cast<std::size_t>(number)] = static_cast<std::int16_t>(d.codes.size());
-    d.codes.push_back(std::move(spec));
+    d.codes.push_back(std::move(*spec));
   }
   // The tables end at the highest code: lookups beyond are "unknown" without memory.
   auto shrink = [](std::vector<std::int16_t>& v) {
@@ -642,6 +661,33 @@ void read_codes(Checker& c, const json& j, Dialect& d) {
   };
   shrink(d.g_index);
   shrink(d.m_index);
+}
+
+// Codes spelled as words: Sinumerik CIP, BSPLINE, SUPA, TRANS, DIAMON, ...
+void read_keywords(Checker& c, const json& j, Dialect& d) {
+  const std::string p = "/keywords";
+  if (!j.is_object()) {
+    c.fail(p, "must be an object");
+    return;
+  }
+  for (const auto& [key, value] : j.items()) {
+    const std::string q = p + "/" + key;
+    if (key.size() < 2 || key.size() > 16 ||
+        !std::all_of(key.begin(), key.end(),
+                     [](char ch) {
+                       return (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
+                     }) ||
+        key[0] < 'A' || key[0] > 'Z') {
+      c.fail(q, "a keyword is 2 to 16 upper-case letters, digits and underscores, a letter first");
+      continue;
+    }
+    auto spec = read_code_spec(c, d, value, q, key);
+    if (!spec) continue;
+    d.keywords.emplace_back(key, static_cast<std::int16_t>(d.codes.size()));
+    d.codes.push_back(std::move(*spec));
+  }
+  std::stable_sort(d.keywords.begin(), d.keywords.end(),
+                   [](const auto& a, const auto& b) { return a.first.size() > b.first.size(); });
 }
 
 WordId named_word(Checker& c, const Dialect& d, const json& j, const std::string& path) {
@@ -658,13 +704,16 @@ WordId named_word(Checker& c, const Dialect& d, const json& j, const std::string
 void read_arcs(Checker& c, const json& j, Dialect& d) {
   const std::string p = "/arcs";
   if (!c.object(j, p,
-                {"radius_word", "turns_word", "centres", "tolerance_mm", "tolerance_inch",
+                {"radius_word", "turns_word", "turns", "centres", "tolerance_mm", "tolerance_inch",
                  "relative", "absolute_factor"},
                 {"centres"}))
     return;
   auto& a = d.arcs;
   if (j.contains("radius_word")) a.radius = named_word(c, d, j["radius_word"], p + "/radius_word");
   if (j.contains("turns_word")) a.turns = named_word(c, d, j["turns_word"], p + "/turns_word");
+  if (j.contains("turns"))
+    if (auto v = c.choice<bool>(j["turns"], p + "/turns", {{"total", false}, {"extra", true}}))
+      a.turns_extra = *v;
   if (j.contains("centres"))
     if (auto v = c.choice<bool>(j["centres"], p + "/centres",
                                 {{"incremental", false}, {"absolute", true}}))
@@ -685,9 +734,11 @@ void read_cycles(Checker& c, const json& j, Dialect& d) {
   if (!c.object(j, p,
                 {"r_word", "peck_word", "dwell_word", "repeat_word", "dwell_scale",
                  "peck_clearance", "chip_break_retract", "clearance_is_machine"},
-                {"r_word", "peck_word", "dwell_word"}))
+                {}))
     return;
   auto& cy = d.cycles;
+  // Without G8x cycles (Sinumerik calls CYCLE81..) the words may be left out.
+  cy.r_plane = cy.peck = cy.dwell = kNoWord;
   if (j.contains("r_word")) cy.r_plane = named_word(c, d, j["r_word"], p + "/r_word");
   if (j.contains("peck_word")) cy.peck = named_word(c, d, j["peck_word"], p + "/peck_word");
   if (j.contains("dwell_word")) cy.dwell = named_word(c, d, j["dwell_word"], p + "/dwell_word");
@@ -774,12 +825,12 @@ DialectResult load_dialect(std::string_view json_text) {
   }
   Checker c(result.diagnostics);
   auto d = std::make_shared<Dialect>();
-  if (!c.object(
-          j, "",
-          {"$schema", "id", "name", "syntax", "units", "lexical", "numbers", "words", "parameters",
-           "expressions", "flow", "modal_groups", "codes", "arcs", "cycles", "dwell", "program"},
-          {"id", "name", "syntax", "units", "lexical", "words", "parameters", "expressions", "flow",
-           "modal_groups", "codes", "arcs", "cycles", "dwell", "program"}))
+  if (!c.object(j, "",
+                {"$schema", "id", "name", "syntax", "units", "lexical", "numbers", "words",
+                 "parameters", "expressions", "flow", "modal_groups", "codes", "keywords", "arcs",
+                 "cycles", "dwell", "program"},
+                {"id", "name", "syntax", "units", "lexical", "words", "parameters", "expressions",
+                 "flow", "modal_groups", "codes", "arcs", "cycles", "dwell", "program"}))
     return result;
   if (auto id = c.string(j["id"], "/id")) {
     d->id = *id;
@@ -831,6 +882,7 @@ DialectResult load_dialect(std::string_view json_text) {
     if (d->modal_groups.size() > 64) c.fail("/modal_groups", "at most 64 groups");
   }
   if (c.ok()) read_codes(c, j["codes"], *d);
+  if (c.ok() && j.contains("keywords")) read_keywords(c, j["keywords"], *d);
   if (c.ok()) {
     read_arcs(c, j["arcs"], *d);
     read_cycles(c, j["cycles"], *d);

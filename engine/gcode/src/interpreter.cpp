@@ -532,8 +532,43 @@ bool Interpreter::read_words(std::size_t pos, Block& b) {
                      "expected '=' after a parameter at the start of a setting");
       ++pos;
       if (!evaluate_at(pos, Evaluator::Mode::Full, a.value)) return false;
-      b.assignments.push_back(std::move(a));
+      if (!take_assignment(b, std::move(a))) return false;
       continue;
+    }
+    // Sinumerik: a DEF variable set among the words (R1=10 DEPTH=-1).
+    if ((style == ParameterStyle::R || style == ParameterStyle::Q) && is_letter(c)) {
+      std::size_t end = pos;
+      while (end < t.size() && (is_letter(t[end]) || is_digit(t[end]) || t[end] == '_')) ++end;
+      const std::string_view name = t.substr(pos, end - pos);
+      if (end < t.size() && t[end] == '=' && name.size() > 1 && dialect_.word(name) == kNoWord &&
+          parameters_.exists_named(name)) {
+        Assignment a;
+        a.named = true;
+        a.name = std::string(name);
+        a.column = column(start);
+        pos = end + 1;
+        if (!evaluate_at(pos, Evaluator::Mode::FullToSpace, a.value)) return false;
+        if (!take_assignment(b, std::move(a))) return false;
+        continue;
+      }
+    }
+    // A code spelled as a word (Sinumerik CIP, BSPLINE, SUPA, TRANS, DIAMON, G-group keywords).
+    if (!dialect_.keywords.empty() && is_letter(c)) {
+      bool keyword = false;
+      for (const auto& [name, index] : dialect_.keywords) {
+        if (!starts_with(t, pos, name)) continue;
+        const std::size_t end = pos + name.size();
+        if (end < t.size() &&
+            (is_letter(t[end]) || is_digit(t[end]) || t[end] == '_' || t[end] == '='))
+          continue;
+        const CodeSpec& spec = dialect_.codes[static_cast<std::size_t>(index)];
+        b.codes.push_back({&spec, 0, false, column(start)});
+        if (observer_) observer_->word(name, name, 0, column(start));
+        pos = end;
+        keyword = true;
+        break;
+      }
+      if (keyword) continue;
     }
     WordId id = kNoWord;
     if (c == '@' && dialect_.polar_radius != kNoWord) id = dialect_.polar_radius;
@@ -567,7 +602,22 @@ bool Interpreter::read_words(std::size_t pos, Block& b) {
     }
     Value v;
     bool integer = false;
-    if (!read_word_value(pos, v, integer, equals)) return false;
+    Word::Distance distance = Word::Distance::Modal;
+    if (equals && (starts_with(t, pos, "AC(") || starts_with(t, pos, "IC("))) {
+      // Sinumerik X=AC(..) / X=IC(..): this one coordinate absolute or incremental.
+      distance = t[pos] == 'A' ? Word::Distance::Absolute : Word::Distance::Incremental;
+      pos += 3;
+      if (!evaluate_at(pos, Evaluator::Mode::Full, v)) return false;
+      while (pos < t.size() && t[pos] == ' ') ++pos;
+      if (pos >= t.size() || t[pos] != ')')
+        return error(column(pos), diag::Code::GcodeBadExpression, "')' missing after AC( / IC(");
+      ++pos;
+    } else if (equals && pos < t.size() && t[pos] == '"') {
+      return error(column(start), diag::Code::GcodeUnsupported,
+                   "a word with a text value (tool names T=\"..\")");
+    } else if (!read_word_value(pos, v, integer, equals)) {
+      return false;
+    }
     if (v.vacant) continue;  // FANUC: a word whose value is <vacant> is left out
     const WordSpec& spec = dialect_.words[id];
     const std::uint32_t col = column(start);
@@ -614,7 +664,7 @@ bool Interpreter::read_words(std::size_t pos, Block& b) {
         if (b.has(id))
           return error(col, diag::Code::GcodeDuplicateWord,
                        "two " + spec.name + " words in one block");
-        b.set(id, Word{v.number, col, integer, v.machine});
+        b.set(id, Word{v.number, col, integer, v.machine, distance});
         break;
     }
     if (observer_) observer_->word(spec.name, t.substr(start, pos - start), v.number, col);
@@ -661,6 +711,13 @@ bool Interpreter::assign(const Assignment& a) {
     case ParamStatus::Undefined:
       return error(a.column, diag::Code::GcodeBadParameter, "parameter is read-only");
   }
+  return true;
+}
+
+// After the block (LinuxCNC, FANUC) or at once (Sinumerik), as the dialect says.
+bool Interpreter::take_assignment(Block& b, Assignment a) {
+  if (dialect_.parameters.assign_in_order) return assign(a);
+  b.assignments.push_back(std::move(a));
   return true;
 }
 
@@ -749,6 +806,7 @@ void Interpreter::execute_block(Block& b) {
     if (report_.full()) done_ = true;
     return;
   }
+  if (mcall_) run_modal_call(b);
   do_flow(flow);
 }
 
@@ -1354,12 +1412,6 @@ bool Interpreter::done_by_error() const {
 void Interpreter::run() {
   while (!done_ && next_line()) step_block();
   end_program();
-}
-
-// Sinumerik and Heidenhain come later; until then their statements are not recognised.
-bool Interpreter::sinumerik_statement(std::size_t, bool& handled) {
-  handled = false;
-  return true;
 }
 
 void Interpreter::klartext_line() {

@@ -91,6 +91,7 @@ class Interpreter {
     long long repeat = 0;  // further runs after this one
     bool locals = false;   // pushed a parameter frame
     std::vector<Loop> loops;
+    std::vector<std::optional<double>> args;  // a Sinumerik call's arguments, for its PROC
   };
 
   // ---- core (interpreter.cpp) ----
@@ -99,6 +100,7 @@ class Interpreter {
   bool read_words(std::size_t pos, Block& block);
   bool read_word_value(std::size_t& pos, Value& value, bool& integer_literal, bool equals);
   bool apply_assignments(const Block& block);
+  bool take_assignment(Block& block, Assignment a);
   bool assign(const Assignment& a);
   void execute_block(Block& block);
   void handle_comments(bool& stop);
@@ -134,7 +136,17 @@ class Interpreter {
   [[nodiscard]] bool starts_macro_statement(std::string_view t, std::size_t pos) const;
 
   // ---- Sinumerik (sinumerik.cpp) ----
+  using Structure_ = std::uint8_t;
   bool sinumerik_statement(std::size_t pos, bool& handled);
+  bool sinumerik_skip(Structure_ open, Structure_ close, Structure_ also);
+  bool sinumerik_jump(std::string_view keyword, std::string_view label, std::uint32_t col);
+  bool sinumerik_arguments(std::size_t& pos, std::vector<std::optional<double>>& out);
+  bool sinumerik_cycle(const std::string& name, const std::vector<std::optional<double>>& args,
+                       std::uint32_t col);
+  bool sinumerik_call(std::string_view name, std::size_t pos, std::uint32_t col);
+  bool sinumerik_set(const std::string& name, double number, Value v, std::uint32_t col);
+  [[nodiscard]] bool is_keyword(std::string_view name) const;
+  void run_modal_call(const Block& b);
 
   // ---- Heidenhain Klartext (klartext.cpp) ----
   void klartext_line();
@@ -161,6 +173,13 @@ class Interpreter {
   bool titled_ = false;        // the main program has an O title
   bool percent_end_ = false;   // a closing '%' ended the program
   std::vector<Comment> plain_comments_;
+  // Sinumerik: a modal cycle call (MCALL) and the arguments of a call for its PROC.
+  struct ModalCall {
+    std::string name;
+    std::vector<std::optional<double>> args;
+    std::uint32_t column = 0;
+  };
+  std::optional<ModalCall> mcall_;
   std::string program_name_;
   std::string scratch_;
   struct KlartextState;

@@ -46,6 +46,7 @@ enum class WordKind : std::uint8_t {
   Program,      // O (a program number or, in LinuxCNC, an O-word statement)
   PolarRadius,  // LinuxCNC @: distance from the origin in the XY plane
   PolarAngle,   // LinuxCNC ^: angle from the X axis, degrees
+  ToolOffset,   // Sinumerik D: D0 cancels the tool's length offset, D1.. applies it
 };
 
 struct WordSpec {
@@ -109,6 +110,12 @@ enum class Action : std::uint8_t {
   MacroCall,         // G65 P.. L.. with arguments
   Unsupported,       // refused, naming the construct (CodeSpec::refusal)
   Lathe,             // refused: a lathe program (out of scope)
+  ArcThroughPoint,   // Sinumerik CIP: a circle through an intermediate point (I1= J1= K1=)
+  SplineB,           // Sinumerik BSPLINE: each block a control point (PW= weight, PL= knot step)
+  SplineNurbs,       // Mitsubishi/FANUC G06.2: P order, K knots, R weights
+  Translate,         // Sinumerik TRANS: a programmable offset replacing the last
+  TranslateAdd,      // Sinumerik ATRANS: added to the last
+  OnlyWithoutWords,  // accepted alone (a reset such as ROT), refused with words (`refusal`)
 };
 
 // Which canned cycle a Cycle code is, and where it leaves the hole.
@@ -178,10 +185,13 @@ struct ParameterRange {
 
 struct ParameterRules {
   ParameterStyle style = ParameterStyle::None;
-  std::uint32_t count = 0;        // valid numbers are [0, count)
-  bool named = false;             // LinuxCNC #<name> / #<_global>
-  bool vacant = false;            // FANUC: an unset variable is <vacant> (#0), not 0
-  bool zero_read_only = false;    // #0 may not be assigned
+  std::uint32_t count = 0;      // valid numbers are [0, count)
+  bool named = false;           // LinuxCNC #<name> / #<_global>
+  bool vacant = false;          // FANUC: an unset variable is <vacant> (#0), not 0
+  bool zero_read_only = false;  // #0 may not be assigned
+  // Sinumerik: assignments take effect one after the other (R1=10 R2=R1*2 gives 20); LinuxCNC
+  // and FANUC read the whole block first.
+  bool assign_in_order = false;
   std::uint32_t local_first = 0;  // locals of a call (G65 / o-call arguments); 0: none
   std::uint32_t local_last = 0;
   std::vector<ParameterRange> ranges;
@@ -280,6 +290,7 @@ struct ArcRules {
   WordId radius = kNoWord;       // R (FANUC, LinuxCNC), CR (Sinumerik)
   WordId turns = kNoWord;        // P (LinuxCNC), TURN (Sinumerik)
   bool centre_absolute = false;  // I J K absolute unless G91.1 (LinuxCNC starts G91.1)
+  bool turns_extra = false;      // the turns word counts extra turns (Sinumerik TURN=1: 2 turns)
   // Radius check of centre-format arcs, LinuxCNC's rule: an arc is wrong when the radii differ
   // by more than absolute * factor, or by more than absolute and relative * the larger radius.
   double tolerance_mm = 0.0;
@@ -330,6 +341,9 @@ struct Dialect {
   std::vector<CodeSpec> codes;        // G and M codes
   std::vector<std::int16_t> g_index;  // G code × 10 → index into codes, -1: none
   std::vector<std::int16_t> m_index;  // M code → index into codes, -1: none
+  // Codes spelled as words (Sinumerik CIP, BSPLINE, SUPA, TRANS, DIAMON, ...): name → index into
+  // codes, longest name first.
+  std::vector<std::pair<std::string, std::int16_t>> keywords;
 
   ParameterRules parameters;
   ExpressionRules expressions;
