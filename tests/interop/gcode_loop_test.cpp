@@ -86,6 +86,18 @@ TEST(GcodeLoop, Fanuc0i) {
 TEST(GcodeLoop, Siemens840d) {
   check_profile("siemens-840d");
 }
+TEST(GcodeLoop, HaasNgc) {
+  check_profile("haas-ngc");
+}
+TEST(GcodeLoop, MitsubishiM80) {
+  check_profile("mitsubishi-m80");
+}
+TEST(GcodeLoop, OkumaOsp) {
+  check_profile("okuma-osp");
+}
+TEST(GcodeLoop, Hnc21) {
+  check_profile("hnc-21");
+}
 
 }  // namespace
 }  // namespace ncpost::interop

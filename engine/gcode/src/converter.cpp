@@ -651,6 +651,44 @@ bool Converter::add_spline_point(const Block& b, const Where& where) {
   return true;
 }
 
+// Mitsubishi/FANUC G06.2 P<order> K<knot> X Y Z R<weight>: the first block's point is the start
+// point; each block adds a control point and a knot, blocks of K alone the last knots.
+bool Converter::add_nurbs_point(const Block& b, const Where& where) {
+  const std::uint32_t column = motion_column(b);
+  bool code = false;  // G06.2 written in this block: a new curve
+  for (const CodeRef& c : b.codes) code = code || c.spec->action == Action::SplineNurbs;
+  const bool starts = !spline_ || !spline_->explicit_knots || code;
+  if (starts) {
+    flush_spline();
+    if (!check_feed_motion(where, column)) return false;
+    ensure_section(where);
+    if (!b.has(kP))
+      return error(where, column, diag::Code::GcodeMissingWord, "G06.2 without its order P");
+    spline_.emplace();
+    spline_->explicit_knots = true;
+    spline_->degree = static_cast<int>(std::lround(b.value(kP))) - 1;
+    spline_->where_file = std::string(where.file);
+    spline_->where_line = where.line;
+    spline_->column = column;
+    spline_->end = pos_;
+  }
+  if (b.has(kK)) spline_->knots.push_back(b.value(kK));
+  bool axes = false;
+  for (int k = 0; k < kAxes; ++k) axes = axes || b.has(axis_word(k));
+  if (axes || starts) {
+    Axes target;
+    word_target(b, target, false);
+    const double w = b.has(kR) ? b.value(kR) : 1.0;
+    if (w <= 0)
+      return error(where, column, diag::Code::GcodeBadWordValue,
+                   "a NURBS weight (R) must be positive");
+    check_limits(target, where, column);
+    spline_->points.push_back({from_mm(target[0]), from_mm(target[1]), from_mm(target[2]), w});
+    spline_->end = target;
+  }
+  return true;
+}
+
 void Converter::flush_spline() {
   if (!spline_) return;
   Spline s = std::move(*spline_);
@@ -658,6 +696,20 @@ void Converter::flush_spline() {
   canon::NurbsFeed n;
   n.degree = s.degree;
   n.points = std::move(s.points);
+  if (s.explicit_knots) {
+    n.knots = std::move(s.knots);
+    if (!canon::valid(n)) {
+      error(Where{s.where_file, s.where_line}, s.column, diag::Code::GcodeBadWordValue,
+            "a G06.2 NURBS that makes no valid curve (order " + std::to_string(s.degree + 1) +
+                ", " + std::to_string(n.points.size()) + " points, " +
+                std::to_string(n.knots.size()) + " knots)");
+      return;
+    }
+    if (uses_rotary_) n.rotary = canon::Rotary{s.end[3], s.end[4], s.end[5]};
+    pos_ = s.end;
+    emit(n);
+    return;
+  }
   // Clamped: degree + 1 equal knots, the steps PL in order, the end knot repeated up to
   // points + degree + 1 knots (a PL left out is a step of 0: Sinumerik's default spacing
   // is not modelled, docs/gcode.md).
@@ -773,6 +825,8 @@ bool Converter::convert_motion(const CodeSpec& motion, const Block& b, const Whe
       return convert_arc_through(b, where);
     case Action::SplineB:
       return add_spline_point(b, where);
+    case Action::SplineNurbs:
+      return add_nurbs_point(b, where);
     default:
       return true;
   }
@@ -1202,8 +1256,9 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
       uses_axes = non_motion[i];
     // FANUC G4 X1.5: the X is the dwell's time.
     if (a == Action::Dwell)
-      for (const auto& [w, scale] : dialect_.dwell.words)
-        if (b.has(w) && dialect_.words[w].kind == WordKind::Axis) uses_axes = non_motion[i];
+      for (const DwellWord& d : dialect_.dwell.words)
+        if (b.has(d.word) && dialect_.words[d.word].kind == WordKind::Axis)
+          uses_axes = non_motion[i];
   }
   // An arc may have only its centre words: a full circle where the tool stands (LinuxCNC).
   const bool centre_words = b.has(kI) || b.has(kJ) || b.has(kK) ||
@@ -1211,8 +1266,12 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   const CodeSpec* modal = motion ? motion : motion_;
   const bool arc_mode =
       modal && (modal->action == Action::ArcCw || modal->action == Action::ArcCcw);
+  // G06.2: blocks of knots alone (K) go on with the NURBS too.
+  const bool knot_only = modal && modal->action == Action::SplineNurbs && b.has(kK);
   const CodeSpec* effective_motion =
-      motion ? motion : ((axes || (arc_mode && centre_words)) && !uses_axes ? motion_ : nullptr);
+      motion
+          ? motion
+          : ((axes || (arc_mode && centre_words) || knot_only) && !uses_axes ? motion_ : nullptr);
   if (axes && !uses_axes && (!effective_motion || effective_motion->action == Action::CycleCancel))
     return error(where, b.first_column, diag::Code::GcodeUnusedWord,
                  "axis words without a code that uses them (no motion mode in force)");
@@ -1289,8 +1348,10 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   }
 
   // ---- Convert, in LinuxCNC's order of execution ----
-  if (spline_ && (!effective_motion || effective_motion->action != Action::SplineB || !axes ||
-                  b.codes.size() > (motion ? 1u : 0u) || b.has(kT) || b.has(kS)))
+  const bool spline_mode = effective_motion && (effective_motion->action == Action::SplineB ||
+                                                effective_motion->action == Action::SplineNurbs);
+  if (spline_ && (!spline_mode || !(axes || knot_only) || b.codes.size() > (motion ? 1u : 0u) ||
+                  b.has(kT) || b.has(kS)))
     flush_spline();
   // A macro call's words are its arguments (FANUC G65 P9010 X.. F..): nothing else happens.
   for (const CodeRef& c : b.codes) {
@@ -1331,8 +1392,8 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   // Sinumerik G4 F2: the F is the dwell's time, not a feed.
   bool f_is_dwell = false;
   if (find(Action::Dwell))
-    for (const auto& [w, scale] : dialect_.dwell.words)
-      f_is_dwell = f_is_dwell || (w == kF && b.has(kF));
+    for (const DwellWord& d : dialect_.dwell.words)
+      f_is_dwell = f_is_dwell || (d.word == kF && b.has(kF));
   if (b.has(kF) && !f_is_dwell) {
     const double f = b.value(kF);
     if (f < 0)
@@ -1383,9 +1444,10 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   if (const CodeRef* c = find(Action::Dwell)) {
     double seconds = 0;
     bool found = false;
-    for (const auto& [w, scale] : dialect_.dwell.words) {
-      if (b.has(w)) {
-        seconds = b.value(w) * scale;
+    for (const DwellWord& d : dialect_.dwell.words) {
+      if (b.has(d.word)) {
+        const bool integer = b.word(d.word).integer_literal && d.integer_scale > 0;
+        seconds = b.value(d.word) * (integer ? d.integer_scale : d.scale);
         found = true;
         break;
       }
@@ -1414,11 +1476,14 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     int index = c->spec->index;
     if (index == 0) {
       // G54.1 P1..P48: the additional work offsets, after the nine standard ones.
-      if (!b.has(kP))
-        return error(where, c->column, diag::Code::GcodeMissingWord, c->spec->text + " without P");
-      const double p = b.value(kP);
+      // Okuma's G15 H1 names its offset with H.
+      const WordId iw = c->spec->index_word != kNoWord ? c->spec->index_word : kP;
+      if (!b.has(iw))
+        return error(where, c->column, diag::Code::GcodeMissingWord,
+                     c->spec->text + " without " + dialect_.words[iw].name);
+      const double p = b.value(iw);
       if (p < 1 || p > kWorkOffsets - 10 || std::abs(p - std::round(p)) > 1e-9)
-        return error(where, b.word(kP).column, diag::Code::GcodeBadWordValue,
+        return error(where, b.word(iw).column, diag::Code::GcodeBadWordValue,
                      c->spec->text + " P must be 1 to " + std::to_string(kWorkOffsets - 10));
       index = 9 + static_cast<int>(std::lround(p));
     }
@@ -1532,9 +1597,9 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     }
   }
   if (effective_motion && effective_motion->action != Action::CycleCancel &&
-      (axes || (arc_mode && centre_words))) {
+      (axes || (arc_mode && centre_words) || knot_only)) {
     // A spline's control points are gathered while its blocks come one after the other.
-    if (effective_motion->action != Action::SplineB) flush_spline();
+    if (!spline_mode) flush_spline();
     if (machine_coordinates && effective_motion->action != Action::Rapid &&
         effective_motion->action != Action::Linear)
       return error(where, b.first_column, diag::Code::GcodeUnsupported,
@@ -1555,6 +1620,14 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     }
     if (b.has(kL)) flow.repeat = static_cast<int>(std::lround(b.value(kL)));
     if (b.has(kK) && !b.has(kL)) flow.repeat = static_cast<int>(std::lround(b.value(kK)));
+  }
+  if (const CodeRef* c = find(Action::LocalCall)) {
+    flow.kind = FlowRequest::Kind::Call;
+    flow.local = true;
+    flow.column = c->column;
+    flow.has_program = b.has(kP);
+    flow.program = b.value(kP);
+    if (b.has(kL)) flow.repeat = static_cast<int>(std::lround(b.value(kL)));
   }
   if (const CodeRef* c = find(Action::SubprogramReturn)) {
     flow.kind = FlowRequest::Kind::Return;

@@ -42,6 +42,7 @@ struct FlowRequest {
   bool has_program = false;
   int repeat = 1;                     // L / K repeats
   bool macro = false;                 // G65: the block's words become the call's locals
+  bool local = false;                 // Haas M97: P names a block N of this program
   std::optional<double> return_line;  // M99 P: continue at this N in the caller
   std::uint32_t column = 0;
 };
@@ -152,6 +153,7 @@ class Converter final : public StateView {
   bool convert_cycle(const CodeSpec& motion, const Block& b, const Where& where);
   bool convert_arc_through(const Block& b, const Where& where);
   bool add_spline_point(const Block& b, const Where& where);
+  bool add_nurbs_point(const Block& b, const Where& where);
   void flush_spline();
   bool convert_g10(const Block& b, const Where& where, std::uint32_t column, const CodeSpec& spec);
   bool convert_home(const CodeSpec& code, const Block& b, const Where& where);
@@ -216,7 +218,9 @@ class Converter final : public StateView {
   struct Spline {
     int degree = 3;
     std::vector<canon::ControlPoint> points;
-    std::vector<double> intervals;
+    std::vector<double> intervals;  // BSPLINE: the knot steps PL
+    bool explicit_knots = false;    // G06.2: the knots K as written
+    std::vector<double> knots;
     Axes end{};
     std::string where_file;
     std::uint32_t where_line = 0;

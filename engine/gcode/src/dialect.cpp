@@ -162,6 +162,7 @@ const std::vector<std::pair<const char*, Action>>& action_names() {
       {"flood_on", Action::FloodOn},
       {"coolant_off", Action::CoolantOff},
       {"subprogram_call", Action::SubprogramCall},
+      {"local_call", Action::LocalCall},
       {"subprogram_return", Action::SubprogramReturn},
       {"macro_call", Action::MacroCall},
       {"unsupported", Action::Unsupported},
@@ -574,8 +575,8 @@ void read_flow(Checker& c, const json& j, Dialect& d) {
 std::optional<CodeSpec> read_code_spec(Checker& c, const Dialect& d, const json& value,
                                        const std::string& q, const std::string& key) {
   if (!c.object(value, q,
-                {"group", "action", "index", "cycle", "requires", "requires_one_of", "allows",
-                 "refusal", "warn", "planes"},
+                {"group", "action", "index", "index_word", "cycle", "requires", "requires_one_of",
+                 "allows", "refusal", "warn", "planes"},
                 {"action"}))
     return std::nullopt;
   CodeSpec spec;
@@ -592,6 +593,14 @@ std::optional<CodeSpec> read_code_spec(Checker& c, const Dialect& d, const json&
   }
   if (value.contains("index"))
     if (auto v = c.integer(value["index"], q + "/index", 0, 57)) spec.index = static_cast<int>(*v);
+  if (value.contains("index_word")) {
+    const auto n = c.string(value["index_word"], q + "/index_word");
+    const WordId w = n ? d.word(*n) : kNoWord;
+    if (n && (w == kNoWord || (n->size() == 1 && !d.letter_known[w])))
+      c.fail(q + "/index_word", "'" + *n + "' is not a word of this dialect");
+    else
+      spec.index_word = w;
+  }
   if (value.contains("cycle")) {
     const auto& cy = value["cycle"];
     if (c.object(cy, q + "/cycle", {"kind", "feed_out_to_clear"}, {"kind"})) {
@@ -772,7 +781,19 @@ void read_dwell(Checker& c, const json& j, Dialect& d) {
       c.fail(p + "/" + name, "'" + name + "' is not a word of this dialect");
       continue;
     }
-    if (auto v = c.number(value, p + "/" + name, 0, 1000, true)) d.dwell.words.emplace_back(w, *v);
+    // A number (seconds per unit), or {"scale": .., "integer_scale": ..}.
+    if (value.is_object()) {
+      const std::string q = p + "/" + name;
+      if (!c.object(value, q, {"scale", "integer_scale"}, {"scale"})) continue;
+      const auto s = c.number(value["scale"], q + "/scale", 0, 1000, true);
+      double integer = 0;
+      if (value.contains("integer_scale"))
+        if (auto v = c.number(value["integer_scale"], q + "/integer_scale", 0, 1000, true))
+          integer = *v;
+      if (s) d.dwell.words.push_back({w, *s, integer});
+    } else if (auto v = c.number(value, p + "/" + name, 0, 1000, true)) {
+      d.dwell.words.push_back({w, *v, 0});
+    }
   }
 }
 

@@ -311,10 +311,11 @@ void Interpreter::index_subprograms(Source& s) {
     if (dialect_.percent_delimits && t[pos] == '%' && ++percents == 2) break;
     const Position after{static_cast<std::size_t>(&s - sources_.data()), c.offset(), number + 1};
     (void)offset;
-    if (t[pos] == 'O' || (t[pos] == ':' && dialect_.flow.fanuc_subprograms)) {
+    if (t[pos] == 'O' || ((t[pos] == ':' || (t[pos] == '%' && !dialect_.percent_delimits)) &&
+                          dialect_.flow.fanuc_subprograms)) {
       std::size_t p = pos;
       std::string label;
-      if (t[p] == ':') {
+      if (t[p] == ':' || t[p] == '%') {
         ++p;
         std::size_t q = p;
         while (q < t.size() && is_digit(t[q])) ++q;
@@ -831,6 +832,18 @@ void Interpreter::do_flow(const FlowRequest& flow) {
         number = static_cast<double>(static_cast<long long>(number) % 10000);
       }
       if (repeat <= 0) return;
+      if (flow.local) {
+        const Position* n = find_label(position_.source, "N" + number_key(number));
+        if (!n) {
+          error(flow.column, diag::Code::GcodeMissingProgram,
+                "M97: no block N" + number_key(number) + " in this program");
+          return;
+        }
+        const Position target = *n;
+        (void)call(position_.source, target, FrameKind::Fanuc, "N" + number_key(number), repeat - 1,
+                   false);
+        return;
+      }
       std::size_t source = 0;
       const auto target = find_fanuc_program(number, source);
       if (!target) {
@@ -1368,8 +1381,9 @@ void Interpreter::step_block() {
         return;
       }
     }
-    if (c == ':' && dialect_.flow.fanuc_subprograms && after_n + 1 < t.size() &&
-        is_digit(t[after_n + 1])) {
+    // FANUC writes :1234 for O1234; Huazhong %1234 (where '%' does not delimit the program).
+    if ((c == ':' || (c == '%' && !dialect_.percent_delimits)) && dialect_.flow.fanuc_subprograms &&
+        after_n + 1 < t.size() && is_digit(t[after_n + 1])) {
       scratch_.assign(t);
       scratch_[after_n] = 'O';
       line_.text = scratch_;

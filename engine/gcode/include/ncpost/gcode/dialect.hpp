@@ -106,6 +106,7 @@ enum class Action : std::uint8_t {
   FloodOn,
   CoolantOff,
   SubprogramCall,    // M98 P.. L..
+  LocalCall,         // Haas M97 P..: the subprogram starts at block N.. of this program
   SubprogramReturn,  // M99
   MacroCall,         // G65 P.. L.. with arguments
   Unsupported,       // refused, naming the construct (CodeSpec::refusal)
@@ -141,8 +142,9 @@ struct CycleSpec {
 struct CodeSpec {
   std::string text;  // "G38.2", "M98": for messages
   Action action = Action::None;
-  int group = -1;  // index into Dialect::modal_groups; -1: non-modal
-  int index = 0;   // WorkOffset: 1 = first work offset (G54); 0: from the P word
+  int group = -1;               // index into Dialect::modal_groups; -1: non-modal
+  int index = 0;                // WorkOffset: 1 = first work offset (G54); 0: from the index word
+  WordId index_word = kNoWord;  // the word that gives the index (P when not said; Okuma H)
   CycleSpec cycle{};
   std::vector<WordId> requires_all;     // every one of these must be in the block
   std::vector<WordId> requires_one_of;  // at least one of these
@@ -310,9 +312,15 @@ struct CycleRules {
   bool clearance_is_machine = false;  // FANUC: the values above are machine parameters
 };
 
+struct DwellWord {
+  WordId word = kNoWord;
+  double scale = 1;          // to seconds: FANUC P 0.001 (ms), X 1
+  double integer_scale = 0;  // for a plain integer literal, when it differs (Haas: P1500 is ms,
+                             // P1.5 seconds); 0: the same as `scale`
+};
 struct DwellRules {
-  // Words a dwell's time may be in and their scale to seconds: FANUC P (ms) and X (s).
-  std::vector<std::pair<WordId, double>> words;
+  // Words a dwell's time may be in, in order of preference.
+  std::vector<DwellWord> words;
 };
 
 struct Dialect {
