@@ -98,6 +98,9 @@ TEST(GcodeLoop, OkumaOsp) {
 TEST(GcodeLoop, Hnc21) {
   check_profile("hnc-21");
 }
+TEST(GcodeLoop, HeidenhainTnc640) {
+  check_profile("heidenhain-tnc640");
+}
 
 }  // namespace
 }  // namespace ncpost::interop

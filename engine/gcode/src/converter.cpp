@@ -178,6 +178,11 @@ Axes Converter::total_offset() const noexcept {
 double Converter::at(int axis) const noexcept {
   return out(axis, pos_);
 }
+double Converter::internal(int axis, double v, bool machine) const noexcept {
+  const auto i = static_cast<std::size_t>(axis);
+  const double value = is_rotary(axis) ? v : to_mm(v);
+  return machine ? value - total_offset()[i] : value;
+}
 double Converter::position(int axis) const {
   return axis >= 0 && axis < kAxes ? at(axis) : 0;
 }
@@ -415,8 +420,8 @@ void Converter::check_limits(const Axes& p, const Where& where, std::uint32_t co
   }
 }
 
-bool Converter::check_feed_motion(const Where& where, std::uint32_t column) {
-  if (feed_ <= 0)
+bool Converter::check_feed_motion(const Where& where, std::uint32_t column, double own_feed) {
+  if (feed_ <= 0 && own_feed <= 0)
     return error(where, column, diag::Code::GcodeNoFeed,
                  feed_mode_ == FeedMode::InverseTime
                      ? "feed motion in inverse time mode (G93) without F"
@@ -484,7 +489,7 @@ bool Converter::arc(const Axes& target, double centre_first, double centre_secon
 }
 
 bool Converter::cycle(const CycleCall& c, const Where& where, std::uint32_t column) {
-  if (!check_feed_motion(where, column)) return false;
+  if (!check_feed_motion(where, column, c.feed)) return false;
   if (c.r < c.bottom - 1e-9)
     return error(where, column, diag::Code::GcodeCycleGeometry,
                  "the cycle's R level " + number_text(c.r) + " is below its bottom " +
@@ -503,7 +508,7 @@ bool Converter::cycle(const CycleCall& c, const Where& where, std::uint32_t colu
   cy.safe_z = std::max(c.clear, c.r);
   cy.r_z = c.r;
   cy.bottom_z = c.bottom;
-  cy.feed = feed_;
+  cy.feed = c.feed > 0 ? c.feed : feed_;
   cy.dwell = c.dwell;
   switch (c.kind) {
     case CycleKind::Drill:
@@ -538,6 +543,8 @@ bool Converter::cycle(const CycleCall& c, const Where& where, std::uint32_t colu
   }
   if (uses_rotary_) cy.rotary = canon::Rotary{pos_[3], pos_[4], pos_[5]};
   emit(cy);
+  // A cycle with its own feed leaves the feed in force as it was (Heidenhain's Q206).
+  if (c.feed > 0 && c.feed != feed_) emit(canon::SetFeedRate{feed_});
   pos_[0] = to_mm(c.x);
   pos_[1] = to_mm(c.y);
   pos_[2] = to_mm(cy.safe_z);

@@ -60,6 +60,7 @@ struct CycleCall {
   double peck = 0;
   double peck_retract = 0;    // ChipBreak back-off
   double peck_clearance = 0;  // Peck: stop this far above the last depth
+  double feed = 0;            // the cycle's own feed (Heidenhain Q206); 0: the feed in force
 };
 
 class Converter final : public StateView {
@@ -108,6 +109,11 @@ class Converter final : public StateView {
   [[nodiscard]] double feed() const noexcept { return feed_; }
   // Current position in program units, current coordinate system.
   [[nodiscard]] double at(int axis) const noexcept;
+  // The current position as the primitives take targets (internal units), and one coordinate
+  // in program units (current system, or machine coordinates) turned into that form.
+  [[nodiscard]] Axes target() const noexcept { return pos_; }
+  [[nodiscard]] double internal(int axis, double program_value,
+                                bool machine = false) const noexcept;
   void set_uses_rotary(bool uses) noexcept { uses_rotary_ = uses; }
   void set_label(std::string_view label) { pending_label_ = label; }
 
@@ -140,7 +146,7 @@ class Converter final : public StateView {
   [[nodiscard]] Axes total_offset() const noexcept;
   bool error(const Where& where, std::uint32_t column, diag::Code code, std::string message);
   void warn(const Where& where, std::uint32_t column, diag::Code code, std::string message);
-  bool check_feed_motion(const Where& where, std::uint32_t column);
+  bool check_feed_motion(const Where& where, std::uint32_t column, double own_feed = 0);
   void check_limits(const Axes& p, const Where& where, std::uint32_t column);
 
   // Word-address conversion steps.

@@ -173,6 +173,9 @@ const std::vector<std::pair<const char*, Action>>& action_names() {
       {"translate", Action::Translate},
       {"translate_add", Action::TranslateAdd},
       {"only_without_words", Action::OnlyWithoutWords},
+      {"spindle_cw_coolant", Action::SpindleCwCoolant},
+      {"spindle_ccw_coolant", Action::SpindleCcwCoolant},
+      {"cycle_call", Action::CycleCall},
   };
   return names;
 }

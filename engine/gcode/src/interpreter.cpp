@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "klartext.hpp"
+
 namespace ncpost::gcode::detail {
 
 namespace {
@@ -84,8 +86,6 @@ bool has_rotary_words(std::string_view text, const Dialect& dialect) {
 }
 
 }  // namespace
-
-struct Interpreter::KlartextState {};
 
 Interpreter::Interpreter(std::string_view text, const Dialect& dialect, canon::Sink& sink,
                          const ReadOptions& options, BlockObserver* observer)
@@ -436,6 +436,19 @@ void Interpreter::index_labels(Source& s) {
       s.labels->try_emplace("N" + number_key(v), here);
       pos = q;
       while (pos < t.size() && t[pos] == ' ') ++pos;
+    }
+    // Heidenhain labels: [block number] LBL n / LBL "name".
+    if (dialect_.syntax == Syntax::Klartext) {
+      while (pos < t.size() && is_digit(t[pos])) ++pos;
+      while (pos < t.size() && t[pos] == ' ') ++pos;
+      if (t.compare(pos, 4, "LBL ") == 0) {
+        std::size_t q = pos + 4;
+        while (q < t.size() && t[q] == ' ') ++q;
+        std::size_t e = q;
+        while (e < t.size() && t[e] != ' ') ++e;
+        s.labels->try_emplace("LBL" + std::string(t.substr(q, e - q)), here);
+      }
+      continue;
     }
     // Sinumerik labels: NAME: at the start of the block.
     if (dialect_.flow.sinumerik && pos < t.size() && (is_letter(t[pos]) || t[pos] == '_')) {
@@ -1426,11 +1439,6 @@ bool Interpreter::done_by_error() const {
 void Interpreter::run() {
   while (!done_ && next_line()) step_block();
   end_program();
-}
-
-void Interpreter::klartext_line() {
-  error(1, diag::Code::GcodeUnsupported, "Heidenhain Klartext is not read yet");
-  done_ = true;
 }
 
 }  // namespace ncpost::gcode::detail

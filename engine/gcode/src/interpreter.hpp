@@ -150,6 +150,8 @@ class Interpreter {
 
   // ---- Heidenhain Klartext (klartext.cpp) ----
   void klartext_line();
+  void klartext_cycle_call(std::uint32_t col);
+  void klartext_fn(std::size_t pos);
 
   const Dialect& dialect_;
   const ReadOptions& options_;

@@ -105,18 +105,21 @@ enum class Action : std::uint8_t {
   MistOn,
   FloodOn,
   CoolantOff,
-  SubprogramCall,    // M98 P.. L..
-  LocalCall,         // Haas M97 P..: the subprogram starts at block N.. of this program
-  SubprogramReturn,  // M99
-  MacroCall,         // G65 P.. L.. with arguments
-  Unsupported,       // refused, naming the construct (CodeSpec::refusal)
-  Lathe,             // refused: a lathe program (out of scope)
-  ArcThroughPoint,   // Sinumerik CIP: a circle through an intermediate point (I1= J1= K1=)
-  SplineB,           // Sinumerik BSPLINE: each block a control point (PW= weight, PL= knot step)
-  SplineNurbs,       // Mitsubishi/FANUC G06.2: P order, K knots, R weights
-  Translate,         // Sinumerik TRANS: a programmable offset replacing the last
-  TranslateAdd,      // Sinumerik ATRANS: added to the last
-  OnlyWithoutWords,  // accepted alone (a reset such as ROT), refused with words (`refusal`)
+  SubprogramCall,     // M98 P.. L..
+  LocalCall,          // Haas M97 P..: the subprogram starts at block N.. of this program
+  SubprogramReturn,   // M99
+  MacroCall,          // G65 P.. L.. with arguments
+  Unsupported,        // refused, naming the construct (CodeSpec::refusal)
+  Lathe,              // refused: a lathe program (out of scope)
+  ArcThroughPoint,    // Sinumerik CIP: a circle through an intermediate point (I1= J1= K1=)
+  SplineB,            // Sinumerik BSPLINE: each block a control point (PW= weight, PL= knot step)
+  SplineNurbs,        // Mitsubishi/FANUC G06.2: P order, K knots, R weights
+  Translate,          // Sinumerik TRANS: a programmable offset replacing the last
+  TranslateAdd,       // Sinumerik ATRANS: added to the last
+  OnlyWithoutWords,   // accepted alone (a reset such as ROT), refused with words (`refusal`)
+  SpindleCwCoolant,   // Heidenhain M13: M3 and M8 at once
+  SpindleCcwCoolant,  // Heidenhain M14: M4 and M8 at once
+  CycleCall,          // Heidenhain M99: call the cycle defined last (CYCL DEF) here
 };
 
 // Which canned cycle a Cycle code is, and where it leaves the hole.
