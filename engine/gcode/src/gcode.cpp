@@ -2,6 +2,9 @@
 
 #include "ncpost/gcode/gcode.hpp"
 
+#include <iterator>
+#include <string>
+
 #include "interpreter.hpp"
 
 namespace ncpost::gcode {
@@ -11,6 +14,26 @@ ReadResult read(std::string_view text, const Dialect& dialect, canon::Sink& sink
   detail::Interpreter interpreter(text, dialect, sink, options, nullptr);
   interpreter.run();
   return std::move(interpreter).result();
+}
+
+ReadResult read_with_dialect(std::string_view text, std::string_view dialect_json,
+                             std::string_view dialect_name, canon::Sink& sink,
+                             const ReadOptions& options) {
+  DialectResult loaded = load_dialect(dialect_json);
+  ReadResult result;
+  if (!loaded.dialect) {
+    result.diagnostics = diag::with_file(loaded.diagnostics, dialect_name);
+    return result;
+  }
+  result = read(text, *loaded.dialect, sink, options);
+  // Warnings the dialect raised while loading come first.
+  if (!loaded.diagnostics.empty()) {
+    auto all = diag::with_file(loaded.diagnostics, dialect_name);
+    all.insert(all.end(), std::make_move_iterator(result.diagnostics.begin()),
+               std::make_move_iterator(result.diagnostics.end()));
+    result.diagnostics = std::move(all);
+  }
+  return result;
 }
 
 namespace {
@@ -31,6 +54,18 @@ bool apt_statement(std::string_view line) {
   return true;
 }
 
+// The statement a numbered Heidenhain block starts with.
+bool klartext_block(std::string_view block) {
+  static constexpr std::string_view kStarts[] = {
+      ";",    "*",        "L ",   "L\t",  "END PGM", "TOOL ", "CYCL ", "CC",
+      "C ",   "CR ",      "CP ",  "CT ",  "LBL ",    "CALL ", "FN ",   "Q",
+      "STOP", "BLK FORM", "RND ", "CHF ", "APPR ",   "DEP "};
+  if (block == "L" || block == "STOP") return true;
+  for (const std::string_view start : kStarts)
+    if (starts_with_ci(block, start)) return true;
+  return false;
+}
+
 }  // namespace
 
 bool looks_like_gcode(std::string_view head) noexcept {
@@ -43,7 +78,7 @@ bool looks_like_gcode(std::string_view head) noexcept {
     ++p;
   const std::string_view rest = head.substr(p);
   if (starts_with_ci(rest, "ISO-10303-21") || starts_with_ci(rest, "<?XML") ||
-      rest.starts_with("<"))
+      rest.starts_with("<") || rest.starts_with("/*"))
     return false;
   // Line by line: a line that is clearly G-code counts, one that is clearly APT/CL refuses.
   int gcode_lines = 0;
@@ -75,12 +110,13 @@ bool looks_like_gcode(std::string_view head) noexcept {
     // Heidenhain numbered blocks: "0 BEGIN PGM", "12 L X+10 ...".
     std::size_t k = 0;
     while (k < line.size() && detail::is_digit(line[k])) ++k;
-    if (k > 0 && k < line.size() && line[k] == ' ' &&
-        (starts_with_ci(line.substr(k + 1), "BEGIN PGM") ||
-         starts_with_ci(line.substr(k + 1), "L ") ||
-         starts_with_ci(line.substr(k + 1), "TOOL CALL"))) {
-      ++gcode_lines;
-      continue;
+    if (k > 0 && k < line.size() && line[k] == ' ') {
+      const std::string_view block = line.substr(k + 1);
+      if (starts_with_ci(block, "BEGIN PGM")) return true;
+      if (klartext_block(block)) {
+        ++gcode_lines;
+        continue;
+      }
     }
     const char c = detail::upper(line.front());
     const bool word_start = c == 'N' || c == 'G' || c == 'M' || c == 'O' || c == 'X' || c == 'Y' ||

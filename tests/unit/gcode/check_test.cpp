@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "gcode_support.hpp"
 
 namespace ncpost::gcode {
@@ -117,6 +119,45 @@ TEST(Checks, DetectsGcode) {
   EXPECT_FALSE(looks_like_gcode("PARTNO/BRACKET\nUNITS/MM\nGOTO/1,2,3\nFEDRAT/200\n"));
   EXPECT_FALSE(looks_like_gcode(""));
   EXPECT_FALSE(looks_like_gcode("hello world\nthis is text\n"));
+  // A P21 file may open with a comment; '/' alone would be a block delete.
+  EXPECT_FALSE(looks_like_gcode("/* made by hand */\nISO-10303-21;\nHEADER;\n"));
+  EXPECT_TRUE(looks_like_gcode("/N10 G0 X1\nG1 X2 F100\n"));
+}
+
+// What format detection sees: the first 4 KB of every G-code program of the corpus and of every
+// G-code profile's golden posts say G-code; those of every P21, P28 and APT/CL file do not.
+TEST(Checks, DetectsGcodeInTheCorpusAndThePosts) {
+  namespace fs = std::filesystem;
+  auto head = [](const fs::path& f) { return ncpost::test::read_file(f).substr(0, 4096); };
+  std::size_t gcode = 0, other = 0;
+  for (const char* id : {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "okuma-osp",
+                         "hnc-21", "siemens-840d", "heidenhain-tnc640"}) {
+    for (const auto& e :
+         fs::directory_iterator(ncpost::test::source_dir() / "tests" / "golden" / "post" / id)) {
+      if (e.path().extension() == ".stp") continue;
+      EXPECT_TRUE(looks_like_gcode(head(e.path()))) << e.path();
+      ++gcode;
+    }
+  }
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  for (const auto& e : fs::recursive_directory_iterator(corpus / "gcode")) {
+    const auto ext = e.path().extension();
+    if (!e.is_regular_file() || (ext != ".ngc" && ext != ".gcode")) continue;
+    const std::string h = head(e.path());
+    // A program that is only blank lines says nothing either way.
+    if (h.find_first_not_of(" \t\r\n") == std::string::npos) continue;
+    EXPECT_TRUE(looks_like_gcode(h)) << e.path();
+    ++gcode;
+  }
+  for (const char* folder : {"p21", "p21-aim", "p21-syntax", "p28", "cls"}) {
+    for (const auto& e : fs::recursive_directory_iterator(corpus / folder)) {
+      if (!e.is_regular_file()) continue;
+      EXPECT_FALSE(looks_like_gcode(head(e.path()))) << e.path();
+      ++other;
+    }
+  }
+  EXPECT_GT(gcode, 300u);
+  EXPECT_GT(other, 50u);
 }
 
 }  // namespace

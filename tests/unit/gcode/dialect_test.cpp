@@ -42,6 +42,30 @@ TEST(DialectTest, BuiltInDialectsLoad) {
   EXPECT_GE(count, 1);
 }
 
+// The pipeline's one call: a dialect text and a program; a broken dialect reads nothing.
+TEST(DialectTest, ReadWithDialect) {
+  canon::ProgramBuffer good;
+  const auto r = read_with_dialect("G0 X1\nM2\n", valid().dump(), "linuxcnc/dialect.json", good);
+  EXPECT_TRUE(r.ok());
+  const auto calls = std::move(good).take();
+  EXPECT_EQ(r.calls, calls.size());
+  bool moved = false;
+  for (const auto& c : calls)
+    if (const auto* t = std::get_if<canon::StraightTraverse>(&c)) moved = t->to.x == 1;
+  EXPECT_TRUE(moved);
+
+  json broken = valid();
+  broken.erase("codes");
+  canon::ProgramBuffer none;
+  const auto b = read_with_dialect("G0 X1\nM2\n", broken.dump(), "mine/dialect.json", none);
+  EXPECT_FALSE(b.ok());
+  ASSERT_FALSE(b.diagnostics.empty());
+  EXPECT_EQ(b.diagnostics[0].file, "mine/dialect.json");
+  EXPECT_EQ(b.diagnostics[0].diagnostic.code, diag::Code::GcodeDialectInvalid);
+  EXPECT_EQ(b.calls, 0u);
+  EXPECT_TRUE(std::move(none).take().empty());
+}
+
 TEST(DialectTest, WhatTheLinuxcncDialectSays) {
   const auto d = test::dialect("linuxcnc");
   ASSERT_TRUE(d);

@@ -89,6 +89,15 @@ struct ReadResult {
 [[nodiscard]] ReadResult read(std::string_view text, const Dialect& dialect, canon::Sink& sink,
                               const ReadOptions& options = {});
 
+// The whole step as the pipeline takes it: `dialect_json` (a profile's dialect.json:
+// profile::LoadedProfile::dialect_json of a built-in or uploaded profile) checked with
+// load_dialect, then `text` read into `sink` as read() does. A dialect that does not load gives
+// its diagnostics (GCODE-001/002, file "<dialect_name>") and nothing is read: the sink gets no
+// call and the result is not ok().
+[[nodiscard]] ReadResult read_with_dialect(std::string_view text, std::string_view dialect_json,
+                                           std::string_view dialect_name, canon::Sink& sink,
+                                           const ReadOptions& options = {});
+
 // The XML intermediate form (engine/gcode/gcode.rng): the blocks as evaluated, each with its
 // words, evaluated values and canonical calls, and <error row= column= code=> elements where
 // the program is wrong; written piece by piece to `out`.
