@@ -103,8 +103,11 @@ class Checker {
         if (s == name) return value;
     }
     std::string list;
-    for (const auto& [name, value] : values) list += (list.empty() ? "" : ", ") + std::string(name);
-    fail(path, "must be one of " + list);
+    for (const auto& [name, value] : values) {
+      if (!list.empty()) list.append(", ");
+      list.append(name);
+    }
+    fail(path, std::string("must be one of ").append(list));
     return std::nullopt;
   }
 
