@@ -527,10 +527,11 @@ void read_expressions(Checker& c, const json& j, Dialect& d) {
       c.fail(p + "/functions", "must be an object");
     } else {
       for (const auto& [name, value] : fs.items()) {
-        if (!valid_word_name(name) &&
-            !(name.size() <= 8 && std::all_of(name.begin(), name.end(), [](char ch) {
-                return (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
-              }))) {
+        if (name.empty() ||
+            (!valid_word_name(name) &&
+             !(name.size() <= 8 && std::all_of(name.begin(), name.end(), [](char ch) {
+                 return (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
+               })))) {
           c.fail(p + "/functions/" + name, "a function name is upper-case letters and digits");
           continue;
         }

@@ -67,9 +67,11 @@ bool Evaluator::fail(std::size_t pos, diag::Code code, std::string message) {
 }
 
 const OperatorSpec* Evaluator::match_operator(std::string_view text, std::size_t pos) const {
+  if (pos >= text.size()) return nullptr;
   for (const auto& spec : dialect_.expressions.operators) {
     const auto& s = spec.spelling;
-    if (pos > text.size() || text.compare(pos, s.size(), s) != 0) continue;
+    // The first character settles most candidates without a string compare (a hot path).
+    if (s.front() != text[pos] || text.compare(pos, s.size(), s) != 0) continue;
     if (is_letter(s.front()) && !dialect_.ignore_whitespace) {
       const std::size_t after = pos + s.size();
       if (after < text.size() && is_ident_char(text[after])) continue;
@@ -84,9 +86,11 @@ const FunctionSpec* Evaluator::match_function(std::string_view text, std::size_t
                                               std::size_t& length) const {
   const FunctionSpec* best = nullptr;
   length = 0;
+  if (pos >= text.size()) return nullptr;
   for (const auto& spec : dialect_.expressions.functions) {
     const auto& s = spec.name;
-    if (s.size() <= length || pos > text.size() || text.compare(pos, s.size(), s) != 0) continue;
+    if (s.size() <= length || s.front() != text[pos] || text.compare(pos, s.size(), s) != 0)
+      continue;
     if (!dialect_.ignore_whitespace) {
       const std::size_t after = pos + s.size();
       if (after < text.size() && is_ident_char(text[after])) continue;

@@ -17,16 +17,27 @@ std::string_view LineCursor::next(std::uint32_t& number) noexcept {
 
 void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
   line.raw = raw;
-  line.text.clear();
-  line.columns.clear();
   line.comments.clear();
   line.block_delete = false;
   line.has_error = false;
   line.error = {};
+  // The text is at most as long as the raw line: written by index into buffers sized once (the
+  // Line is reused from line to line, so this allocates only for a longer line than before).
+  const std::size_t n = raw.size();
+  line.text.resize(n);
+  line.columns.resize(n);
+  char* text = line.text.data();
+  std::uint32_t* columns = line.columns.data();
+  std::size_t out = 0;
+  auto finish = [&]() {
+    // Trailing blanks carry nothing.
+    while (out > 0 && text[out - 1] == ' ') --out;
+    line.text.resize(out);
+    line.columns.resize(out);
+  };
   const bool squeeze = dialect.ignore_whitespace;
   const bool klartext = dialect.syntax == Syntax::Klartext;
   std::size_t i = 0;
-  const std::size_t n = raw.size();
   while (i < n && (raw[i] == ' ' || raw[i] == '\t')) ++i;
   if (i < n && raw[i] == '/' && dialect.block_delete) {
     line.block_delete = true;
@@ -40,8 +51,8 @@ void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
     const char c = raw[i];
     const auto column = static_cast<std::uint32_t>(i + 1);
     if (in_string) {
-      line.text.push_back(c);
-      line.columns.push_back(column);
+      text[out] = c;
+      columns[out++] = column;
       if (c == '"') in_string = false;
       continue;
     }
@@ -51,6 +62,7 @@ void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
         line.has_error = true;
         line.error.column = column;
         line.error.unclosed_comment = true;
+        finish();
         return;
       }
       line.comments.push_back({raw.substr(i + 1, close - i - 1), column, false});
@@ -65,28 +77,20 @@ void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
     if (c == '"' && !squeeze) {
       in_string = true;
       string_column = column;
-      line.text.push_back(c);
-      line.columns.push_back(column);
+      text[out] = c;
+      columns[out++] = column;
       continue;
     }
     if ((c == ' ' || c == '\t') && squeeze) continue;
-    if (c == '\t') {
-      line.text.push_back(' ');
-    } else {
-      line.text.push_back(upper(c));
-    }
-    line.columns.push_back(column);
+    text[out] = c == '\t' ? ' ' : upper(c);
+    columns[out++] = column;
   }
   if (in_string) {
     line.has_error = true;
     line.error.column = string_column;
     line.error.unclosed_string = true;
   }
-  // Trailing blanks carry nothing.
-  while (!line.text.empty() && line.text.back() == ' ') {
-    line.text.pop_back();
-    line.columns.pop_back();
-  }
+  finish();
 }
 
 }  // namespace ncpost::gcode::detail
