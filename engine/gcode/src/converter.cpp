@@ -544,7 +544,7 @@ bool Converter::cycle(const CycleCall& c, const Where& where, std::uint32_t colu
   if (uses_rotary_) cy.rotary = canon::Rotary{pos_[3], pos_[4], pos_[5]};
   emit(cy);
   // A cycle with its own feed leaves the feed in force as it was (Heidenhain's Q206).
-  if (c.feed > 0 && c.feed != feed_) emit(canon::SetFeedRate{feed_});
+  if (c.feed > 0 && feed_ > 0 && c.feed != feed_) emit(canon::SetFeedRate{feed_});
   pos_[0] = to_mm(c.x);
   pos_[1] = to_mm(c.y);
   pos_[2] = to_mm(cy.safe_z);
