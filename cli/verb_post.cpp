@@ -17,12 +17,14 @@ int run_post(Args args) {
       "post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] [--strict] [--no-checks]\n"
       "     FILE|-\n"
       "  Controller code for one machine profile (see `ncpost profiles`). --no-checks: skip the\n"
-      "  profile's pre-post checks of CL input (docs/cls.md).\n",
+      "  profile's pre-post checks of CL input (docs/cls.md). --from PROFILE: G-code input is read\n"
+      "  with that profile's dialect.json (as `ncpost nc translate`).\n",
       {{"profile", "ID"},
        {"profiles", "DIR"},
        kToolsOption,
        kSchemasOption,
        kStrictOption,
+       kFromOption,
        {"no-checks", ""}}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;

@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -24,40 +23,6 @@ namespace ncpost::interop {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr const char* kRs274 = "/usr/bin/rs274";
-
-// rs274's lines: "   30 N..... STRAIGHT_TRAVERSE(91.9000, -13.5000, 30.0000, 0.0000, 0.0000,
-// 0.0000)".
-std::vector<Motion> parse_rs274(const std::string& text) {
-  static const std::regex line(R"(^\s*\d+\s+N(?:\.\.\.\.\.|\d+)\s+([A-Z_0-9]+)\((.*)\)\s*$)");
-  std::vector<Motion> out;
-  double feed = 0;
-  std::istringstream in(text);
-  std::string s;
-  while (std::getline(in, s)) {
-    std::smatch m;
-    if (!std::regex_match(s, m, line)) continue;
-    const std::string name = m[1];
-    std::vector<double> args;
-    std::string arg;
-    std::istringstream a(m[2]);
-    while (std::getline(a, arg, ',')) args.push_back(std::strtod(arg.c_str(), nullptr));
-    if (name == "SET_FEED_RATE" && !args.empty()) feed = args[0];
-    if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED") {
-      args.resize(3);  // x, y, z; a, b, c are 0 in a 3-axis program
-      out.push_back({name, args, feed});
-    } else if (name == "ARC_FEED") {
-      args.resize(6);  // first_end, second_end, first_axis, second_axis, rotation, axis_end_point
-      out.push_back({name, args, feed});
-    }
-  }
-  return out;
-}
-
-std::string read_all(const fs::path& p) {
-  return test::read_file(p);
-}
 
 // Ours (the canonical program `posted` was rendered from) against rs274's reading of the text.
 Outcome compare_posted_with_rs274(const Posted& posted, const std::string& case_name,
@@ -89,20 +54,16 @@ Outcome compare_posted_with_rs274(const Posted& posted, const std::string& case_
     std::ofstream table(dir / "tools.tbl");
     for (int t : tools) table << "T" << t << " P" << t << " Z0 D10 ;\n";
   }
-  // rs274 runs in the work folder (it may write rs274ngc.var there).
-  const std::string command =
-      "cd '" + dir.string() + "' && " + std::string(kRs274) + " -g -t '" +
-      (dir / "tools.tbl").string() + "' '" + (dir / "program.ngc").string() + "' '" +
-      (dir / "canon.txt").string() + "' > '" + (dir / "rs274.log").string() + "' 2>&1 < /dev/null";
   // Another rs274 running at the same time (another test) can disturb the shared tool table:
   // one retry.
-  int rc = std::system(command.c_str());
-  if (rc != 0 || read_all(dir / "canon.txt").find("PROGRAM_END()") == std::string::npos)
-    rc = std::system(command.c_str());
-  EXPECT_EQ(rc, 0) << read_all(dir / "rs274.log");
-  const std::string canon_text = read_all(dir / "canon.txt");
+  const std::vector<std::string> args{"-t", (dir / "tools.tbl").string()};
+  Rs274Run run = run_rs274(dir, dir / "program.ngc", args);
+  if (run.status != 0 || run.canon.find("PROGRAM_END()") == std::string::npos)
+    run = run_rs274(dir, dir / "program.ngc", args);
+  EXPECT_EQ(run.status, 0) << run.log;
+  const std::string& canon_text = run.canon;
   EXPECT_NE(canon_text.find("PROGRAM_END()"), std::string::npos) << "rs274 stopped early:\n"
-                                                                 << read_all(dir / "rs274.log");
+                                                                 << run.log;
   auto theirs = parse_rs274(canon_text);
   // rs274 prints millimetres whatever the program's unit: an inch program's are scaled back.
   const bool inches = std::any_of(posted.calls.begin(), posted.calls.end(), [](const auto& c) {

@@ -3,6 +3,7 @@
 #include <cctype>
 
 #include "ncpost/cls/reader.hpp"
+#include "ncpost/gcode/gcode.hpp"
 
 namespace ncpost::pipeline {
 
@@ -25,6 +26,7 @@ InputFormat detect_format(std::string_view bytes) noexcept {
   if (bytes.starts_with("ISO-10303-21") || bytes.starts_with("HEADER;")) return InputFormat::P21;
   if (bytes.starts_with("<")) return InputFormat::P28;
   if (cls::looks_like_cl(bytes)) return InputFormat::Cl;
+  if (gcode::looks_like_gcode(bytes)) return InputFormat::Gcode;
   return InputFormat::Unknown;
 }
 
@@ -36,6 +38,8 @@ std::string_view to_string(InputFormat format) noexcept {
       return "p28";
     case InputFormat::Cl:
       return "cl";
+    case InputFormat::Gcode:
+      return "G-code";
     case InputFormat::Unknown:
       break;
   }

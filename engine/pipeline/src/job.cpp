@@ -3,6 +3,7 @@
 #include "ncpost/ap238/ap238.hpp"
 #include "ncpost/cls/checks.hpp"
 #include "ncpost/cls/reader.hpp"
+#include "ncpost/gcode/gcode.hpp"
 #include "ncpost/profile/profile.hpp"
 #include "ncpost/stepnc/attributes.hpp"
 #include "ncpost/stepnc/program_info.hpp"
@@ -162,6 +163,55 @@ Interpretation interpret_cl(const Program& program, canon::Sink& sink, const Job
   return out;
 }
 
+// ---- G-code ------------------------------------------------------------------------------------
+
+// A controller's program is read with a dialect (engine/gcode, docs/gcode.md): the read stage
+// keeps the text and says how to give the dialect when none was; the interpret stage reads it.
+Program read_gcode(Input input, const JobContext& context, const ReadOptions&) {
+  Program program;
+  program.name = std::move(input.name);
+  program.format = InputFormat::Gcode;
+  program.diagnostics = context.schemas->reports;
+  program.text = input.arriving != nullptr ? input.arriving->take_text() : std::move(input.bytes);
+  const profile::LoadedProfile* dialect = context.gcode_dialect.get();
+  if (dialect == nullptr || !dialect->dialect_json) {
+    const std::string why =
+        dialect == nullptr
+            ? "the input is G-code, which is read with the dialect of the machine it was written "
+              "for: `ncpost nc translate --from PROFILE --to PROFILE`, `ncpost nc parse --dialect "
+              "PROFILE`, or POST /v1/nc/translate?from=PROFILE&to=PROFILE (from= also on "
+              "/v1/posts)"
+            : "the input is G-code and profile '" + dialect->profile.id +
+                  "' has no dialect.json to read it with";
+    program.diagnostics.push_back(
+        {program.name, diag::make(diag::Code::IoFormatNotAccepted, 1, 1, why)});
+  }
+  return program;
+}
+
+gcode::ReadOptions gcode_options(const Program& program, const JobContext& context) {
+  gcode::ReadOptions options;
+  options.program_name = program.name;
+  options.cancel = context.cancel;
+  return options;
+}
+
+Interpretation interpret_gcode(const Program& program, canon::Sink& sink,
+                               const JobContext& context, const InterpretSettings& settings) {
+  Interpretation out;
+  const profile::LoadedProfile& dialect = *context.gcode_dialect;  // read_gcode checked it
+  gcode::ReadOptions options = gcode_options(program, context);
+  // A post stops at the first error; the reader goes on to list them all otherwise.
+  if (settings.stop_at_first_error) options.max_errors = 1;
+  gcode::ReadResult result =
+      gcode::read_with_dialect(program.text, *dialect.dialect_json,
+                               dialect.profile.id + "/dialect.json", sink, options);
+  out.diagnostics = std::move(result.diagnostics);
+  out.calls = result.calls;
+  out.ok = result.ok();
+  return out;
+}
+
 // ---- the registry ----------------------------------------------------------------------------
 
 // How one input format is read into a Program and interpreted into canonical calls. A new
@@ -177,6 +227,7 @@ constexpr Reader kReaders[] = {
     {InputFormat::P21, read_model, interpret_model},
     {InputFormat::P28, read_model, interpret_model},
     {InputFormat::Cl, read_cl, interpret_cl},
+    {InputFormat::Gcode, read_gcode, interpret_gcode},
 };
 
 const Reader* reader_for(InputFormat format) {
@@ -216,6 +267,32 @@ Interpretation interpret(const Program& program, canon::Sink& sink, const JobCon
   const Reader* reader = reader_for(program.format);
   if (reader == nullptr) return {};
   return reader->interpret(program, sink, context, settings);
+}
+
+JobResult gcode_xml(Input input, const JobContext& context, const TextSink& out) {
+  Program program = read(std::move(input), context);
+  if (program.ok() && program.format != InputFormat::Gcode)
+    program.diagnostics.push_back(
+        {program.name,
+         diag::make(diag::Code::IoFormatNotAccepted, 1, 1,
+                    "nc parse reads G-code; this input is " + std::string(to_string(program.format)) +
+                        ": trace it instead (ncpost trace, POST /v1/traces)")});
+  JobResult result = read_result(program);
+  if (!result.ok) return result;
+  const auto started = std::chrono::steady_clock::now();
+  const profile::LoadedProfile& profile = *context.gcode_dialect;
+  const gcode::DialectResult dialect = gcode::load_dialect(*profile.dialect_json);
+  const std::string dialect_file = profile.profile.id + "/dialect.json";
+  append(result.diagnostics, diag::with_file(dialect.diagnostics, dialect_file));
+  if (dialect.dialect) {
+    gcode::ReadResult read =
+        gcode::write_xml(program.text, *dialect.dialect, out, gcode_options(program, context));
+    append(result.diagnostics, std::move(read.diagnostics));
+    result.cancelled = read.cancelled;
+  }
+  result.ok = !result.cancelled && !diag::has_errors(result.diagnostics);
+  result.work_time = std::chrono::steady_clock::now() - started;
+  return result;
 }
 
 }  // namespace ncpost::pipeline

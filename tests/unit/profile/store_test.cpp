@@ -249,6 +249,50 @@ TEST_F(StoreTest, OverlayOnTheBuiltIns) {
   EXPECT_EQ(back->version, builtin->version);
 }
 
+// A profile may carry dialect.json (issue 19): stored with the version, loaded with it, checked
+// by engine/gcode before anything is written.
+TEST_F(StoreTest, DialectIsStoredWithTheVersion) {
+  auto store = writable();
+  std::vector<diag::FileDiagnostic> d;
+  auto with = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("d"),
+                        test_store::dialect_json("mill-d"));
+  ASSERT_TRUE(with.profile) << all(with.diagnostics);
+  ASSERT_TRUE(with.profile->dialect_json);
+  EXPECT_NE(with.profile->dialect_json->find("\"mill-d\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "mill-d" / "dialect.json"));
+  // A fresh store reads it back, same version.
+  ProfileStore fresh(dir_, StoreOptions{.writable = true, .fallback = builtin_directory()});
+  const auto reread = fresh.load("mill-d", d);
+  ASSERT_TRUE(reread);
+  EXPECT_EQ(reread->dialect_json, with.profile->dialect_json);
+  EXPECT_EQ(reread->version, with.profile->version);
+
+  // The dialect is part of the version.
+  auto without = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("d"));
+  ASSERT_TRUE(without.profile) << all(without.diagnostics);
+  EXPECT_FALSE(without.profile->dialect_json);
+  EXPECT_NE(without.profile->version, with.profile->version);
+
+  // A dialect that does not load, or names another profile, is refused and nothing changes.
+  auto broken = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("x"),
+                          std::string_view("{\"id\": \"mill-d\"}"));
+  EXPECT_FALSE(broken.profile);
+  ASSERT_FALSE(broken.diagnostics.empty());
+  EXPECT_EQ(broken.diagnostics[0].file, "dialect.json");
+  EXPECT_TRUE(has_code(broken.diagnostics, diag::Code::GcodeDialectInvalid));
+  auto other = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("x"),
+                         test_store::dialect_json("mill-e"));
+  EXPECT_FALSE(other.profile);
+  EXPECT_TRUE(has_code(other.diagnostics, diag::Code::GcodeDialectInvalid));
+  EXPECT_EQ(store.load("mill-d", d)->version, without.profile->version);
+
+  // The built-in G-code profiles carry theirs.
+  ProfileStore builtins(builtin_directory());
+  const auto linuxcnc = builtins.load("linuxcnc", d);
+  ASSERT_TRUE(linuxcnc);
+  EXPECT_TRUE(linuxcnc->dialect_json);
+}
+
 TEST_F(StoreTest, RemoveThenNotFound) {
   auto store = writable();
   ASSERT_TRUE(store.put("gone", profile_json("gone", "Gone"), stylesheet("g")).profile);

@@ -83,6 +83,10 @@ struct JobContext {
   bool strict = false;
   // Tools by pocket and length offset; without one, a tool's pocket is its instance id.
   std::optional<stepnc::ToolTable> tools;
+  // The profile whose dialect.json reads G-code input (`--from`/`--dialect`, `from=`/
+  // `dialect=`): one profile id names how a machine's programs are read and written. Null: a
+  // G-code input is refused with IO-003, which names the way to read it.
+  std::shared_ptr<const profile::LoadedProfile> gcode_dialect;
 };
 
 // Receives output text, piece by piece, in order.
