@@ -39,7 +39,6 @@ struct Verb {
   int (*run)(Args);
 };
 
-
 }  // namespace
 
 int main(int argc, char** argv) {

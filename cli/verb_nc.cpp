@@ -27,10 +27,9 @@ int run_parse(Args args) {
   auto job = prepare_job(options);
   if (!job) return kExitRejected;
   const pipeline::JobResult result =
-      format == "xml"
-          ? pipeline::gcode_xml(std::move(job->input), job->context, write_stdout)
-          : pipeline::trace(std::move(job->input), job->context, pipeline::TraceFormat::Text,
-                            write_stdout);
+      format == "xml" ? pipeline::gcode_xml(std::move(job->input), job->context, write_stdout)
+                      : pipeline::trace(std::move(job->input), job->context,
+                                        pipeline::TraceFormat::Text, write_stdout);
   std::cout.flush();
   print_diagnostics(result.diagnostics);
   return result.ok ? kExitOk : kExitRejected;

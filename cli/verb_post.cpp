@@ -14,10 +14,12 @@ namespace ncpost::cli {
 int run_post(Args args) {
   static const VerbSpec spec{
       "post",
-      "post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] [--strict] [--no-checks]\n"
+      "post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] [--strict] "
+      "[--no-checks]\n"
       "     FILE|-\n"
       "  Controller code for one machine profile (see `ncpost profiles`). --no-checks: skip the\n"
-      "  profile's pre-post checks of CL input (docs/cls.md). --from PROFILE: G-code input is read\n"
+      "  profile's pre-post checks of CL input (docs/cls.md). --from PROFILE: G-code input is "
+      "read\n"
       "  with that profile's dialect.json (as `ncpost nc translate`).\n",
       {{"profile", "ID"},
        {"profiles", "DIR"},

@@ -4,6 +4,10 @@
 # NCPOST_SKIP_SANITIZE=1 skips the second pass (for a quick local run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The whole run's duration, printed at its end whatever the outcome (CI budget: 45 minutes on
+# 2 cores; docs/reliability.md).
+started=$SECONDS
+trap 'echo "scripts/test.sh: $(( (SECONDS - started) / 60 )) min $(( (SECONDS - started) % 60 )) s"' EXIT
 bash scripts/install-deps.sh all
 jobs=$(nproc)
 

@@ -491,10 +491,10 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   // hashed as it arrived.
   const std::uint64_t input_hash =
       upload->streamed ? upload->streamed->hash() : body_hash(upload->bytes);
-  const std::uint64_t context_hash = body_hash(
-      loaded_profile->version + "/" + services.engine_version + (context->strict ? "/strict" : "") +
-      (*shop_checks ? "" : "/no-checks") +
-      (context->gcode_dialect ? "/from:" + context->gcode_dialect->version : ""));
+  const std::uint64_t context_hash =
+      body_hash(loaded_profile->version + "/" + services.engine_version +
+                (context->strict ? "/strict" : "") + (*shop_checks ? "" : "/no-checks") +
+                (context->gcode_dialect ? "/from:" + context->gcode_dialect->version : ""));
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
   if (request[http::field::if_none_match] == etag && !as_json) {
@@ -719,10 +719,9 @@ void handle_nc_parse(Request& request, Services& services, Exchange& exchange) {
     return;
   }
   Response r = text_response("application/xml", text);
-  const auto errors = std::count_if(result.diagnostics.begin(), result.diagnostics.end(),
-                                    [](const diag::FileDiagnostic& d) {
-                                      return d.diagnostic.severity == diag::Severity::Error;
-                                    });
+  const auto errors = std::count_if(
+      result.diagnostics.begin(), result.diagnostics.end(),
+      [](const diag::FileDiagnostic& d) { return d.diagnostic.severity == diag::Severity::Error; });
   r.set("Ncpost-Errors", std::to_string(errors));
   exchange.respond(std::move(r));
 }
@@ -732,8 +731,9 @@ void handle_nc_parse(Request& request, Services& services, Exchange& exchange) {
 void handle_nc_translate(Request& request, Services& services, Exchange& exchange) {
   const auto to = query_param(request.target(), "to");
   if (!query_param(request.target(), "from") || !to || to->empty()) {
-    exchange.respond(bad_request("the query parameters 'from' and 'to' are required "
-                                 "(POST /v1/nc/translate?from=PROFILE&to=PROFILE)"));
+    exchange.respond(
+        bad_request("the query parameters 'from' and 'to' are required "
+                    "(POST /v1/nc/translate?from=PROFILE&to=PROFILE)"));
     return;
   }
   const std::string_view target = request.target();

@@ -162,9 +162,8 @@ TEST(OpenApi, EveryDescribedRouteIsAnswered) {
         << op.first << " " << c.target << " is not routed\n"
         << r.body;
     // A valid minimal request gets a real answer.
-    EXPECT_LT(r.status, 500)
-        << op.first << " " << c.target << ": " << r.status << "\n"
-        << r.body.substr(0, 2000);
+    EXPECT_LT(r.status, 500) << op.first << " " << c.target << ": " << r.status << "\n"
+                             << r.body.substr(0, 2000);
   }
   EXPECT_GE(called, 16);
 }

@@ -143,13 +143,13 @@ TEST(ServerRoutes, GcodeIsReadWithAProfilesDialect) {
   auto parsed = curl({"--data-binary", program, server.url("/v1/nc/parse?dialect=fanuc-0i")});
   EXPECT_EQ(parsed.status, 200) << parsed.body;
   EXPECT_NE(parsed.body.find("ARC_FEED("), std::string::npos) << parsed.body;
-  auto xml = curl(
-      {"--data-binary", program, server.url("/v1/nc/parse?dialect=fanuc-0i&format=xml")});
+  auto xml =
+      curl({"--data-binary", program, server.url("/v1/nc/parse?dialect=fanuc-0i&format=xml")});
   EXPECT_EQ(xml.status, 200) << xml.body;
   EXPECT_EQ(xml.header("Ncpost-Errors"), "0");
   EXPECT_NE(xml.body.find("<gcode-program"), std::string::npos);
-  auto translated = curl({"--data-binary", program,
-                          server.url("/v1/nc/translate?from=fanuc-0i&to=siemens-840d")});
+  auto translated = curl(
+      {"--data-binary", program, server.url("/v1/nc/translate?from=fanuc-0i&to=siemens-840d")});
   EXPECT_EQ(translated.status, 200) << translated.body;
   EXPECT_NE(translated.body.find(" M30\n"), std::string::npos) << translated.body;
   auto without = curl({"--data-binary", program, server.url("/v1/posts?profile=linuxcnc")});

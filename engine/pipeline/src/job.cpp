@@ -63,11 +63,14 @@ JobResult read_result(const Program& program) {
 
 bool require_model(Program& program, std::string_view job, std::string_view instead) {
   if (program.format == InputFormat::P21 || program.format == InputFormat::P28) return true;
+  if (program.format == InputFormat::Unknown) return false;  // IO-002 already says why
   program.diagnostics.push_back(
-      {program.name, diag::make(diag::Code::IoFormatNotAccepted, 1, 1,
-                                std::string(job) + " reads STEP-NC programs (ISO 10303-21 or -28); "
-                                "this input is " + std::string(to_string(program.format)) + ": " +
-                                    std::string(instead))});
+      {program.name,
+       diag::make(diag::Code::IoFormatNotAccepted, 1, 1,
+                  std::string(job) +
+                      " reads STEP-NC programs (ISO 10303-21 or -28); "
+                      "this input is " +
+                      std::string(to_string(program.format)) + ": " + std::string(instead))});
   return false;
 }
 
@@ -196,16 +199,15 @@ gcode::ReadOptions gcode_options(const Program& program, const JobContext& conte
   return options;
 }
 
-Interpretation interpret_gcode(const Program& program, canon::Sink& sink,
-                               const JobContext& context, const InterpretSettings& settings) {
+Interpretation interpret_gcode(const Program& program, canon::Sink& sink, const JobContext& context,
+                               const InterpretSettings& settings) {
   Interpretation out;
   const profile::LoadedProfile& dialect = *context.gcode_dialect;  // read_gcode checked it
   gcode::ReadOptions options = gcode_options(program, context);
   // A post stops at the first error; the reader goes on to list them all otherwise.
   if (settings.stop_at_first_error) options.max_errors = 1;
-  gcode::ReadResult result =
-      gcode::read_with_dialect(program.text, *dialect.dialect_json,
-                               dialect.profile.id + "/dialect.json", sink, options);
+  gcode::ReadResult result = gcode::read_with_dialect(
+      program.text, *dialect.dialect_json, dialect.profile.id + "/dialect.json", sink, options);
   out.diagnostics = std::move(result.diagnostics);
   out.calls = result.calls;
   out.ok = result.ok();
@@ -273,10 +275,10 @@ JobResult gcode_xml(Input input, const JobContext& context, const TextSink& out)
   Program program = read(std::move(input), context);
   if (program.ok() && program.format != InputFormat::Gcode)
     program.diagnostics.push_back(
-        {program.name,
-         diag::make(diag::Code::IoFormatNotAccepted, 1, 1,
-                    "nc parse reads G-code; this input is " + std::string(to_string(program.format)) +
-                        ": trace it instead (ncpost trace, POST /v1/traces)")});
+        {program.name, diag::make(diag::Code::IoFormatNotAccepted, 1, 1,
+                                  "nc parse reads G-code; this input is " +
+                                      std::string(to_string(program.format)) +
+                                      ": trace it instead (ncpost trace, POST /v1/traces)")});
   JobResult result = read_result(program);
   if (!result.ok) return result;
   const auto started = std::chrono::steady_clock::now();

@@ -3,11 +3,11 @@
 #include "ncpost/ap238/ap238.hpp"
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/canon/xml.hpp"
-#include "ncpost/pipeline/diagnostics.hpp"
 #include "ncpost/express/express_x.hpp"
 #include "ncpost/express/parse.hpp"
 #include "ncpost/p21/writer.hpp"
 #include "ncpost/p28/p28.hpp"
+#include "ncpost/pipeline/diagnostics.hpp"
 #include "ncpost/stepnc/attributes.hpp"
 
 namespace ncpost::pipeline {
