@@ -152,6 +152,7 @@ class Interpreter {
   void klartext_line();
   void klartext_cycle_call(std::uint32_t col);
   void klartext_fn(std::size_t pos);
+  bool klartext_q_target(std::size_t& p, double& index);
 
   const Dialect& dialect_;
   const ReadOptions& options_;

@@ -495,28 +495,13 @@ void Interpreter::klartext_line() {
       while (!raw.empty() && (raw.back() == ' ' || raw.back() == '\t')) raw.remove_suffix(1);
       return !raw.empty() && raw.back() == '~';
     };
-    const std::uint32_t def_line = line_.number;
     while (continues()) {
       if (!next_line()) break;
       const std::string_view s = line_.text;
       std::size_t q = skip_spaces(s, 0);
-      if (q >= s.size() || s[q] != 'Q') {
-        error(column(q), diag::Code::GcodeBadStatement, "a Q parameter line expected in CYCL DEF");
-        return;
-      }
-      ++q;
       double index = 0;
-      bool int_index = false;
-      if (!Evaluator::scan_number(s, q, index, int_index)) {
-        error(column(q), diag::Code::GcodeBadNumber, "Q parameter number");
-        return;
-      }
+      if (!klartext_q_target(q, index)) return;
       q = skip_spaces(s, q);
-      if (q >= s.size() || s[q] != '=') {
-        error(column(q), diag::Code::GcodeBadStatement, "'=' expected");
-        return;
-      }
-      q = skip_spaces(s, q + 1);
       double v = 0;
       if (starts(s, q, "FMAX") || starts(s, q, "FAUTO")) {
         v = kFmax;
@@ -525,7 +510,6 @@ void Interpreter::klartext_line() {
       }
       k.q[static_cast<int>(index)] = v;
     }
-    (void)def_line;
     return;
   }
   if (starts(t, pos, "LBL")) {
@@ -608,31 +592,40 @@ void Interpreter::klartext_line() {
   }
   if (t[pos] == 'Q') {
     // Q1 = formula (also QL, QR).
-    std::size_t p = pos + 1;
-    double offset = 0;
-    if (p < t.size() && (t[p] == 'L' || t[p] == 'R')) {
-      offset = t[p] == 'L' ? 10000 : 20000;
-      ++p;
-    }
+    std::size_t p = pos;
     double index = 0;
-    bool integer = false;
-    if (!Evaluator::scan_number(t, p, index, integer)) {
-      error(column(p), diag::Code::GcodeBadParameter, "Q parameter number");
-      return;
-    }
-    p = skip_spaces(t, p);
-    if (p >= t.size() || t[p] != '=') {
-      error(column(p), diag::Code::GcodeBadStatement, "'=' expected after a Q parameter");
-      return;
-    }
-    ++p;
+    if (!klartext_q_target(p, index)) return;
     Value v;
     if (!evaluate_at(p, Evaluator::Mode::Full, v)) return;
-    (void)assign(Assignment{false, index + offset, {}, v, col});
+    (void)assign(Assignment{false, index, {}, v, col});
     return;
   }
   error(col, diag::Code::GcodeUnsupported,
         "Klartext block '" + std::string(word_at(t, pos)) + "' is not read by this subset");
+}
+
+// "Q5 =", "QL2 =", "QR1 =" at `p` of the line: the parameter's number in the one table (QL
+// +10000, QR +20000, as the evaluator reads them) and `p` after the '='.
+bool Interpreter::klartext_q_target(std::size_t& p, double& index) {
+  const std::string_view t = line_.text;
+  p = skip_spaces(t, p);
+  if (p >= t.size() || t[p] != 'Q')
+    return error(column(p), diag::Code::GcodeBadStatement, "a Q parameter expected");
+  ++p;
+  double offset = 0;
+  if (p < t.size() && (t[p] == 'L' || t[p] == 'R')) {
+    offset = t[p] == 'L' ? 10000 : 20000;
+    ++p;
+  }
+  bool integer = false;
+  if (!Evaluator::scan_number(t, p, index, integer))
+    return error(column(p), diag::Code::GcodeBadParameter, "Q parameter number");
+  index += offset;
+  p = skip_spaces(t, p);
+  if (p >= t.size() || t[p] != '=')
+    return error(column(p), diag::Code::GcodeBadStatement, "'=' expected after a Q parameter");
+  ++p;
+  return true;
 }
 
 // CYCL CALL / M99: cycle 200 or 203 at the current X Y (docs/gcode.md says how the Q parameters
@@ -703,26 +696,6 @@ void Interpreter::klartext_fn(std::size_t pos) {
     p = skip_spaces(t, p);
     return ok;
   };
-  auto target = [&](double& index) {
-    // Q5 = ...
-    if (p >= t.size() || t[p] != 'Q')
-      return error(column(p), diag::Code::GcodeBadStatement, "a Q parameter expected");
-    ++p;
-    double offset = 0;
-    if (p < t.size() && (t[p] == 'L' || t[p] == 'R')) {
-      offset = t[p] == 'L' ? 10000 : 20000;
-      ++p;
-    }
-    bool i = false;
-    if (!Evaluator::scan_number(t, p, index, i))
-      return error(column(p), diag::Code::GcodeBadParameter, "Q parameter number");
-    index += offset;
-    p = skip_spaces(t, p);
-    if (p >= t.size() || t[p] != '=')
-      return error(column(p), diag::Code::GcodeBadStatement, "'=' expected");
-    ++p;
-    return true;
-  };
   if (fn == 14) {
     error(col, diag::Code::GcodeAbort,
           "FN 14: the program stops with its error " + std::string(t.substr(p)));
@@ -734,7 +707,7 @@ void Interpreter::klartext_fn(std::size_t pos) {
     // FN 18: SYSREAD Q1 = ID..: what only the machine knows.
     if (t.compare(p, 7, "SYSREAD") == 0) p = skip_spaces(t, p + 7);
     double index = 0;
-    if (!target(index)) return;
+    if (!klartext_q_target(p, index)) return;
     warn(col, diag::Code::GcodeMachineValue,
          "FN 18 SYSREAD" + std::string(t.substr(p)) +
              " is known only to the machine; read as the assumed 0");
@@ -783,7 +756,7 @@ void Interpreter::klartext_fn(std::size_t pos) {
     return;
   }
   double index = 0;
-  if (!target(index)) return;
+  if (!klartext_q_target(p, index)) return;
   Value a, b, r;
   const std::size_t operand_at = skip_spaces(t, p);
   if (!operand(a)) return;

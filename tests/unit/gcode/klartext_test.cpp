@@ -197,6 +197,9 @@ TEST(Klartext, RefusedAndWrongBlocksAreNamed) {
   EXPECT_TRUE(tnc("1 L X+1 M128\n").has(diag::Code::GcodeUnsupported));
   EXPECT_TRUE(tnc("1 L XYZ\n").has(diag::Code::GcodeUnknownWord));
   EXPECT_TRUE(tnc("1 TOOL CALL \"MILL\" Z\n").has(diag::Code::GcodeUnsupported));
+  EXPECT_TRUE(tnc("1 Q1 5\n").has(diag::Code::GcodeBadStatement));
+  EXPECT_TRUE(tnc("1 QLX = 5\n").has(diag::Code::GcodeBadParameter));
+  EXPECT_TRUE(tnc("1 CYCL DEF 200 DRILLING ~\n  X200=+2\n").has(diag::Code::GcodeBadStatement));
   // A machine value (FN 18) warns; a motion that depends on it is an error.
   const auto sys = tnc("1 FN 18: SYSREAD Q1 = ID270 NR1\n2 L X+Q1 FMAX\n");
   EXPECT_TRUE(sys.has(diag::Code::GcodeMachineValue)) << sys.messages();
