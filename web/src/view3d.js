@@ -1,0 +1,265 @@
+// The toolpath in 3D: rapids dashed in one colour, feeds coloured by workingstep, the tool at
+// the current segment, markers for verify findings. Orbit (left drag), pan (right drag), zoom
+// (wheel), keyboard (arrows pan when the canvas has focus), fit to the part.
+import * as THREE from "three";
+import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+
+export const RAPID_COLOR = 0xd62728; // red, never used for a workingstep
+// Workingstep colours: distinct, none of them red, all readable on the light background.
+export const WORKINGSTEP_COLORS = [
+  0x1f77b4, 0x2ca02c, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f, 0xff7f0e, 0x393b79,
+];
+const DIMMED = new THREE.Color(0xd0d0d0);
+const OUTSIDE_WORKINGSTEP = 0x555555;
+
+// A growable float buffer of line pieces (2 vertices each).
+class PieceBuffer {
+  constructor(withColor) {
+    this.positions = new Float32Array(6 * 4096);
+    this.colors = withColor ? new Float32Array(6 * 4096) : null;
+    this.vertices = 0;
+  }
+  ensure(extraVertices) {
+    const need = (this.vertices + extraVertices) * 3;
+    if (need <= this.positions.length) return;
+    let size = this.positions.length;
+    while (size < need) size *= 2;
+    const grow = (old) => {
+      const next = new Float32Array(size);
+      next.set(old);
+      return next;
+    };
+    this.positions = grow(this.positions);
+    if (this.colors) this.colors = grow(this.colors);
+  }
+  push(x0, y0, z0, x1, y1, z1, color) {
+    this.ensure(2);
+    const p = this.positions;
+    const i = this.vertices * 3;
+    p[i] = x0; p[i + 1] = y0; p[i + 2] = z0;
+    p[i + 3] = x1; p[i + 4] = y1; p[i + 5] = z1;
+    if (this.colors) {
+      const c = this.colors;
+      c[i] = c[i + 3] = color.r;
+      c[i + 1] = c[i + 4] = color.g;
+      c[i + 2] = c[i + 5] = color.b;
+    }
+    this.vertices += 2;
+  }
+}
+
+export class ToolpathView {
+  constructor(canvas) {
+    this.canvas = canvas;
+    // preserveDrawingBuffer: the browser test reads pixels back; antialias off keeps the
+    // rapid and feed colours exact for that check.
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(1);
+    this.renderer.setClearColor(0xffffff);
+    this.scene = new THREE.Scene();
+    this.scene.up = new THREE.Vector3(0, 0, 1);
+    this.camera = new THREE.PerspectiveCamera(45, 1, 0.1, 1e6);
+    this.camera.up.set(0, 0, 1);
+    this.camera.position.set(200, -200, 200);
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.listenToKeyEvents(canvas);
+    this.controls.addEventListener("change", () => this.requestRender());
+    this.rapidMaterial = new THREE.LineDashedMaterial({ color: RAPID_COLOR, dashSize: 2, gapSize: 1.5 });
+    this.feedMaterial = new THREE.LineBasicMaterial({ vertexColors: true });
+    this.highlightMaterial = new THREE.LineBasicMaterial({ color: 0x000000 });
+    this.tool = this.makeTool();
+    this.scene.add(this.tool);
+    this.markers = new THREE.Group();
+    this.scene.add(this.markers);
+    this.reset();
+    new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
+    this.resize();
+  }
+
+  makeTool() {
+    const geometry = new THREE.ConeGeometry(2, 8, 16);
+    geometry.rotateX(-Math.PI / 2); // tip along -Z
+    geometry.translate(0, 0, 4);
+    const tool = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: 0xffa500, transparent: true, opacity: 0.8 }));
+    tool.visible = false;
+    return tool;
+  }
+
+  reset() {
+    for (const object of [this.rapidLines, this.feedLines, this.highlightLines]) {
+      if (object) {
+        this.scene.remove(object);
+        object.geometry.dispose();
+      }
+    }
+    this.rapids = new PieceBuffer(false);
+    this.feeds = new PieceBuffer(true);
+    // Per segment: which buffer and where its pieces are, so a segment can be highlighted.
+    this.segmentStart = [];
+    this.segmentCount = [];
+    this.segmentRapid = [];
+    this.segmentWorkingstep = [];
+    this.segmentEnd = [];
+    this.box = new THREE.Box3();
+    this.rapidLines = this.feedLines = this.highlightLines = null;
+    this.tool.visible = false;
+    this.markers.clear();
+    this.selectedWorkingstep = -1;
+    this.requestRender();
+  }
+
+  workingstepColor(index) {
+    return new THREE.Color(index < 0 ? OUTSIDE_WORKINGSTEP : WORKINGSTEP_COLORS[index % WORKINGSTEP_COLORS.length]);
+  }
+
+  // One motion call's pieces, in order; `rapid` pieces go to the dashed set.
+  addSegment(pieces, rapid, workingstep, end) {
+    const buffer = rapid ? this.rapids : this.feeds;
+    const color = rapid ? null : this.workingstepColor(workingstep);
+    this.segmentStart.push(buffer.vertices);
+    this.segmentRapid.push(rapid);
+    this.segmentWorkingstep.push(workingstep);
+    this.segmentEnd.push(end);
+    for (let i = 0; i < pieces.length; i += 7) {
+      const target = pieces[i + 6] ? this.rapids : this.feeds;
+      target.push(pieces[i], pieces[i + 1], pieces[i + 2], pieces[i + 3], pieces[i + 4], pieces[i + 5],
+        target === this.feeds ? (color || this.workingstepColor(workingstep)) : null);
+      this.box.expandByPoint(new THREE.Vector3(pieces[i + 3], pieces[i + 4], pieces[i + 5]));
+    }
+    this.segmentCount.push(buffer.vertices - this.segmentStart[this.segmentStart.length - 1]);
+  }
+
+  get segments() {
+    return this.segmentStart.length;
+  }
+
+  // Puts the buffers gathered so far on screen (called a few times a second while loading).
+  flush() {
+    const build = (buffer, material, old) => {
+      if (old) {
+        this.scene.remove(old);
+        old.geometry.dispose();
+      }
+      const geometry = new THREE.BufferGeometry();
+      geometry.setAttribute("position", new THREE.BufferAttribute(buffer.positions, 3));
+      if (buffer.colors) geometry.setAttribute("color", new THREE.BufferAttribute(buffer.colors, 3));
+      geometry.setDrawRange(0, buffer.vertices);
+      const lines = new THREE.LineSegments(geometry, material);
+      lines.frustumCulled = false;
+      if (material.isLineDashedMaterial) lines.computeLineDistances();
+      this.scene.add(lines);
+      return lines;
+    };
+    this.rapidLines = build(this.rapids, this.rapidMaterial, this.rapidLines);
+    this.feedLines = build(this.feeds, this.feedMaterial, this.feedLines);
+    this.scaleDashes();
+    this.requestRender();
+  }
+
+  scaleDashes() {
+    const size = this.box.isEmpty() ? 100 : this.box.getSize(new THREE.Vector3()).length();
+    this.rapidMaterial.dashSize = size / 150;
+    this.rapidMaterial.gapSize = size / 200;
+  }
+
+  fit() {
+    if (this.box.isEmpty()) return;
+    const centre = this.box.getCenter(new THREE.Vector3());
+    const radius = Math.max(this.box.getSize(new THREE.Vector3()).length() / 2, 1);
+    const distance = radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    const direction = new THREE.Vector3(1, -1.4, 1.1).normalize();
+    this.camera.position.copy(centre).addScaledVector(direction, distance);
+    this.camera.near = distance / 1000;
+    this.camera.far = distance * 10;
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(centre);
+    this.controls.update();
+    const toolScale = radius / 40;
+    this.tool.scale.setScalar(toolScale);
+    this.markerSize = radius / 30;
+    this.requestRender();
+  }
+
+  // Feeds of one workingstep in their colour, the rest grey; -1 shows all in colour again.
+  // Returns how many segments are highlighted.
+  highlightWorkingstep(index) {
+    this.selectedWorkingstep = index;
+    const colors = this.feeds.colors;
+    let count = 0;
+    for (let s = 0; s < this.segments; s++) {
+      const own = this.segmentWorkingstep[s];
+      if (own === index) count++;
+      if (this.segmentRapid[s]) continue;
+      const color = index < 0 || own === index ? this.workingstepColor(own) : DIMMED;
+      const from = this.segmentStart[s] * 3;
+      const to = from + this.segmentCount[s] * 3;
+      for (let i = from; i < to; i += 3) {
+        colors[i] = color.r;
+        colors[i + 1] = color.g;
+        colors[i + 2] = color.b;
+      }
+    }
+    if (this.feedLines) this.feedLines.geometry.attributes.color.needsUpdate = true;
+    this.requestRender();
+    return count;
+  }
+
+  // Draws segment `s` thick in black and puts the tool at its end.
+  markSegment(s) {
+    if (this.highlightLines) {
+      this.scene.remove(this.highlightLines);
+      this.highlightLines.geometry.dispose();
+      this.highlightLines = null;
+    }
+    if (!(s >= 0 && s < this.segments)) {
+      this.tool.visible = false;
+      this.requestRender();
+      return;
+    }
+    const buffer = this.segmentRapid[s] ? this.rapids : this.feeds;
+    const from = this.segmentStart[s] * 3;
+    const positions = buffer.positions.slice(from, from + this.segmentCount[s] * 3);
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+    this.highlightLines = new THREE.LineSegments(geometry, this.highlightMaterial);
+    this.scene.add(this.highlightLines);
+    const end = this.segmentEnd[s];
+    this.tool.position.set(end[0], end[1], end[2]);
+    this.tool.visible = true;
+    this.requestRender();
+  }
+
+  // Verify findings where they are: a sphere per finding with a position.
+  showFindings(points) {
+    this.markers.clear();
+    const size = this.markerSize || 2;
+    const geometry = new THREE.SphereGeometry(size, 12, 8);
+    const material = new THREE.MeshBasicMaterial({ color: 0xff00ff });
+    for (const p of points) {
+      const marker = new THREE.Mesh(geometry, material);
+      marker.position.set(p[0], p[1], p[2]);
+      this.markers.add(marker);
+    }
+    this.requestRender();
+  }
+
+  resize() {
+    const parent = this.canvas.parentElement;
+    const width = Math.max(parent.clientWidth, 1);
+    const height = Math.max(parent.clientHeight, 1);
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+
+  requestRender() {
+    if (this.renderPending) return;
+    this.renderPending = true;
+    requestAnimationFrame(() => {
+      this.renderPending = false;
+      this.renderer.render(this.scene, this.camera);
+      this.canvas.dataset.frames = String(Number(this.canvas.dataset.frames || 0) + 1);
+    });
+  }
+}
