@@ -67,13 +67,36 @@ export class ToolpathView {
     this.rapidMaterial = new THREE.LineDashedMaterial({ color: RAPID_COLOR, dashSize: 2, gapSize: 1.5 });
     this.feedMaterial = new THREE.LineBasicMaterial({ vertexColors: true });
     this.highlightMaterial = new THREE.LineBasicMaterial({ color: 0x000000 });
+    this.markerMaterial = new THREE.MeshBasicMaterial({ color: 0xff00ff });
     this.tool = this.makeTool();
     this.scene.add(this.tool);
     this.markers = new THREE.Group();
     this.scene.add(this.markers);
     this.reset();
+    this.warmUp();
     new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
     this.resize();
+  }
+
+  // Compiles every shader once at start-up: the first compile takes hundreds of ms with a
+  // software GL, and it would otherwise fall into the first frame of a program being loaded.
+  warmUp() {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(6), 3));
+    geometry.setAttribute("color", new THREE.BufferAttribute(new Float32Array(6), 3));
+    geometry.setAttribute("lineDistance", new THREE.BufferAttribute(new Float32Array(2), 1));
+    const probes = [this.rapidMaterial, this.feedMaterial, this.highlightMaterial].map((material) => new THREE.LineSegments(geometry, material));
+    const sphere = new THREE.Mesh(new THREE.SphereGeometry(1), this.markerMaterial);
+    const group = new THREE.Group();
+    group.add(...probes, sphere);
+    this.scene.add(group);
+    this.tool.visible = true;
+    this.renderer.compile(this.scene, this.camera);
+    this.renderer.render(this.scene, this.camera);
+    this.tool.visible = false;
+    this.scene.remove(group);
+    sphere.geometry.dispose();
+    geometry.dispose();
   }
 
   makeTool() {
@@ -86,7 +109,7 @@ export class ToolpathView {
   }
 
   reset() {
-    for (const object of [this.rapidLines, this.feedLines, this.highlightLines]) {
+    for (const object of [this.rapidLines, this.feedLines, this.highlightLines, this.workingstepLines]) {
       if (object) {
         this.scene.remove(object);
         object.geometry.dispose();
@@ -101,7 +124,7 @@ export class ToolpathView {
     this.segmentWorkingstep = [];
     this.segmentEnd = [];
     this.box = new THREE.Box3();
-    this.rapidLines = this.feedLines = this.highlightLines = null;
+    this.rapidLines = this.feedLines = this.highlightLines = this.workingstepLines = null;
     this.tool.visible = false;
     this.markers.clear();
     this.selectedWorkingstep = -1;
@@ -200,29 +223,46 @@ export class ToolpathView {
       }
     }
     if (this.feedLines) this.feedLines.geometry.attributes.color.needsUpdate = true;
+    this.workingstepLines = this.replaceOverlay(this.workingstepLines,
+      index < 0 ? [] : this.segmentWorkingstep.flatMap((own, s) => (own === index ? [s] : [])));
     this.requestRender();
     return count;
   }
 
-  // Draws segment `s` thick in black and puts the tool at its end.
-  markSegment(s) {
-    if (this.highlightLines) {
-      this.scene.remove(this.highlightLines);
-      this.highlightLines.geometry.dispose();
-      this.highlightLines = null;
+  // Replaces an overlay (black lines over the given segments); returns the new one or null.
+  replaceOverlay(old, segments) {
+    if (old) {
+      this.scene.remove(old);
+      old.geometry.dispose();
     }
-    if (!(s >= 0 && s < this.segments)) {
+    if (segments.length === 0) return null;
+    let vertices = 0;
+    for (const s of segments) vertices += this.segmentCount[s];
+    const positions = new Float32Array(vertices * 3);
+    let at = 0;
+    for (const s of segments) {
+      const buffer = this.segmentRapid[s] ? this.rapids : this.feeds;
+      const from = this.segmentStart[s] * 3;
+      positions.set(buffer.positions.subarray(from, from + this.segmentCount[s] * 3), at);
+      at += this.segmentCount[s] * 3;
+    }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+    const lines = new THREE.LineSegments(geometry, this.highlightMaterial);
+    lines.frustumCulled = false;
+    this.scene.add(lines);
+    return lines;
+  }
+
+  // Draws segment `s` in black and puts the tool at its end.
+  markSegment(s) {
+    const valid = s >= 0 && s < this.segments;
+    this.highlightLines = this.replaceOverlay(this.highlightLines, valid ? [s] : []);
+    if (!valid) {
       this.tool.visible = false;
       this.requestRender();
       return;
     }
-    const buffer = this.segmentRapid[s] ? this.rapids : this.feeds;
-    const from = this.segmentStart[s] * 3;
-    const positions = buffer.positions.slice(from, from + this.segmentCount[s] * 3);
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
-    this.highlightLines = new THREE.LineSegments(geometry, this.highlightMaterial);
-    this.scene.add(this.highlightLines);
     const end = this.segmentEnd[s];
     this.tool.position.set(end[0], end[1], end[2]);
     this.tool.visible = true;
@@ -234,9 +274,8 @@ export class ToolpathView {
     this.markers.clear();
     const size = this.markerSize || 2;
     const geometry = new THREE.SphereGeometry(size, 12, 8);
-    const material = new THREE.MeshBasicMaterial({ color: 0xff00ff });
     for (const p of points) {
-      const marker = new THREE.Mesh(geometry, material);
+      const marker = new THREE.Mesh(geometry, this.markerMaterial);
       marker.position.set(p[0], p[1], p[2]);
       this.markers.add(marker);
     }
