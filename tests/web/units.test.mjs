@@ -99,6 +99,9 @@ test("line diff: same, changed, added, removed, in order", () => {
   assert.deepEqual(rows.map((r) => r.kind), ["same", "changed", "same", "same", "added"]);
   assert.deepEqual(rows.map((r) => r.left ?? null), ["a", "b", "c", "d", null]);
   assert.deepEqual(rows.map((r) => r.right ?? null), ["a", "x", "c", "d", "e"]);
+  const run = lineDiff(["a", "b1", "b2", "c"], ["a", "x1", "x2", "x3", "c"]);
+  assert.deepEqual(run.map((r) => r.kind), ["same", "changed", "changed", "added", "same"]);
+  assert.deepEqual(run.map((r) => [r.leftLine ?? 0, r.rightLine ?? 0]), [[1, 1], [2, 2], [3, 3], [0, 4], [4, 5]]);
   const removed = lineDiff(["a", "b", "c"], ["a", "c"]);
   assert.deepEqual(removed.map((r) => r.kind), ["same", "removed", "same"]);
 });

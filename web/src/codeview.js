@@ -117,8 +117,4 @@ export class CodeView {
     this.marked = new Set(lines);
     this.schedule();
   }
-
-  text() {
-    return this.lines.join("\n") + (this.lines.length ? "\n" : "");
-  }
 }

@@ -16,14 +16,26 @@ export function lineDiff(a, b) {
   const ops = middle(a.slice(prefix, a.length - suffix), b.slice(prefix, b.length - suffix));
   let i = prefix;
   let j = prefix;
-  for (let k = 0; k < ops.length; k++) {
-    const op = ops[k];
-    if (op === "=") rows.push(same(a, i++, j++));
-    else if (op === "-" && ops[k + 1] === "+") {
-      rows.push({ kind: "changed", left: a[i], right: b[j], leftLine: ++i, rightLine: ++j });
+  for (let k = 0; k < ops.length;) {
+    if (ops[k] === "=") {
+      rows.push(same(a, i++, j++));
       k++;
-    } else if (op === "-") rows.push({ kind: "removed", left: a[i], leftLine: ++i });
-    else rows.push({ kind: "added", right: b[j], rightLine: ++j });
+      continue;
+    }
+    // A run of edits: its removals and additions side by side as changed rows, the longer
+    // side's rest as removed or added.
+    let removed = 0;
+    let added = 0;
+    for (; k < ops.length && ops[k] !== "="; k++) {
+      if (ops[k] === "-") removed++;
+      else added++;
+    }
+    for (let r = 0; r < Math.max(removed, added); r++) {
+      if (r < removed && r < added)
+        rows.push({ kind: "changed", left: a[i], right: b[j], leftLine: ++i, rightLine: ++j });
+      else if (r < removed) rows.push({ kind: "removed", left: a[i], leftLine: ++i });
+      else rows.push({ kind: "added", right: b[j], rightLine: ++j });
+    }
   }
   for (let s = 0; s < suffix; s++) rows.push(same(a, i++, j++));
   return rows;

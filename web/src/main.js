@@ -8,8 +8,9 @@ import { lineDiff } from "./diff.js";
 
 const $ = (id) => document.getElementById(id);
 
-// Above this many bytes of trace the 3D view draws one feed segment in k (decimation).
-const TRACE_DRAW_BUDGET_BYTES = 24 << 20;
+// Above this many bytes of trace the 3D view draws one feed segment in k (decimation): about
+// 100,000 motions, which a software-rendered WebGL still redraws in well under a second.
+const TRACE_DRAW_BUDGET_BYTES = 6 << 20;
 // Above this many bytes of upload the block map (the JSON post) is skipped: it is one JSON
 // document that the browser can only parse in one long task.
 const BLOCK_MAP_MAX_UPLOAD_BYTES = 8 << 20;
@@ -24,14 +25,17 @@ async function yieldSometimes() {
 }
 
 // Feeds a response body (or a File stream) line by line to onLine, yielding now and then.
-async function readLines(stream, onLine, onProgress) {
+async function readLines(stream, onLine, onProgress, onBytes) {
   const reader = stream.getReader();
   const pending = [];
   const splitter = new LineSplitter((line) => pending.push(line));
   for (;;) {
     const { done, value } = await reader.read();
     if (done) splitter.end();
-    else splitter.push(value);
+    else {
+      splitter.push(value);
+      if (onBytes) onBytes(value);
+    }
     for (let i = 0; i < pending.length; i++) {
       onLine(pending[i]);
       if ((i & 1023) === 1023) await yieldSometimes();
@@ -228,10 +232,21 @@ async function loadInput() {
 
 // ---- workingsteps and linked views ----------------------------------------------------------
 
-function renderWorkingsteps() {
+// A large program has tens of thousands of workingsteps: the list shows the first
+// WORKINGSTEPS_LISTED (the 3D view and the code have them all), built in slices.
+const WORKINGSTEPS_LISTED = 2000;
+async function renderWorkingsteps() {
   const list = $("workingsteps");
   list.replaceChildren();
-  for (const ws of state.workingsteps) {
+  const run = state.run;
+  let fragment = document.createDocumentFragment();
+  for (const ws of state.workingsteps.slice(0, WORKINGSTEPS_LISTED)) {
+    if (run !== state.run) return;
+    if ((ws.index & 255) === 255) {
+      list.append(fragment);
+      fragment = document.createDocumentFragment();
+      await yieldSometimes();
+    }
     const item = document.createElement("li");
     const button = document.createElement("button");
     button.type = "button";
@@ -247,8 +262,15 @@ function renderWorkingsteps() {
     button.append(swatch, label);
     button.addEventListener("click", () => selectWorkingstep(ws.index));
     item.append(button);
-    list.append(item);
+    fragment.append(item);
   }
+  const more = state.workingsteps.length - WORKINGSTEPS_LISTED;
+  if (more > 0) {
+    const item = document.createElement("li");
+    item.textContent = `… and ${more.toLocaleString()} more workingsteps (the list shows the first ${WORKINGSTEPS_LISTED})`;
+    fragment.append(item);
+  }
+  list.append(fragment);
 }
 
 function selectWorkingstep(index) {
@@ -311,6 +333,8 @@ async function streamOutput(run, profile) {
     throw new Error(`${response.status} ${problem.title}: ${problem.detail}`);
   }
   let last = performance.now();
+  // The bytes as they came, for the download: a Blob of the pieces costs no join.
+  const pieces = [];
   await readLines(response.body, (line) => {
     if (run === state.run) output.append(line);
   }, () => {
@@ -319,12 +343,12 @@ async function streamOutput(run, profile) {
       $("output").dataset.lines = String(output.lineCount);
       output.schedule();
     }
-  });
+  }, (bytes) => pieces.push(bytes));
   // The stream ends with a newline; the splitter gives no empty last line for it.
   $("output").dataset.lines = String(output.lineCount);
   $("output").dataset.complete = "true";
   output.render();
-  return response;
+  return new Blob(pieces, { type: "text/plain" });
 }
 
 async function drawTrace(run) {
@@ -371,7 +395,7 @@ async function drawTrace(run) {
   await readLines(response.body, (line) => {
     if (run === state.run) reader.line(line);
   }, () => {
-    if (performance.now() - lastFlush > 500) {
+    if (performance.now() - lastFlush > 1000) {
       lastFlush = performance.now();
       view.flush();
       if (!fitted) view.fit();
@@ -438,11 +462,17 @@ async function post(event) {
   setStatus(`Posting ${state.file.name} for ${profile}…`);
   const started = performance.now();
   const trace = drawTrace(run);
+  let program;
   try {
-    await streamOutput(run, profile);
+    program = await streamOutput(run, profile);
   } catch (error) {
+    // Rejected before any output (problem+json, diagnostics listed), or cut after output
+    // started (the profile's error marker is the last line shown).
     setStatus(String(error.message || error), true);
     await trace.catch(() => null);
+    $("output").dataset.lines = String(output.lineCount);
+    output.render();
+    $("view3d").dataset.complete = "failed";
     return;
   }
   const drawn = await trace;
@@ -450,7 +480,7 @@ async function post(event) {
   const detail = await profileDetail(profile);
   const extension = detail ? detail.extension : ".nc";
   const link = $("download");
-  link.href = URL.createObjectURL(new Blob([output.text()], { type: "text/plain" }));
+  link.href = URL.createObjectURL(program);
   link.download = state.file.name.replace(/\.[^.]*$/, "") + extension;
   link.textContent = `Download ${link.download}`;
   link.hidden = false;
@@ -458,7 +488,7 @@ async function post(event) {
     const mapped = await fetchBlockMap(profile);
     if (mapped) attachBlockMap(mapped);
   }
-  renderWorkingsteps();
+  await renderWorkingsteps();
   const v = $("view3d");
   v.dataset.segments = String(drawn.drawn);
   v.dataset.motions = String(drawn.motions);

@@ -12,39 +12,81 @@ export const WORKINGSTEP_COLORS = [
 const DIMMED = new THREE.Color(0xd0d0d0);
 const OUTSIDE_WORKINGSTEP = 0x555555;
 
-// A growable float buffer of line pieces (2 vertices each).
+// A growable buffer of line pieces (2 vertices each) that goes to the GPU piece by piece: a
+// geometry is made once per capacity, and each flush uploads only what was added since the
+// last (re-uploading everything a few times a second stalls the main thread on large programs).
 class PieceBuffer {
-  constructor(withColor) {
-    this.positions = new Float32Array(6 * 4096);
-    this.colors = withColor ? new Float32Array(6 * 4096) : null;
+  constructor(withColor, withDistance) {
+    this.withColor = withColor;
+    this.withDistance = withDistance;
+    this.allocate(2 * 4096);
     this.vertices = 0;
+    this.uploaded = 0;
+    this.geometry = null;
   }
-  ensure(extraVertices) {
-    const need = (this.vertices + extraVertices) * 3;
-    if (need <= this.positions.length) return;
-    let size = this.positions.length;
-    while (size < need) size *= 2;
-    const grow = (old) => {
+  allocate(capacity) {
+    const grow = (old, size) => {
       const next = new Float32Array(size);
-      next.set(old);
+      if (old) next.set(old);
       return next;
     };
-    this.positions = grow(this.positions);
-    if (this.colors) this.colors = grow(this.colors);
+    this.capacity = capacity;
+    this.positions = grow(this.positions, capacity * 3);
+    if (this.withColor) this.colors = grow(this.colors, capacity * 3);
+    // Dashes: each piece measures its own length from 0 (the pattern restarts per piece).
+    if (this.withDistance) this.distances = grow(this.distances, capacity);
+    this.geometry = null; // a new capacity needs a new geometry
   }
   push(x0, y0, z0, x1, y1, z1, color) {
-    this.ensure(2);
+    if (this.vertices + 2 > this.capacity) this.allocate(this.capacity * 2);
     const p = this.positions;
-    const i = this.vertices * 3;
+    const v = this.vertices;
+    const i = v * 3;
     p[i] = x0; p[i + 1] = y0; p[i + 2] = z0;
     p[i + 3] = x1; p[i + 4] = y1; p[i + 5] = z1;
-    if (this.colors) {
+    if (this.withColor) {
       const c = this.colors;
       c[i] = c[i + 3] = color.r;
       c[i + 1] = c[i + 4] = color.g;
       c[i + 2] = c[i + 5] = color.b;
     }
+    if (this.withDistance) {
+      this.distances[v] = 0;
+      this.distances[v + 1] = Math.hypot(x1 - x0, y1 - y0, z1 - z0);
+    }
     this.vertices += 2;
+  }
+  // The geometry with everything pushed so far marked for upload; `fresh` says it is new.
+  sync() {
+    let fresh = false;
+    const attributes = [["position", this.positions, 3]];
+    if (this.withColor) attributes.push(["color", this.colors, 3]);
+    if (this.withDistance) attributes.push(["lineDistance", this.distances, 1]);
+    if (!this.geometry) {
+      this.geometry = new THREE.BufferGeometry();
+      for (const [name, array, size] of attributes) {
+        this.geometry.setAttribute(name, new THREE.BufferAttribute(array, size).setUsage(THREE.DynamicDrawUsage));
+      }
+      this.uploaded = 0;
+      fresh = true;
+    } else if (this.vertices > this.uploaded) {
+      for (const [name, , size] of attributes) {
+        const attribute = this.geometry.getAttribute(name);
+        attribute.clearUpdateRanges();
+        attribute.addUpdateRange(this.uploaded * size, (this.vertices - this.uploaded) * size);
+        attribute.needsUpdate = true;
+      }
+    }
+    this.uploaded = this.vertices;
+    this.geometry.setDrawRange(0, this.vertices);
+    return fresh;
+  }
+  // After a change anywhere in the colours (highlighting): upload them all once.
+  colorsChanged() {
+    if (!this.geometry) return;
+    const attribute = this.geometry.getAttribute("color");
+    attribute.clearUpdateRanges();
+    attribute.needsUpdate = true;
   }
 }
 
@@ -115,8 +157,8 @@ export class ToolpathView {
         object.geometry.dispose();
       }
     }
-    this.rapids = new PieceBuffer(false);
-    this.feeds = new PieceBuffer(true);
+    this.rapids = new PieceBuffer(false, true);
+    this.feeds = new PieceBuffer(true, false);
     // Per segment: which buffer and where its pieces are, so a segment can be highlighted.
     this.segmentStart = [];
     this.segmentCount = [];
@@ -147,7 +189,10 @@ export class ToolpathView {
       const target = pieces[i + 6] ? this.rapids : this.feeds;
       target.push(pieces[i], pieces[i + 1], pieces[i + 2], pieces[i + 3], pieces[i + 4], pieces[i + 5],
         target === this.feeds ? (color || this.workingstepColor(workingstep)) : null);
-      this.box.expandByPoint(new THREE.Vector3(pieces[i + 3], pieces[i + 4], pieces[i + 5]));
+      const { min, max } = this.box;
+      min.x = Math.min(min.x, pieces[i + 3]); max.x = Math.max(max.x, pieces[i + 3]);
+      min.y = Math.min(min.y, pieces[i + 4]); max.y = Math.max(max.y, pieces[i + 4]);
+      min.z = Math.min(min.z, pieces[i + 5]); max.z = Math.max(max.z, pieces[i + 5]);
     }
     this.segmentCount.push(buffer.vertices - this.segmentStart[this.segmentStart.length - 1]);
   }
@@ -156,25 +201,21 @@ export class ToolpathView {
     return this.segmentStart.length;
   }
 
-  // Puts the buffers gathered so far on screen (called a few times a second while loading).
+  // Puts the pieces gathered so far on screen (called about once a second while loading).
   flush() {
-    const build = (buffer, material, old) => {
+    const show = (buffer, material, old) => {
+      if (!buffer.sync() && old) return old;
       if (old) {
         this.scene.remove(old);
         old.geometry.dispose();
       }
-      const geometry = new THREE.BufferGeometry();
-      geometry.setAttribute("position", new THREE.BufferAttribute(buffer.positions, 3));
-      if (buffer.colors) geometry.setAttribute("color", new THREE.BufferAttribute(buffer.colors, 3));
-      geometry.setDrawRange(0, buffer.vertices);
-      const lines = new THREE.LineSegments(geometry, material);
+      const lines = new THREE.LineSegments(buffer.geometry, material);
       lines.frustumCulled = false;
-      if (material.isLineDashedMaterial) lines.computeLineDistances();
       this.scene.add(lines);
       return lines;
     };
-    this.rapidLines = build(this.rapids, this.rapidMaterial, this.rapidLines);
-    this.feedLines = build(this.feeds, this.feedMaterial, this.feedLines);
+    this.rapidLines = show(this.rapids, this.rapidMaterial, this.rapidLines);
+    this.feedLines = show(this.feeds, this.feedMaterial, this.feedLines);
     this.scaleDashes();
     this.requestRender();
   }
@@ -222,7 +263,7 @@ export class ToolpathView {
         colors[i + 2] = color.b;
       }
     }
-    if (this.feedLines) this.feedLines.geometry.attributes.color.needsUpdate = true;
+    this.feeds.colorsChanged();
     this.workingstepLines = this.replaceOverlay(this.workingstepLines,
       index < 0 ? [] : this.segmentWorkingstep.flatMap((own, s) => (own === index ? [s] : [])));
     this.requestRender();
