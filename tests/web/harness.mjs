@@ -25,7 +25,7 @@ export function skipOrFail(reason) {
 }
 
 export function loadPlaywright(source) {
-  const require = createRequire(path.join(source, "tests", "package.json"));
+  const require = createRequire(path.resolve(source, "tests", "package.json"));
   try {
     return require("playwright-core");
   } catch {

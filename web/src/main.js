@@ -258,7 +258,7 @@ async function renderWorkingsteps() {
     swatch.style.background = `#${view.workingstepColor(ws.index).getHexString()}`;
     swatch.setAttribute("aria-hidden", "true");
     const label = document.createElement("span");
-    label.textContent = `#${ws.id} ${ws.name} (${ws.segments} motions)`;
+    label.textContent = `#${ws.id} ${ws.name} (${ws.motions} motions)`;
     button.append(swatch, label);
     button.addEventListener("click", () => selectWorkingstep(ws.index));
     item.append(button);
@@ -364,10 +364,12 @@ async function drawTrace(run) {
   const reader = new TraceReader({
     emit: (x0, y0, z0, x1, y1, z1, rapid) => pieces.push(x0, y0, z0, x1, y1, z1, rapid ? 1 : 0),
     onWorkingstep: (ws) => {
-      state.workingsteps.push({ ...ws, segments: 0, segmentList: [] });
+      state.workingsteps.push({ ...ws, motions: 0, segments: 0, segmentList: [] });
     },
     onSegment: (segment) => {
       motions++;
+      const own = state.workingsteps[segment.workingstep];
+      if (own) own.motions++;
       // Decimation: keep every rapid and every `stride`-th feed, the kept feed drawn straight
       // from where the last drawn piece ended.
       if (stride > 1 && !segment.rapid && motions % stride !== 0) {
