@@ -3,7 +3,8 @@
 // `ncpost` or from the server's own JSON, never from the page.
 //   node web_test.mjs --ncpostd BIN --ncpost BIN --source DIR --out DIR
 import assert from "node:assert/strict";
-import { existsSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import os from "node:os";
 import path from "node:path";
 import {
   LONG_TASK_PROBE, corpusFile, launchBrowser, loadPlaywright, parseArgs, run, startServer,
@@ -49,7 +50,9 @@ assert.ok(motions > 100 && workingsteps.length >= 2, "ex1E has motions in severa
 const text = readFileSync(ex1e, "latin1").split("\n");
 const victim = text.findIndex((l, i) => i > 40 && /^#\d+=/.test(l));
 text[victim] = text[victim].slice(0, Math.floor(text[victim].length / 2)) + "((;";
-const broken = path.join(out, "broken-ex1E.stp");
+// Written outside the project (the corpus is never copied into it) and removed at the end.
+const scratch = mkdtempSync(path.join(os.tmpdir(), "ncpost-web-"));
+const broken = path.join(scratch, "broken-ex1E.stp");
 writeFileSync(broken, text.join("\n"), "latin1");
 
 const server = await startServer(args.ncpostd, webRoot);
@@ -123,9 +126,8 @@ try {
   assert.equal(await page.$eval(`#workingsteps button[data-index="${pick}"]`, (b) => b.getAttribute("aria-pressed")), "true");
   assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.highlighted)), workingsteps[pick].motions,
     "the workingstep's motions are highlighted");
-  const row = await page.waitForSelector(`#output .code-line.current[data-line="${firstLine}"]`);
-  const rowBox = await row.boundingBox();
-  const viewBox = await (await page.$("#output")).boundingBox();
+  const rowBox = await page.locator(`#output .code-line.current[data-line="${firstLine}"]`).boundingBox();
+  const viewBox = await page.locator("#output").boundingBox();
   assert.ok(rowBox.y >= viewBox.y && rowBox.y + rowBox.height <= viewBox.y + viewBox.height,
     "the code view scrolled to the workingstep's first block");
   console.log(`ok: workingstep ${pick} highlights ${workingsteps[pick].motions} motions, code at line ${firstLine}`);
@@ -157,9 +159,9 @@ try {
   await page.click("button[type=submit]");
   const diagnostic = await page.waitForSelector(`#diagnostics button[data-line="${diagnosticLine}"]`);
   await diagnostic.click();
-  const inputRow = await page.waitForSelector(`#input .code-line.current[data-line="${diagnosticLine}"]`);
-  const inputBox = await inputRow.boundingBox();
-  const inputView = await (await page.$("#input")).boundingBox();
+  // Locators, not element handles: the view re-renders its rows while it scrolls.
+  const inputBox = await page.locator(`#input .code-line.current[data-line="${diagnosticLine}"]`).boundingBox();
+  const inputView = await page.locator("#input").boundingBox();
   assert.ok(inputBox.y >= inputView.y && inputBox.y + inputBox.height <= inputView.y + inputView.height,
     "the input view shows the diagnostic's line");
   assert.equal(await page.$eval(`#input .code-line[data-line="${diagnosticLine}"]`, (r) => r.textContent.includes("((;")), true);
@@ -192,5 +194,6 @@ try {
 } finally {
   await browser.close();
   await server.stop();
+  rmSync(scratch, { recursive: true, force: true });
 }
 process.exit(failed ? 1 : 0);
