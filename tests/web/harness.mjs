@@ -101,3 +101,13 @@ export const LONG_TASK_PROBE = `
 export function run(command, args) {
   return execFileSync(command, args, { maxBuffer: 1 << 30, encoding: "utf8" });
 }
+
+// For commands whose exit status 1 is an answer (verify finding a fault): their stdout.
+export function runAllowingFailure(command, args) {
+  try {
+    return run(command, args);
+  } catch (error) {
+    if (error.status === 1 && typeof error.stdout === "string") return error.stdout;
+    throw error;
+  }
+}

@@ -7,7 +7,7 @@ import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync
 import os from "node:os";
 import path from "node:path";
 import {
-  LONG_TASK_PROBE, corpusFile, launchBrowser, loadPlaywright, parseArgs, run, startServer,
+  LONG_TASK_PROBE, corpusFile, launchBrowser, loadPlaywright, parseArgs, run, runAllowingFailure, startServer,
 } from "./harness.mjs";
 
 const args = parseArgs(process.argv.slice(2));
@@ -142,11 +142,21 @@ try {
   assert.ok(marked >= ws.before && marked < ws.before + ws.motions, `block ${block[0]} marks a segment of its workingstep (${marked})`);
   console.log(`ok: block at line ${block[0]} marks segment ${marked}`);
 
-  // -- verify: findings listed and shown
+  // -- verify a program of the project's own golden cases that gouges and leaves floor uncut:
+  // every finding with a position, and every uncovered sample, gets its marker in 3D
+  const faulty = path.join(source, "tests", "golden", "verify", "cases", "l-pocket-uncovered.stp");
+  const report = JSON.parse(runAllowingFailure(args.ncpost, ["verify", "--format", "json", faulty]));
+  const markers = report.diagnostics.filter((d) => d.position).length +
+    report.features.filter((f) => f.coverage && f.coverage.uncovered_sample).length;
+  assert.ok(markers >= 2, "the case has a finding and an uncovered sample");
+  await page.setInputFiles("#file", faulty);
+  await page.click("button[type=submit]");
+  await page.waitForSelector("#view3d[data-complete=true]");
   await page.click("#verify");
   await page.waitForSelector("#findings-section:not([hidden])");
   const verifyStatus = await page.textContent("#status");
-  assert.match(verifyStatus, /^Verify: (pass|FAIL)/);
+  assert.match(verifyStatus, /^Verify: FAIL/);
+  assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.findings)), markers, "a marker per located finding");
   await page.screenshot({ path: path.join(out, "verify.png") });
   console.log(`ok: ${verifyStatus}`);
 

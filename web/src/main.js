@@ -201,10 +201,8 @@ function showDiagnostics(list) {
   const target = $("diagnostics");
   target.replaceChildren();
   for (const d of list || []) {
-    // A diagnostic of the uploaded file jumps to its line in the input; one of the posted
-    // program ("output", the renderer's checks) to its line in the output.
-    const inOutput = d.file === "output" || d.file === "-output";
-    target.append(diagnosticButton(d, () => jumpTo(inOutput ? "output" : "input", d.line)));
+    // Diagnostics name lines of the uploaded file (the renderer's have line 0).
+    target.append(diagnosticButton(d, () => jumpTo("input", d.line)));
   }
   $("diagnostics-section").hidden = !list || list.length === 0;
 }
@@ -528,11 +526,10 @@ async function verify() {
       jumpTo("input", d.line);
     }));
   }
+  // A floor region left uncut: one sample position per feature.
   for (const f of report.features || []) {
-    for (const p of (f.coverage && f.coverage.uncovered_sample) || []) {
-      if (Array.isArray(p)) points.push([p[0], p[1], f.floor_z ?? p[2] ?? 0]);
-      else if (p && p.x !== undefined) points.push([p.x, p.y, p.z ?? f.floor_z ?? 0]);
-    }
+    const sample = f.coverage && f.coverage.uncovered_sample;
+    if (sample) points.push([sample.x, sample.y, sample.z]);
   }
   view.showFindings(points);
   $("findings-section").hidden = false;
