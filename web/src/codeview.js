@@ -104,7 +104,6 @@ export class CodeView {
   select(line, { scroll = true, notify = false } = {}) {
     if (!(line >= 1 && line <= this.lines.length)) return;
     this.current = line;
-    this.element.setAttribute("aria-activedescendant", "");
     if (scroll) {
       const y = (line - 1) * LINE_HEIGHT * this.scale();
       this.element.scrollTop = Math.max(0, y - this.element.clientHeight / 3);

@@ -51,7 +51,6 @@ const state = {
   file: null,
   profiles: [],
   workingsteps: [], // from the trace: {index, id, name, traceLine, firstLine?, lastLine?, segments: []}
-  segmentTraceLine: [],
   blockMap: null,
   inputLoaded: null,
   run: 0, // increases with every post; a stale async step sees the difference and stops
@@ -381,7 +380,6 @@ async function drawTrace(run) {
       }
       const index = view.segments;
       view.addSegment(pieces, segment.rapid, segment.workingstep, segment.end);
-      state.segmentTraceLine.push(segment.traceLine);
       const ws = state.workingsteps[segment.workingstep];
       if (ws) {
         ws.segments++;
@@ -447,7 +445,6 @@ async function post(event) {
   const run = ++state.run;
   const profile = $("profile").value;
   state.workingsteps = [];
-  state.segmentTraceLine = [];
   state.inputLoaded = null;
   output.clear();
   input.clear();
