@@ -545,17 +545,21 @@ function takeFile(file) {
 }
 
 $("file").addEventListener("change", () => takeFile($("file").files[0]));
+// A file dropped anywhere on the page is taken (and never opened by the browser instead).
 const drop = $("drop");
-drop.addEventListener("dragover", (event) => {
+document.addEventListener("dragover", (event) => {
   event.preventDefault();
   drop.classList.add("over");
 });
-drop.addEventListener("dragleave", () => drop.classList.remove("over"));
-drop.addEventListener("drop", (event) => {
+document.addEventListener("dragleave", (event) => {
+  if (!event.relatedTarget) drop.classList.remove("over");
+});
+document.addEventListener("drop", (event) => {
   event.preventDefault();
   drop.classList.remove("over");
   takeFile(event.dataTransfer.files[0]);
 });
+$("compare-form").addEventListener("submit", (event) => event.preventDefault());
 $("post").addEventListener("submit", post);
 $("verify").addEventListener("click", verify);
 $("fit").addEventListener("click", () => view.fit());
