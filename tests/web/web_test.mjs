@@ -68,6 +68,15 @@ try {
   await page.goto(`${server.url}/`);
   await page.waitForSelector(`#profile option[value="${PROFILE}"]`, { state: "attached" });
 
+  // -- drag and drop: a file dropped on the page is the one to post
+  const dropped = await page.evaluateHandle((text) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([text], "dropped-ex1E.stp"));
+    return transfer;
+  }, readFileSync(ex1e, "latin1"));
+  await page.dispatchEvent("#drop", "drop", { dataTransfer: dropped });
+  assert.match(await page.textContent("#file-name"), /^dropped-ex1E\.stp /);
+
   // -- post ex1E, wait for the stream and the 3D view to finish
   await page.setInputFiles("#file", ex1e);
   await page.selectOption("#profile", PROFILE);
