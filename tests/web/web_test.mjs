@@ -55,6 +55,23 @@ const scratch = mkdtempSync(path.join(os.tmpdir(), "ncpost-web-"));
 const broken = path.join(scratch, "broken-ex1E.stp");
 writeFileSync(broken, text.join("\n"), "latin1");
 
+// Waits until line `line` of a code view is its current line and lies wholly inside the view's
+// visible box. Checked in one evaluation in the page: the view re-renders its rows as it
+// scrolls, so element handles taken from outside can go stale between two reads.
+async function currentLineShown(page, view, line, what) {
+  try {
+    await page.waitForFunction(([selector, n]) => {
+      const box = document.querySelector(selector).getBoundingClientRect();
+      const row = document.querySelector(`${selector} .code-line.current[data-line="${n}"]`);
+      if (!row) return false;
+      const r = row.getBoundingClientRect();
+      return r.top >= box.top && r.bottom <= box.bottom && r.height > 0;
+    }, [view, line], { timeout: 5000 });
+  } catch {
+    assert.fail(what);
+  }
+}
+
 const server = await startServer(args.ncpostd, webRoot);
 const browser = await launchBrowser(playwright);
 let failed = false;
@@ -135,10 +152,7 @@ try {
   assert.equal(await page.$eval(`#workingsteps button[data-index="${pick}"]`, (b) => b.getAttribute("aria-pressed")), "true");
   assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.highlighted)), workingsteps[pick].motions,
     "the workingstep's motions are highlighted");
-  const rowBox = await page.locator(`#output .code-line.current[data-line="${firstLine}"]`).boundingBox();
-  const viewBox = await page.locator("#output").boundingBox();
-  assert.ok(rowBox.y >= viewBox.y && rowBox.y + rowBox.height <= viewBox.y + viewBox.height,
-    "the code view scrolled to the workingstep's first block");
+  await currentLineShown(page, "#output", firstLine, "the code view scrolled to the workingstep's first block");
   console.log(`ok: workingstep ${pick} highlights ${workingsteps[pick].motions} motions, code at line ${firstLine}`);
   await page.screenshot({ path: path.join(out, "workingstep.png") });
 
@@ -178,11 +192,7 @@ try {
   await page.click("button[type=submit]");
   const diagnostic = await page.waitForSelector(`#diagnostics button[data-line="${diagnosticLine}"]`);
   await diagnostic.click();
-  // Locators, not element handles: the view re-renders its rows while it scrolls.
-  const inputBox = await page.locator(`#input .code-line.current[data-line="${diagnosticLine}"]`).boundingBox();
-  const inputView = await page.locator("#input").boundingBox();
-  assert.ok(inputBox.y >= inputView.y && inputBox.y + inputBox.height <= inputView.y + inputView.height,
-    "the input view shows the diagnostic's line");
+  await currentLineShown(page, "#input", diagnosticLine, "the input view shows the diagnostic's line");
   assert.equal(await page.$eval(`#input .code-line[data-line="${diagnosticLine}"]`, (r) => r.textContent.includes("((;")), true);
   console.log(`ok: diagnostic jumps to input line ${diagnosticLine}`);
   await page.screenshot({ path: path.join(out, "diagnostic.png") });
