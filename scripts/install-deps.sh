@@ -18,6 +18,7 @@ test_packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3 xsltproc clang-format
   python3-jsonschema                          # the profile schema checks (profile, cls checks)
+  chromium                                    # tests/web: the browser test, through playwright-core
 )
 # rs274 (LinuxCNC's stand-alone interpreter) is used by tests/interop; recommends would pull in X11.
 interop_packages=(linuxcnc-uspace)
@@ -33,9 +34,11 @@ case "${1:-all}" in
   *) echo "usage: $0 [build|all|peers]" >&2; exit 2 ;;
 esac
 
-# The OpenAPI linter (tests/package.json, ctest openapi_lint) runs on node; Debian's nodejs and
-# npm when the machine has no npm (a NodeSource nodejs brings its own and conflicts with them).
-if [[ ${1:-all} != build ]] && ! command -v npm >/dev/null 2>&1; then
+# The front end (web/package.json: three.js, bundled by esbuild into web/index.html, which
+# ncpostd serves at /) is built by every mode, so node is part of the build set; the OpenAPI
+# linter and the browser test (tests/package.json) run on it too. Debian's nodejs and npm when
+# the machine has no npm (a NodeSource nodejs brings its own and conflicts with them).
+if ! command -v npm >/dev/null 2>&1; then
   want+=(nodejs npm)
 fi
 
@@ -67,8 +70,25 @@ fi
 # file changed since the last install.
 if [[ ${1:-all} != build ]]; then
   tests_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests"
-  if [[ ! -x $tests_dir/node_modules/.bin/redocly ||
+  if [[ ! -x $tests_dir/node_modules/.bin/redocly || ! -d $tests_dir/node_modules/playwright-core ||
         $tests_dir/package-lock.json -nt $tests_dir/node_modules/.package-lock.json ]]; then
     npm ci --prefix "$tests_dir" --no-audit --no-fund
+  fi
+fi
+
+# The front end: three.js and esbuild pinned by web/package-lock.json, installed again only when
+# the lock file changed, and bundled into web/index.html (web/build.mjs) whenever a source is
+# newer than the page.
+# (docker/Dockerfile runs this script before the sources are copied: no web/ yet, and it
+# builds the page itself after the copy.)
+web_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/web"
+if [[ -f $web_dir/package.json ]]; then
+  if [[ ! -d $web_dir/node_modules/three ||
+        $web_dir/package-lock.json -nt $web_dir/node_modules/.package-lock.json ]]; then
+    npm ci --prefix "$web_dir" --no-audit --no-fund
+  fi
+  if [[ ! -f $web_dir/index.html ||
+        -n $(find "$web_dir/src" "$web_dir/build.mjs" "$web_dir/package-lock.json" -newer "$web_dir/index.html" -print -quit) ]]; then
+    npm run --prefix "$web_dir" --silent build
   fi
 fi

@@ -1,0 +1,228 @@
+// The front end in a real browser (issue 21): Debian's chromium, headless, through
+// playwright-core, against the real ncpostd on 127.0.0.1. Every expected figure comes from
+// `ncpost` or from the server's own JSON, never from the page.
+//   node web_test.mjs --ncpostd BIN --ncpost BIN --source DIR --out DIR
+import assert from "node:assert/strict";
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import os from "node:os";
+import path from "node:path";
+import {
+  LONG_TASK_PROBE, corpusFile, launchBrowser, loadPlaywright, parseArgs, run, runAllowingFailure, startServer,
+} from "./harness.mjs";
+
+const args = parseArgs(process.argv.slice(2));
+const source = args.source;
+const out = args.out;
+const PROFILE = "fanuc-0i";
+const MOTION = /^\s*\d+ (STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|ARC_FEED_3D|NURBS_FEED|DRILL_CYCLE|PECK_DRILL_CYCLE|TAP_CYCLE|BORE_CYCLE|REAM_CYCLE)\(/;
+
+const playwright = loadPlaywright(source);
+const ex1e = corpusFile(source, "p21/nist_toolkit_ex1E.stp");
+const webRoot = path.join(source, "web");
+if (!existsSync(path.join(webRoot, "index.html"))) {
+  console.log("FAIL: web/index.html is not built (npm ci --prefix web && npm run --prefix web build)");
+  process.exit(1);
+}
+mkdirSync(out, { recursive: true });
+
+// ---- expectations from the command line -----------------------------------------------------
+const postLines = run(args.ncpost, ["post", "--profile", PROFILE, ex1e]).replace(/\n$/, "").split("\n").length;
+const traceLines = run(args.ncpost, ["trace", ex1e]).split("\n");
+const motions = traceLines.filter((l) => MOTION.test(l)).length;
+// Motions per workingstep, and how many motions come before each.
+const workingsteps = [];
+let current = null;
+let seen = 0;
+for (const line of traceLines) {
+  if (/^\s*\d+ WORKINGSTEP_BEGIN\(/.test(line)) {
+    current = { before: seen, motions: 0 };
+    workingsteps.push(current);
+  } else if (/^\s*\d+ WORKINGSTEP_END\(/.test(line)) {
+    current = null;
+  } else if (MOTION.test(line)) {
+    seen++;
+    if (current) current.motions++;
+  }
+}
+assert.ok(motions > 100 && workingsteps.length >= 2, "ex1E has motions in several workingsteps");
+
+// A broken copy: one instance line cut in half, so the reader reports it at a known place.
+const text = readFileSync(ex1e, "latin1").split("\n");
+const victim = text.findIndex((l, i) => i > 40 && /^#\d+=/.test(l));
+text[victim] = text[victim].slice(0, Math.floor(text[victim].length / 2)) + "((;";
+// Written outside the project (the corpus is never copied into it) and removed at the end.
+const scratch = mkdtempSync(path.join(os.tmpdir(), "ncpost-web-"));
+const broken = path.join(scratch, "broken-ex1E.stp");
+writeFileSync(broken, text.join("\n"), "latin1");
+
+// Waits until line `line` of a code view is its current line and lies wholly inside the view's
+// visible box. Checked in one evaluation in the page: the view re-renders its rows as it
+// scrolls, so element handles taken from outside can go stale between two reads.
+async function currentLineShown(page, view, line, what) {
+  try {
+    await page.waitForFunction(([selector, n]) => {
+      const box = document.querySelector(selector).getBoundingClientRect();
+      const row = document.querySelector(`${selector} .code-line.current[data-line="${n}"]`);
+      if (!row) return false;
+      const r = row.getBoundingClientRect();
+      return r.top >= box.top && r.bottom <= box.bottom && r.height > 0;
+    }, [view, line], { timeout: 5000 });
+  } catch {
+    assert.fail(what);
+  }
+}
+
+const server = await startServer(args.ncpostd, webRoot);
+const browser = await launchBrowser(playwright);
+let failed = false;
+try {
+  const page = await browser.newPage({ viewport: { width: 1600, height: 900 } });
+  page.on("pageerror", (error) => {
+    failed = true;
+    console.log(`page error: ${error.message}`);
+  });
+  await page.addInitScript(LONG_TASK_PROBE);
+  await page.goto(`${server.url}/`);
+  await page.waitForSelector(`#profile option[value="${PROFILE}"]`, { state: "attached" });
+
+  // -- drag and drop: a file dropped on the page is the one to post
+  const dropped = await page.evaluateHandle((text) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([text], "dropped-ex1E.stp"));
+    return transfer;
+  }, readFileSync(ex1e, "latin1"));
+  await page.dispatchEvent("#drop", "drop", { dataTransfer: dropped });
+  assert.match(await page.textContent("#file-name"), /^dropped-ex1E\.stp /);
+
+  // -- post ex1E, wait for the stream and the 3D view to finish
+  await page.setInputFiles("#file", ex1e);
+  await page.selectOption("#profile", PROFILE);
+  await page.waitForTimeout(500); // let the page's start-up task end before measuring
+  await page.evaluate(() => { window.__longestTask = 0; });
+  await page.click("button[type=submit]");
+  await page.waitForSelector("#view3d[data-complete=true]", { timeout: 60000 });
+  const loadingTask = await page.evaluate(() => window.__longestTask);
+  const shown = await page.$eval("#output", (e) => Number(e.dataset.lines));
+  assert.equal(shown, postLines, "output lines = ncpost post's lines");
+  const drawn = await page.$eval("#view3d", (e) => ({ segments: Number(e.dataset.segments), stride: Number(e.dataset.stride) }));
+  assert.equal(drawn.stride, 1, "a small program is not decimated");
+  assert.equal(drawn.segments, motions, "drawn segments = motion calls of ncpost trace");
+  console.log(`ok: ${shown} output lines, ${drawn.segments} segments drawn; longest main-thread task while loading ${loadingTask.toFixed(0)} ms`);
+
+  // -- the canvas: not blank, and rapids (dashed, red) differ in colour from feeds
+  await page.waitForTimeout(300);
+  const pixels = await page.$eval("#canvas", (canvas) => {
+    const copy = document.createElement("canvas");
+    copy.width = canvas.width;
+    copy.height = canvas.height;
+    const context = copy.getContext("2d");
+    context.drawImage(canvas, 0, 0);
+    const data = context.getImageData(0, 0, copy.width, copy.height).data;
+    let ink = 0;
+    const colours = new Map();
+    for (let i = 0; i < data.length; i += 4) {
+      if (data[i] > 245 && data[i + 1] > 245 && data[i + 2] > 245) continue;
+      ink++;
+      const key = `${data[i] >> 4},${data[i + 1] >> 4},${data[i + 2] >> 4}`;
+      colours.set(key, (colours.get(key) || 0) + 1);
+    }
+    return { ink, total: data.length / 4, colours: [...colours.entries()].sort((a, b) => b[1] - a[1]) };
+  });
+  assert.ok(pixels.ink > 1000, `the canvas is not blank (${pixels.ink} drawn pixels)`);
+  // 0xd62728 quantised to 4 bits per channel: 13,2,2.
+  const rapid = pixels.colours.filter(([k]) => k === "13,2,2").reduce((s, [, n]) => s + n, 0);
+  const feeds = pixels.colours.filter(([k]) => {
+    const [r, g, b] = k.split(",").map(Number);
+    return !(r === 13 && g === 2 && b === 2) && Math.max(r, g, b) - Math.min(r, g, b) >= 3;
+  }).reduce((s, [, n]) => s + n, 0);
+  assert.ok(rapid > 50, `rapids are drawn in their colour (${rapid} px)`);
+  assert.ok(feeds > 200, `feeds are drawn in other colours (${feeds} px)`);
+  console.log(`ok: canvas ${pixels.ink} px drawn, ${rapid} rapid px, ${feeds} feed px`);
+  await page.screenshot({ path: path.join(out, "post.png") });
+
+  // -- click a workingstep: highlight and code scroll
+  const form = new FormData();
+  form.append("file", new Blob([readFileSync(ex1e)]), "ex1E.stp");
+  const mapped = await (await fetch(`${server.url}/v1/posts?profile=${PROFILE}`, {
+    method: "POST", body: form, headers: { Accept: "application/json" } })).json();
+  // The first workingstep after the first with several motions (a real cut, visible in 3D).
+  const pick = workingsteps.findIndex((w, i) => i > 0 && w.motions >= 5);
+  const firstLine = mapped.workingsteps[pick].first_line;
+  await page.click(`#workingsteps button[data-index="${pick}"]`);
+  assert.equal(await page.$eval(`#workingsteps button[data-index="${pick}"]`, (b) => b.getAttribute("aria-pressed")), "true");
+  assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.highlighted)), workingsteps[pick].motions,
+    "the workingstep's motions are highlighted");
+  await currentLineShown(page, "#output", firstLine, "the code view scrolled to the workingstep's first block");
+  console.log(`ok: workingstep ${pick} highlights ${workingsteps[pick].motions} motions, code at line ${firstLine}`);
+  await page.screenshot({ path: path.join(out, "workingstep.png") });
+
+  // -- click a block in the code: its segment is marked in 3D, inside that workingstep
+  const lines = await page.$$eval("#output .code-line", (rows) => rows.map((r) => [Number(r.dataset.line), r.textContent]));
+  const block = lines.find(([n, t]) => n > firstLine && / [XYZ]-?[0-9.]/.test(t));
+  await page.click(`#output .code-line[data-line="${block[0]}"]`);
+  const marked = await page.$eval("#view3d", (e) => Number(e.dataset.marked));
+  const ws = workingsteps[pick];
+  assert.ok(marked >= ws.before && marked < ws.before + ws.motions, `block ${block[0]} marks a segment of its workingstep (${marked})`);
+  console.log(`ok: block at line ${block[0]} marks segment ${marked}`);
+
+  // -- verify a program of the project's own golden cases that gouges and leaves floor uncut:
+  // every finding with a position, and every uncovered sample, gets its marker in 3D
+  const faulty = path.join(source, "tests", "golden", "verify", "cases", "l-pocket-uncovered.stp");
+  const report = JSON.parse(runAllowingFailure(args.ncpost, ["verify", "--format", "json", faulty]));
+  const markers = report.diagnostics.filter((d) => d.position).length +
+    report.features.filter((f) => f.coverage && f.coverage.uncovered_sample).length;
+  assert.ok(markers >= 2, "the case has a finding and an uncovered sample");
+  await page.setInputFiles("#file", faulty);
+  await page.click("button[type=submit]");
+  await page.waitForSelector("#view3d[data-complete=true]");
+  await page.click("#verify");
+  await page.waitForSelector("#findings-section:not([hidden])");
+  const verifyStatus = await page.textContent("#status");
+  assert.match(verifyStatus, /^Verify: FAIL/);
+  assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.findings)), markers, "a marker per located finding");
+  await page.screenshot({ path: path.join(out, "verify.png") });
+  console.log(`ok: ${verifyStatus}`);
+
+  // -- a broken file: the diagnostic jumps to its line in the input
+  const brokenForm = new FormData();
+  brokenForm.append("file", new Blob([readFileSync(broken)]), "broken-ex1E.stp");
+  const problem = await (await fetch(`${server.url}/v1/posts?profile=${PROFILE}`, { method: "POST", body: brokenForm })).json();
+  const diagnosticLine = problem.diagnostics.find((d) => d.line > 0).line;
+  await page.setInputFiles("#file", broken);
+  await page.click("button[type=submit]");
+  const diagnostic = await page.waitForSelector(`#diagnostics button[data-line="${diagnosticLine}"]`);
+  await diagnostic.click();
+  await currentLineShown(page, "#input", diagnosticLine, "the input view shows the diagnostic's line");
+  assert.equal(await page.$eval(`#input .code-line[data-line="${diagnosticLine}"]`, (r) => r.textContent.includes("((;")), true);
+  console.log(`ok: diagnostic jumps to input line ${diagnosticLine}`);
+  await page.screenshot({ path: path.join(out, "diagnostic.png") });
+
+  // -- profiles: the table and a side-by-side diff
+  await page.setInputFiles("#file", ex1e);
+  await page.click("#nav-page-profiles");
+  const profiles = (await (await fetch(`${server.url}/v1/profiles`)).json()).profiles.length;
+  await page.waitForFunction((n) => document.querySelectorAll("#profile-table tbody tr").length === n, profiles);
+  await page.selectOption("#diff-a", "fanuc-0i");
+  await page.selectOption("#diff-b", "haas-ngc");
+  await page.click("#compare");
+  await page.waitForSelector("#diff-table:not([hidden])");
+  const diffRows = await page.$$eval("#diff-table tbody tr", (rows) => rows.length);
+  const haasLines = run(args.ncpost, ["post", "--profile", "haas-ngc", ex1e]).replace(/\n$/, "").split("\n").length;
+  // Every line of both programs has its row; a changed row holds one of each.
+  assert.ok(diffRows >= Math.max(postLines, haasLines) && diffRows <= postLines + haasLines,
+    `the diff shows every line (${diffRows} rows)`);
+  await page.screenshot({ path: path.join(out, "profiles.png") });
+  await page.$eval("#diff-status", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(out, "diff.png") });
+  console.log(`ok: ${profiles} profiles listed, diff of ${diffRows} rows`);
+
+} catch (error) {
+  failed = true;
+  console.log(`FAIL: ${error.stack || error}`);
+  console.log(server.log());
+} finally {
+  await browser.close();
+  await server.stop();
+  rmSync(scratch, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);
