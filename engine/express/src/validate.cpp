@@ -41,14 +41,14 @@ bool tolerated(diag::Code code) {
 // One warning standing for every instance with the same deviation of the same entity's
 // attribute: the first instance's diagnostic and how many there were.
 struct Tolerated {
-  std::string key;  // code, entity as written, attribute
+  std::string key;      // code, entity as written, attribute
   std::string subject;  // "#3 PERSON.id"
   diag::Diagnostic first;
   std::size_t count = 0;
 };
 
-void add_tolerated(std::vector<Tolerated>& into, std::unordered_map<std::string, std::size_t>& index,
-                   Tolerated found) {
+void add_tolerated(std::vector<Tolerated>& into,
+                   std::unordered_map<std::string, std::size_t>& index, Tolerated found) {
   const auto [at, fresh] = index.try_emplace(found.key, into.size());
   if (fresh)
     into.push_back(std::move(found));
@@ -344,8 +344,7 @@ class Validator {
       else
         check_simple(instance);
     }
-    return {std::move(diagnostics_), std::move(unknown_entities_), std::move(tolerated_),
-            stopped_};
+    return {std::move(diagnostics_), std::move(unknown_entities_), std::move(tolerated_), stopped_};
   }
 
  private:
@@ -357,7 +356,9 @@ class Validator {
 
   // ---- reporting ----------------------------------------------------------------------------
 
-  [[nodiscard]] bool muted() const { return stopped_; }
+  // Tolerant, the check goes on past the limit to count the tolerated deviations of the whole
+  // file, so that a check in pieces counts what a check in order counts.
+  [[nodiscard]] bool muted() const { return stopped_ && !options_.tolerant; }
 
   // One Where per instance, its path's storage kept: a fresh vector per instance was a
   // malloc/free pair for most of them.
@@ -393,8 +394,8 @@ class Validator {
   void tolerate(diag::Code code, const Instance& at, std::string_view entity,
                 std::string_view attribute, std::string detail) {
     Tolerated t;
-    t.key = std::string(diag::info(code).id) + " " + std::string(entity) + "." +
-            std::string(attribute);
+    t.key =
+        std::string(diag::info(code).id) + " " + std::string(entity) + "." + std::string(attribute);
     t.count = 1;
     const auto fresh = tolerated_index_.find(t.key) == tolerated_index_.end();
     if (fresh) {
@@ -408,7 +409,6 @@ class Validator {
   }
 
   void report(diag::Code code, const Where& w, const std::string& detail) {
-    if (stopped_) return;
     if (options_.tolerant && tolerated(code)) {
       std::string what = detail;
       if (!w.path.empty()) {
@@ -420,6 +420,7 @@ class Validator {
       tolerate(code, *w.instance, w.entity, w.attribute, std::move(what));
       return;
     }
+    if (stopped_) return;
     std::string message = instance_name(*w.instance, w.entity, w.partial_record);
     message += " attribute '";
     message += w.attribute;
