@@ -200,7 +200,7 @@ Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<M
   return outcome;
 }
 
-Posted post_file(const std::filesystem::path& input, const std::string& profile_id) {
+Posted post_file(const std::filesystem::path& input, const std::string& profile_id, bool tolerant) {
   xslt::initialise();
   static const express::SchemaRegistry registry;
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
@@ -210,7 +210,9 @@ Posted post_file(const std::filesystem::path& input, const std::string& profile_
   EXPECT_TRUE(posted.profile) << profile_id << ": "
                               << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
   if (!posted.profile) return posted;
-  auto loaded = pipeline::load(test::read_file(input), registry);
+  pipeline::LoadOptions load_options;
+  load_options.tolerant = tolerant;
+  auto loaded = pipeline::load(test::read_file(input), registry, load_options);
   EXPECT_TRUE(loaded.ok()) << input;
   if (!loaded.ok()) return posted;
   const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);

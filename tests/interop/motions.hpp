@@ -99,8 +99,10 @@ struct Posted {
 
 // Loads the built-in profile `profile_id`, interprets `input` (STEP-NC) and renders it. Adds
 // gtest failures for load, interpretation or rendering errors; `profile` is null when the
-// profile does not load.
-[[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id);
+// profile does not load. `tolerant`: the schema check of a job without --strict
+// (pipeline::LoadOptions::tolerant), for programs written the way other systems write them.
+[[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
+                               bool tolerant = false);
 
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,

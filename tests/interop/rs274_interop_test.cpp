@@ -58,9 +58,9 @@ std::string read_all(const fs::path& p) {
 }
 
 Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
-                           const std::string& profile_id) {
+                           const std::string& profile_id, bool tolerant = false) {
   // Ours: the canonical program, and the posted text.
-  const Posted posted = post_file(input, profile_id);
+  const Posted posted = post_file(input, profile_id, tolerant);
   if (!posted.profile) return {};
   const auto ours = motions_of(posted.calls, options_for(posted.profile->profile));
   std::set<int> tools;
@@ -161,6 +161,20 @@ TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
   for (const char* name : {"thread-drilling", "slot-circular", "pocket-retract"}) {
     SCOPED_TRACE(name);
     const auto o = compare_with_rs274(cases / (std::string(name) + ".stp"), name, "linuxcnc");
+    EXPECT_GT(o.compared, 0u);
+    std::printf("[ rs274    ] linuxcnc %s: %zu motions compared, max deviation %.6f\n", name,
+                o.compared, o.max_deviation);
+  }
+}
+
+// Programs written the way other systems write them (tests/golden/tolerant/cases), posted as
+// a job without --strict posts them.
+TEST(Rs274Interop, LinuxcncTolerantCases) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "tolerant" / "cases";
+  for (const char* name : {"omitted-unread", "abstract-tool", "combined"}) {
+    SCOPED_TRACE(name);
+    const auto o = compare_with_rs274(cases / (std::string(name) + ".stp"), name, "linuxcnc", true);
     EXPECT_GT(o.compared, 0u);
     std::printf("[ rs274    ] linuxcnc %s: %zu motions compared, max deviation %.6f\n", name,
                 o.compared, o.max_deviation);
