@@ -11,7 +11,6 @@ G43 H70
 F1200.
 S1200
 M3
-M8
 G0 X10. Y-30. Z20.
 G0 X10. Y-30. Z7.
 G1 X10. Y-30. Z0.
@@ -103,13 +102,16 @@ G1 X20. Y20. Z-15.
 G1 X20. Y20. Z5.
 G0 X20. Y20. Z20.
 M5
-M9
 M2
 %
 combined.stp:8:1: warning: EXP-062: #1 PROJECT.its_id: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:10:1: warning: EXP-062: #8 SETUP.its_id: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:26:1: warning: EXP-059: ×3, first #70 CUTTING_TOOL: cutting_tool is ABSTRACT; only its subtypes (or a complex instance) can be instantiated (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:26:1: warning: EXP-062: #70 CUTTING_TOOL.its_id: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
+combined.stp:33:1: warning: EXP-062: #90 MILLING_MACHINE_FUNCTIONS.coolant: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:33:1: warning: EXP-062: #90 MILLING_MACHINE_FUNCTIONS.through_spindle_coolant: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:33:1: warning: EXP-062: #90 MILLING_MACHINE_FUNCTIONS.chip_removal: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:44:1: warning: EXP-062: #901 BLOCK.name: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
+combined.stp:33:1: note: STEPNC-016: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is '$', which ISO 14649 does not allow: it is left as it was (off)
+combined.stp:33:1: note: STEPNC-016: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is '$', which ISO 14649 does not allow: it is left as it was (off)
+combined.stp:33:1: note: STEPNC-016: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is '$', which ISO 14649 does not allow: it is left as it was (off)
