@@ -304,8 +304,8 @@ void Interpreter::machine_functions(const Instance* functions) {
       // A tolerant check lets '$' through where ISO 14649 requires the flag.
       note(*functions,
            detail::describe(m_, *functions) + " attribute " + std::string(attribute) +
-               " is '$', which ISO 14649 does not allow: it is left as it was (" +
-               (attribute == "coolant" ? (flood_ ? "on" : "off") : (mist_ ? "on" : "off")) + ")");
+               " is '$', which ISO 14649 does not allow: it is left as it was (off at the "
+               "start of the program)");
     if (!v || v->is_omitted()) return std::nullopt;
     const auto l = m_.as_logical(*v);
     if (!l) return std::nullopt;
