@@ -1,14 +1,19 @@
 // libFuzzer target for the interpreter on top of the reader: any model the reader accepts must
 // give a canonical program or diagnostics, never a crash, a hang or a sanitizer report. The
 // model is interpreted whether or not it validates against the schema: the interpreter must
-// cope with whatever a hostile file holds.
+// cope with whatever a hostile file holds. The schema check runs in both modes first: tolerant
+// (the default) must never report an error that strict (`--strict`) does not.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <limits>
 #include <string>
 
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/express/registry.hpp"
+#include "ncpost/express/validate.hpp"
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
 
@@ -20,6 +25,12 @@ class NullSink final : public ncpost::canon::Sink {
   std::size_t calls = 0;
 };
 
+std::size_t errors(const std::vector<ncpost::diag::Diagnostic>& diagnostics) {
+  return static_cast<std::size_t>(
+      std::count_if(diagnostics.begin(), diagnostics.end(),
+                    [](const auto& d) { return d.severity == ncpost::diag::Severity::Error; }));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -27,6 +38,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   auto read = ncpost::p21::read(std::string(reinterpret_cast<const char*>(data), size));
   if (!read.ok()) return 0;
   const auto selection = registry.select_or_builtin(read.model);
+  // No limit: a strict check that stopped at it would have counted fewer errors.
+  ncpost::express::ValidateOptions strict;
+  strict.max_diagnostics = std::numeric_limits<std::size_t>::max();
+  ncpost::express::ValidateOptions tolerant = strict;
+  tolerant.tolerant = true;
+  if (errors(ncpost::express::validate(read.model, *selection.set(), tolerant)) >
+      errors(ncpost::express::validate(read.model, *selection.set(), strict)))
+    std::abort();
   const ncpost::stepnc::AttributeReader attributes(read.model, *selection.set());
   NullSink sink;
   const auto result = ncpost::stepnc::interpret(read.model, attributes, sink);

@@ -323,9 +323,11 @@ Posted post_calls(std::vector<canon::Call> calls, const std::string& profile_id,
 }
 
 Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
-                 bool expect_rendered) {
+                 bool expect_rendered, bool tolerant) {
   static const express::SchemaRegistry registry;
-  auto loaded = pipeline::load(test::read_file(input), registry);
+  pipeline::LoadOptions load_options;
+  load_options.tolerant = tolerant;
+  auto loaded = pipeline::load(test::read_file(input), registry, load_options);
   EXPECT_TRUE(loaded.ok()) << input;
   if (!loaded.ok()) return {builtin_profile(profile_id), {}, {}, {}};
   const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);

@@ -146,8 +146,10 @@ struct Posted {
 // Loads the built-in profile `profile_id`, interprets `input` (STEP-NC: ISO 14649, or AP238 AIM
 // through engine/ap238) and renders it. Adds gtest failures for load, interpretation or (unless
 // `expect_rendered` is false) rendering errors; `profile` is null when the profile does not load.
+// `tolerant`: the schema check of a job without --strict (pipeline::LoadOptions::tolerant), for
+// programs written the way other systems write them.
 [[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
-                               bool expect_rendered = true);
+                               bool expect_rendered = true, bool tolerant = false);
 
 // The AP238 AIM programs every checker posts: the project's own (tests/golden/ap238/cases)
 // and, when the corpus is there, its 17 milling programs of p21-aim/ (the two turning ones are

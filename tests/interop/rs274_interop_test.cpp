@@ -155,6 +155,21 @@ TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
   }
 }
 
+// Programs written the way other systems write them (tests/golden/tolerant/cases), posted as
+// a job without --strict posts them.
+TEST(Rs274Interop, LinuxcncTolerantCases) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "tolerant" / "cases";
+  for (const char* name : {"omitted-unread", "abstract-tool", "combined"}) {
+    SCOPED_TRACE(name);
+    const auto o = compare_posted_with_rs274(
+        post_file(cases / (std::string(name) + ".stp"), "linuxcnc", true, true), name, "linuxcnc");
+    EXPECT_GT(o.compared, 0u);
+    std::printf("[ rs274    ] linuxcnc %s: %zu motions compared, max deviation %.6f\n", name,
+                o.compared, o.max_deviation);
+  }
+}
+
 // FANUC and LinuxCNC share the syntax of these programs (N words, R arcs, leading-zero-less
 // numbers, M30) except the O line.
 TEST(Rs274Interop, FanucProfile) {

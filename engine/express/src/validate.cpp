@@ -30,6 +30,44 @@ using p21::ValueKind;
 // the recursion shallow even for a Model built with a larger reader limit.
 constexpr unsigned kMaxValueDepth = 256;
 
+// Deviations that the tolerant check (ValidateOptions::tolerant) reports as one warning per
+// entity and attribute: what the interpreter and the feature generators read, they check again
+// where they read it, and they report an error there when they cannot do without the value.
+bool tolerated(diag::Code code) {
+  return code == diag::Code::ExpRequiredOmitted || code == diag::Code::ExpAbstractInstance ||
+         code == diag::Code::ExpReferenceType;
+}
+
+// One warning standing for every instance with the same deviation of the same entity's
+// attribute: the first instance's diagnostic and how many there were.
+struct Tolerated {
+  std::string key;      // code, entity as written, attribute
+  std::string subject;  // "#3 PERSON.id"
+  diag::Diagnostic first;
+  std::size_t count = 0;
+};
+
+void add_tolerated(std::vector<Tolerated>& into,
+                   std::unordered_map<std::string, std::size_t>& index, Tolerated found) {
+  const auto [at, fresh] = index.try_emplace(found.key, into.size());
+  if (fresh)
+    into.push_back(std::move(found));
+  else
+    into[at->second].count += found.count;
+}
+
+diag::Diagnostic tolerated_warning(const Tolerated& t) {
+  diag::Diagnostic d = t.first;
+  d.severity = diag::Severity::Warning;
+  std::string message;
+  if (t.count > 1) message = "\u00d7" + std::to_string(t.count) + ", first ";
+  message += t.subject + ": " + d.message +
+             " (tolerated; an error follows where machining needs the value; --strict reports "
+             "each instance as an error)";
+  d.message = std::move(message);
+  return d;
+}
+
 bool equals_ignoring_case(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -286,6 +324,8 @@ class Validator {
     std::vector<diag::Diagnostic> diagnostics;
     // The EXP-060s, given once per entity name: which diagnostic, for which keyword.
     std::vector<std::pair<std::size_t, p21::KeywordId>> unknown_entities;
+    // Tolerant check: the tolerated deviations, in the order first found.
+    std::vector<Tolerated> tolerated;
     bool stopped = false;  // more than max_diagnostics
   };
 
@@ -304,7 +344,7 @@ class Validator {
       else
         check_simple(instance);
     }
-    return {std::move(diagnostics_), std::move(unknown_entities_), stopped_};
+    return {std::move(diagnostics_), std::move(unknown_entities_), std::move(tolerated_), stopped_};
   }
 
  private:
@@ -316,7 +356,9 @@ class Validator {
 
   // ---- reporting ----------------------------------------------------------------------------
 
-  [[nodiscard]] bool muted() const { return stopped_; }
+  // Tolerant, the check goes on past the limit to count the tolerated deviations of the whole
+  // file, so that a check in pieces counts what a check in order counts.
+  [[nodiscard]] bool muted() const { return stopped_ && !options_.tolerant; }
 
   // One Where per instance, its path's storage kept: a fresh vector per instance was a
   // malloc/free pair for most of them.
@@ -347,7 +389,37 @@ class Validator {
     return out;
   }
 
+  // A tolerated deviation: counted under its entity and attribute (`attribute` empty for the
+  // entity itself); only the first instance's message is kept.
+  void tolerate(diag::Code code, const Instance& at, std::string_view entity,
+                std::string_view attribute, std::string detail) {
+    Tolerated t;
+    t.key =
+        std::string(diag::info(code).id) + " " + std::string(entity) + "." + std::string(attribute);
+    t.count = 1;
+    const auto fresh = tolerated_index_.find(t.key) == tolerated_index_.end();
+    if (fresh) {
+      t.subject = "#" + std::to_string(at.id) + " " + std::string(entity);
+      if (!attribute.empty()) t.subject += "." + std::string(attribute);
+      if (!lines_) lines_.emplace(model_.text());
+      const auto pos = lines_->at(at.offset);
+      t.first = diag::make(code, pos.line, pos.column, std::move(detail));
+    }
+    add_tolerated(tolerated_, tolerated_index_, std::move(t));
+  }
+
   void report(diag::Code code, const Where& w, const std::string& detail) {
+    if (options_.tolerant && tolerated(code)) {
+      std::string what = detail;
+      if (!w.path.empty()) {
+        what = "element";
+        for (std::size_t i = 0; i < w.path.size(); ++i)
+          what += (i == 0 ? " " : ".") + std::to_string(w.path[i]);
+        what += ": " + detail;
+      }
+      tolerate(code, *w.instance, w.entity, w.attribute, std::move(what));
+      return;
+    }
     if (stopped_) return;
     std::string message = instance_name(*w.instance, w.entity, w.partial_record);
     message += " attribute '";
@@ -785,10 +857,15 @@ class Validator {
     const Entity& e = *info.entity;
     const auto params = model_.params(instance);
     const std::string_view written = model_.type_name(instance);
-    if (e.is_abstract)
-      add(diag::Code::ExpAbstractInstance, instance,
-          instance_name(instance, written, false) + ": " + e.name +
-              " is ABSTRACT; only its subtypes (or a complex instance) can be instantiated");
+    if (e.is_abstract) {
+      const std::string why =
+          e.name + " is ABSTRACT; only its subtypes (or a complex instance) can be instantiated";
+      if (options_.tolerant)
+        tolerate(diag::Code::ExpAbstractInstance, instance, written, {}, why);
+      else
+        add(diag::Code::ExpAbstractInstance, instance,
+            instance_name(instance, written, false) + ": " + why);
+    }
     if (params.size() != e.attributes.size()) {
       std::vector<std::string_view> names;
       for (const auto& a : e.attributes) names.push_back(a.name);
@@ -898,6 +975,8 @@ class Validator {
   Where where_;
   std::vector<diag::Diagnostic> diagnostics_;
   std::vector<std::pair<std::size_t, p21::KeywordId>> unknown_entities_;
+  std::vector<Tolerated> tolerated_;
+  std::unordered_map<std::string, std::size_t> tolerated_index_;  // key → tolerated_
   bool stopped_ = false;
 };
 
@@ -911,7 +990,10 @@ std::vector<diag::Diagnostic> merge(std::vector<Validator::Found> pieces, std::s
   std::vector<diag::Diagnostic> out;
   std::vector<bool> unknown_reported(keywords, false);
   bool stopped = false;
+  std::vector<Tolerated> tolerated;
+  std::unordered_map<std::string, std::size_t> tolerated_index;
   for (auto& piece : pieces) {
+    for (auto& t : piece.tolerated) add_tolerated(tolerated, tolerated_index, std::move(t));
     stopped = stopped || piece.stopped;
     auto unknown = piece.unknown_entities.begin();
     for (std::size_t i = 0; i < piece.diagnostics.size(); ++i) {
@@ -927,6 +1009,7 @@ std::vector<diag::Diagnostic> merge(std::vector<Validator::Found> pieces, std::s
       out.push_back(std::move(piece.diagnostics[i]));
     }
   }
+  for (const auto& t : tolerated) out.push_back(tolerated_warning(t));
   if (stopped)
     out.push_back(diag::make(diag::Code::ExpTooManyProblems, 0, 0,
                              "validation stopped after " + std::to_string(options.max_diagnostics) +

@@ -90,6 +90,7 @@ Program read_model(Input input, const JobContext& context, const ReadOptions& op
   load_options.validate = options.validate;
   load_options.cancel = context.cancel;
   load_options.helpers = context.helpers;
+  load_options.tolerant = !context.strict;
   const express::SchemaRegistry& registry = context.schemas->registry;
   program.loaded = input.arriving != nullptr ? load(*input.arriving, registry, load_options)
                                              : load(std::move(input.bytes), registry, load_options);

@@ -26,6 +26,7 @@ void check(LoadedModel& out, const express::SchemaRegistry& schemas, const LoadO
     validate_options.cancel = options.cancel;
     validate_options.helpers = options.helpers;
     validate_options.plan = &selection.source->check_plan();
+    validate_options.tolerant = options.tolerant;
     auto checked = express::validate(out.model, *out.schema, validate_options);
     out.diagnostics.insert(out.diagnostics.end(), std::make_move_iterator(checked.begin()),
                            std::make_move_iterator(checked.end()));

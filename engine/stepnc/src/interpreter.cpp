@@ -67,6 +67,13 @@ class Interpreter {
       if (diagnostics_[errors_checked_].severity == diag::Severity::Error) stopped_ = true;
     return stopped_;
   }
+  // The schema does not make `attribute` of the instance's entity OPTIONAL.
+  bool required(const Instance& at, std::string_view attribute) const {
+    const express::Entity* entity = geometry_.attributes().entity(at);
+    if (entity == nullptr) return false;
+    const auto index = entity->attribute_index(attribute);
+    return index && !entity->attributes[*index].optional;
+  }
   void note(const Instance& at, std::string message) {
     geometry_.error(diag::Code::StepncNote, at, std::move(message));
   }
@@ -293,6 +300,12 @@ void Interpreter::machine_functions(const Instance* functions) {
   if (functions == nullptr) return;
   const auto flag = [&](std::string_view attribute) -> std::optional<bool> {
     const auto v = geometry_.get(*functions, attribute);
+    if (v && v->is_omitted() && required(*functions, attribute))
+      // A tolerant check lets '$' through where ISO 14649 requires the flag.
+      note(*functions,
+           detail::describe(m_, *functions) + " attribute " + std::string(attribute) +
+               " is '$', which ISO 14649 does not allow: it is left as it was (off at the "
+               "start of the program)");
     if (!v || v->is_omitted()) return std::nullopt;
     const auto l = m_.as_logical(*v);
     if (!l) return std::nullopt;

@@ -319,6 +319,69 @@ TEST(express_validate, ACancelFlagStopsTheCheck) {
   EXPECT_LT(run(program(data), test_schema(), options).size(), 4096u);
 }
 
+// Tolerant (ValidateOptions::tolerant): EXP-059, EXP-062 and EXP-064 are one warning per code,
+// entity (as written) and attribute, at the first instance, with a count; what the interpreter
+// cannot check again (here EXP-061, EXP-063) stays one error per instance.
+TEST(express_validate, TolerantAggregatesWhatIsCheckedAgainDownstream) {
+  const std::string data =
+      "#1=POINT($,(0.));\n"
+      "#2=POINT($,(0.,$));\n"
+      "#3=POINT('p',(0.),3);\n"
+      "#4=ITEM('i');\n"
+      "#5=CIRCLE('c',#6,1.);\n"
+      "#6=CIRCLE('c',#1,1.);\n"
+      "#7=POINT($,('x'));\n"
+      "#8=ITEM('j');";
+  ValidateOptions tolerant;
+  tolerant.tolerant = true;
+  const Strings got = run(program(data), test_schema(), tolerant);
+  EXPECT_EQ(got, (Strings{
+                     "EXP-061@4:1 #3 POINT has 3 parameters; the schema gives point 2 (name, "
+                     "coordinates)",
+                     "EXP-063@8:1 #7 POINT attribute 'coordinates' element 1: expected "
+                     "length_measure (REAL), found the string 'x'",
+                     "EXP-062@2:1 \u00d73, first #1 POINT.name: '$' but the attribute is not "
+                     "OPTIONAL (tolerated; an error follows where machining needs the value; "
+                     "--strict reports each instance as an error)",
+                     "EXP-062@3:1 #2 POINT.coordinates: element 2: '$' but the elements of LIST "
+                     "are not OPTIONAL (tolerated; an error follows where machining needs the "
+                     "value; --strict reports each instance as an error)",
+                     "EXP-059@5:1 \u00d72, first #4 ITEM: item is ABSTRACT; only its subtypes (or "
+                     "a complex instance) can be instantiated (tolerated; an error follows where "
+                     "machining needs the value; --strict reports each instance as an error)",
+                     "EXP-064@6:1 #5 CIRCLE.centre: #6 (CIRCLE) is not a point (nor a subtype of "
+                     "it) (tolerated; an error follows where machining needs the value; --strict "
+                     "reports each instance as an error)",
+                 }))
+      << join(got);
+  p21::ReadResult read = p21::read(program(data));
+  for (const auto& d : validate(read.model, test_schema(), tolerant)) {
+    const bool aggregated = d.code == diag::Code::ExpRequiredOmitted ||
+                            d.code == diag::Code::ExpAbstractInstance ||
+                            d.code == diag::Code::ExpReferenceType;
+    EXPECT_EQ(d.severity, aggregated ? diag::Severity::Warning : diag::Severity::Error)
+        << d.message;
+  }
+  // Strict, the same file gives one error per instance, as before the tolerant check existed.
+  const Strings strict = run(program(data), test_schema());
+  EXPECT_EQ(strict.size(), 9u) << join(strict);
+}
+
+// However many instances deviate, the tolerant check says so once per entity and attribute,
+// and the limit on diagnostics is left for the errors.
+TEST(express_validate, TolerantWarningsDoNotGrowWithTheFile) {
+  std::string data;
+  for (int i = 1; i <= 5000; ++i) data += "#" + std::to_string(i) + "=POINT($,(0.));\n";
+  data += "#9999=POINT('p',(0.),3);\n";
+  ValidateOptions options;
+  options.tolerant = true;
+  options.max_diagnostics = 1;
+  const Strings got = run(program(data), test_schema(), options);
+  ASSERT_EQ(got.size(), 2u) << join(got);
+  EXPECT_EQ(got[0].substr(0, 7), "EXP-061");
+  EXPECT_NE(got[1].find("\u00d75000, first #1 POINT.name"), std::string::npos) << got[1];
+}
+
 // A check in pieces (ValidateOptions::helpers) says what one check in order says: an unknown
 // entity is reported once, at its first instance, whichever piece that falls in; the limit
 // counts over all pieces.
@@ -340,24 +403,26 @@ TEST(express_validate, PiecesGiveTheSameDiagnostics) {
   const parallel::ThreadGroup threads(3);
   std::atomic<int> offered{0};  // pieces the check offered to `never`: it did split
   const parallel::Helpers never{[&](const parallel::Task&) { ++offered; }, 3};
-  for (const std::size_t limit : {std::size_t{1000}, std::size_t{1}, std::size_t{2}, std::size_t{5},
-                                  std::size_t{30}, std::size_t{47}}) {
-    ValidateOptions in_order;
-    in_order.max_diagnostics = limit;
-    const Strings expected = run(program(data), test_schema(), in_order);
-    ASSERT_FALSE(expected.empty());
-    for (const auto* helpers : {&threads.helpers(), &never})
-      for (const std::size_t piece : {std::size_t{1}, std::size_t{60}, std::size_t{150}}) {
-        SCOPED_TRACE("limit " + std::to_string(limit) + ", pieces of " + std::to_string(piece));
-        ValidateOptions in_pieces = in_order;
-        in_pieces.helpers = helpers;
-        in_pieces.min_piece_instances = piece;
-        EXPECT_EQ(join(run(program(data), test_schema(), in_pieces)), join(expected));
-      }
-  }
+  for (const bool tolerant : {false, true})
+    for (const std::size_t limit : {std::size_t{1000}, std::size_t{1}, std::size_t{2},
+                                    std::size_t{5}, std::size_t{30}, std::size_t{47}}) {
+      ValidateOptions in_order;
+      in_order.max_diagnostics = limit;
+      in_order.tolerant = tolerant;
+      const Strings expected = run(program(data), test_schema(), in_order);
+      ASSERT_FALSE(expected.empty());
+      for (const auto* helpers : {&threads.helpers(), &never})
+        for (const std::size_t piece : {std::size_t{1}, std::size_t{60}, std::size_t{150}}) {
+          SCOPED_TRACE("limit " + std::to_string(limit) + ", pieces of " + std::to_string(piece));
+          ValidateOptions in_pieces = in_order;
+          in_pieces.helpers = helpers;
+          in_pieces.min_piece_instances = piece;
+          EXPECT_EQ(join(run(program(data), test_schema(), in_pieces)), join(expected));
+        }
+    }
   // Per limit: pieces of 1 and of 60 instances make 4 pieces (3 offered), of 150 two (1); each
   // check runs twice, without and with a plan (validated()).
-  EXPECT_EQ(offered.load(), 2 * 6 * (3 + 3 + 1));
+  EXPECT_EQ(offered.load(), 2 * 2 * 6 * (3 + 3 + 1));
 }
 
 TEST(express_validate, DeepValuesAreBoundedByTheReader) {

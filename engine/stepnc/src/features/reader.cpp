@@ -59,9 +59,23 @@ const Instance* Reader::ref(const Instance& owner, std::string_view attribute,
   return geometry_.instance(geometry_.get(owner, attribute), type, &owner, attribute);
 }
 
+// A tolerant check (express::ValidateOptions::tolerant) lets '$' through where the schema
+// requires a value; a reader that would otherwise take its default for it says so, as an error.
+bool Reader::required_omitted(const Instance& owner, std::string_view attribute,
+                              const std::optional<p21::Value>& value) {
+  if (!value || !value->is_omitted()) return false;
+  const express::Entity* entity = geometry_.attributes().entity(owner);
+  if (entity == nullptr) return false;
+  const auto index = entity->attribute_index(attribute);
+  if (!index || entity->attributes[*index].optional) return false;
+  return !report_.bad(subject(owner), name(owner) + " attribute " + std::string(attribute) +
+                                          " is '$', but ISO 14649 requires it and the toolpath "
+                                          "depends on it: nothing is assumed in its place");
+}
+
 std::optional<double> Reader::number(const Instance& owner, std::string_view attribute) {
   auto v = geometry_.get(owner, attribute);
-  if (!v || v->is_omitted()) return std::nullopt;
+  if (required_omitted(owner, attribute, v) || !v || v->is_omitted()) return std::nullopt;
   if (v->kind() == p21::ValueKind::Typed) v = model_.typed_child(*v);
   if (!v->is_number()) {
     report_.bad(subject(owner),
@@ -102,7 +116,7 @@ std::optional<Toleranced> Reader::toleranced(const Instance& owner, std::string_
 
 std::optional<bool> Reader::boolean(const Instance& owner, std::string_view attribute) {
   const auto v = geometry_.get(owner, attribute);
-  if (!v || v->is_omitted()) return std::nullopt;
+  if (required_omitted(owner, attribute, v) || !v || v->is_omitted()) return std::nullopt;
   const auto logical = model_.as_logical(*v);
   if (!logical || *logical == p21::Logical::Unknown) return std::nullopt;
   return *logical == p21::Logical::True;
@@ -110,7 +124,8 @@ std::optional<bool> Reader::boolean(const Instance& owner, std::string_view attr
 
 std::string_view Reader::enumeration(const Instance& owner, std::string_view attribute) {
   const auto v = geometry_.get(owner, attribute);
-  if (!v || v->kind() != p21::ValueKind::Enumeration) return {};
+  if (required_omitted(owner, attribute, v) || !v || v->kind() != p21::ValueKind::Enumeration)
+    return {};
   return model_.enumeration(*v);
 }
 

@@ -88,6 +88,11 @@ class Reader {
   Operation read_operation();
 
  private:
+  // True, after reporting, when `value` is '$' for an attribute that the schema does not make
+  // OPTIONAL (a tolerant check lets that through).
+  bool required_omitted(const Instance& owner, std::string_view attribute,
+                        const std::optional<p21::Value>& value);
+
   detail::GeometryReader& geometry_;
   const p21::Model& model_;
   const Request& request_;

@@ -27,6 +27,9 @@
 // other records' entities applied; bounds that are attribute expressions are not evaluated there.
 // Instances of undeclared entities, ed.3 references, constants and value instances are skipped.
 //
+// With ValidateOptions::tolerant, EXP-059, EXP-062 and EXP-064 are warnings aggregated per
+// entity and attribute instead.
+//
 // Cost: one pass over the instances and their values; types, SELECT closures and enumeration
 // items are resolved once per declaration, for the pass or, with a CheckPlan, for good.
 
@@ -79,6 +82,15 @@ struct ValidateOptions {
   // The plan for the schema set checked against (ignored when it was made for another set);
   // null: the check learns the types it meets.
   const CheckPlan* plan = nullptr;
+  // Programs from other systems leave out what machining never reads (a person's id, a
+  // setup's instructions) and use supertypes where ISO 14649 names subtypes. Tolerant, the
+  // deviations the interpreter and the feature generators check again where they read a value
+  // (EXP-059 an ABSTRACT entity instantiated, EXP-062 '$' where the attribute is not OPTIONAL,
+  // EXP-064 a reference to an entity of another type) are warnings, one per code, entity and
+  // attribute with a count and the first instance, after the other diagnostics and outside
+  // max_diagnostics (there are at most as many as the schema has attributes). False: one error
+  // per instance (`--strict`). docs/interoperability.md, "Tolerant and strict".
+  bool tolerant = false;
 };
 
 [[nodiscard]] std::vector<diag::Diagnostic> validate(const p21::Model& model,

@@ -28,6 +28,9 @@ struct LoadOptions {
   // Threads lent to read and check a large file in pieces (null: one thread); the result is the
   // same either way.
   const parallel::Helpers* helpers = nullptr;
+  // The schema check reports what the interpreter checks again as aggregated warnings
+  // (express::ValidateOptions::tolerant); a job sets it unless JobContext::strict.
+  bool tolerant = false;
 };
 
 struct LoadedModel {

@@ -1,0 +1,127 @@
+// Programs written the way other systems write them (tests/golden/tolerant/cases, one kind per
+// case and one combining them; docs/interoperability.md): through the jobs every verb and route
+// runs (pipeline::trace, verify, post), tolerant (the default) and strict (`--strict`).
+// Per case: <case>.trace the tolerant trace and its diagnostics, <case>.strict the strict
+// diagnostics, <case>.verify the tolerant verify report, <case>.nc the tolerant linuxcnc post
+// (or its diagnostics when the post is refused). NCPOST_UPDATE_GOLDEN=1 rewrites them.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "golden.hpp"
+#include "ncpost/pipeline/jobs.hpp"
+#include "ncpost/pipeline/load.hpp"
+#include "ncpost/pipeline/post.hpp"
+#include "ncpost/profile/profile.hpp"
+#include "ncpost/xslt/xslt.hpp"
+
+namespace ncpost::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path& cases() {
+  static const fs::path dir = test::source_dir() / "tests/golden/tolerant/cases";
+  return dir;
+}
+
+const Schemas& schemas() {
+  static const Schemas s = load_schemas();
+  return s;
+}
+
+JobContext context(bool strict) {
+  JobContext c;
+  c.schemas = &schemas();
+  c.strict = strict;
+  return c;
+}
+
+Input input(const fs::path& file) {
+  Input in;
+  in.name = file.filename().string();
+  in.bytes = test::read_file(file);
+  return in;
+}
+
+std::string lines(const std::vector<diag::FileDiagnostic>& diagnostics) {
+  std::string out;
+  for (const auto& d : diagnostics) out += diag::format(d) + "\n";
+  return out;
+}
+
+std::string traced(const fs::path& file, bool strict) {
+  std::string text;
+  const JobResult r = trace(input(file), context(strict), TraceFormat::Text,
+                            [&](std::string_view piece) { text += piece; });
+  return text + lines(r.diagnostics);
+}
+
+std::string posted(const fs::path& file) {
+  xslt::initialise();
+  static profile::ProfileStore store(test::source_dir() / "stylesheets");
+  std::vector<diag::FileDiagnostic> diagnostics;
+  const auto linuxcnc = store.load("linuxcnc", diagnostics);
+  EXPECT_TRUE(linuxcnc) << lines(diagnostics);
+  if (!linuxcnc) return {};
+  std::string text;
+  const PostJobResult r =
+      post(input(file), context(false), *linuxcnc, [&](std::string_view piece) { text += piece; });
+  return text + lines(r.diagnostics());
+}
+
+std::vector<std::string> case_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(cases()))
+    if (entry.path().extension() == ".stp") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+class TolerantGolden : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(TolerantGolden, TraceVerifyAndPostMatchTheirFiles) {
+  const fs::path file = cases() / (GetParam() + ".stp");
+  const std::string tolerant = traced(file, false);
+  const std::string strict = traced(file, true);
+  test::expect_golden(tolerant, cases() / (GetParam() + ".trace"));
+  // Strict, every case is refused at the check, before anything is traced.
+  test::expect_golden(strict, cases() / (GetParam() + ".strict"));
+  EXPECT_NE(strict.find(": error: EXP-0"), std::string::npos) << strict;
+  EXPECT_EQ(strict.find("PROJECT_START"), std::string::npos) << strict;
+  const VerifyOutcome verified = verify(input(file), context(false), {});
+  test::expect_golden(verify_report_text(verified, GetParam() + ".stp"),
+                      cases() / (GetParam() + ".verify"));
+  test::expect_golden(posted(file), cases() / (GetParam() + ".nc"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, TolerantGolden, ::testing::ValuesIn(case_names()));
+
+// `--strict` is today's check: on every program of the golden suites, a strict job reports what
+// the schema check reported before the tolerant mode existed (pipeline::load's default, whose
+// diagnostics those suites freeze), word for word.
+TEST(TolerantStrict, StrictIsTheCheckEveryGoldenCaseFroze) {
+  static const express::SchemaRegistry registry;
+  ReadOptions options;
+  options.name_what_is_not_a_program = false;
+  std::size_t files = 0;
+  for (const char* suite : {"trace/cases", "features/cases", "verify/cases", "tolerant/cases"}) {
+    for (const auto& entry : fs::directory_iterator(test::source_dir() / "tests/golden" / suite)) {
+      if (entry.path().extension() != ".stp") continue;
+      SCOPED_TRACE(entry.path().string());
+      ++files;
+      const Program program = read(input(entry.path()), context(true), options);
+      const LoadedModel before = load(test::read_file(entry.path()), registry);
+      EXPECT_EQ(lines(program.diagnostics),
+                lines(diag::with_file(before.diagnostics, entry.path().filename().string())));
+    }
+  }
+  EXPECT_GT(files, 40u);
+}
+
+}  // namespace
+}  // namespace ncpost::pipeline
