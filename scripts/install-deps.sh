@@ -14,6 +14,7 @@ build_packages=(
 test_packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3 xsltproc clang-format
+  nginx                                       # the load balancer of tests/deploy (scale-out)
 )
 # rs274 (LinuxCNC's stand-alone interpreter) is used by tests/interop; recommends would pull in X11.
 interop_packages=(linuxcnc-uspace)
