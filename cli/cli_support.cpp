@@ -125,6 +125,12 @@ void write_stdout(std::string_view piece) {
   std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
 }
 
+std::unique_ptr<pipeline::Profiles> open_profiles(const Options& options) {
+  const auto directory = options.value("profiles");
+  return directory ? pipeline::Profiles::read_only(*directory)
+                   : std::make_unique<pipeline::Profiles>();
+}
+
 std::unique_ptr<CliJob> prepare_job(const Options& options) {
   auto job = std::make_unique<CliJob>();
   if (const auto directory = options.value("schemas"))
@@ -138,6 +144,12 @@ std::unique_ptr<CliJob> prepare_job(const Options& options) {
     print_diagnostics(tools.diagnostics);
     if (!tools.table) return nullptr;
     job->context.tools = std::move(tools.table);
+  }
+  if (auto dialect = options.value("dialect") ? options.value("dialect") : options.value("from")) {
+    const pipeline::ProfileLookup lookup = open_profiles(options)->find(*dialect);
+    print_diagnostics(lookup.diagnostics);
+    if (!lookup.profile) return nullptr;
+    job->context.gcode_dialect = lookup.profile;
   }
   auto input = read_input(options.positionals().front());
   if (!input) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ncpost/pipeline/job.hpp"
+#include "ncpost/pipeline/profiles.hpp"
 #include "verbs.hpp"
 
 namespace ncpost::cli {
@@ -31,6 +32,10 @@ struct VerbSpec {
 inline constexpr OptionSpec kSchemasOption{"schemas", "DIR"};
 inline constexpr OptionSpec kStrictOption{"strict", ""};
 inline constexpr OptionSpec kToolsOption{"tools", "TABLE"};
+// G-code input is read with a profile's dialect.json (`trace --dialect`, `post --from`).
+inline constexpr OptionSpec kDialectOption{"dialect", "PROFILE"};
+inline constexpr OptionSpec kFromOption{"from", "PROFILE"};
+inline constexpr OptionSpec kProfilesOption{"profiles", "DIR"};
 
 // `--name value`, `--name=value`, flags `--name`, and positionals; `-` alone is a positional.
 class Options {
@@ -82,7 +87,10 @@ struct CliJob {
   pipeline::JobContext context;
   pipeline::Input input;
 };
-// Null after printing why the job cannot start (a tool table or FILE that cannot be read).
+// The profiles of --profiles DIR, or the built-in ones.
+[[nodiscard]] std::unique_ptr<pipeline::Profiles> open_profiles(const Options& options);
+// Null after printing why the job cannot start (a tool table or FILE that cannot be read, a
+// G-code dialect profile given by --dialect or --from that does not load).
 [[nodiscard]] std::unique_ptr<CliJob> prepare_job(const Options& options);
 
 }  // namespace ncpost::cli

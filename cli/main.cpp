@@ -24,8 +24,10 @@ verbs:
   profiles [--profiles DIR]               list machine profiles
   verify [--format text|json] [--tolerance MM] [--grid MM] FILE
                                           check the motions against the features they machine
-  nc parse --dialect D FILE               read G-code (not implemented yet)
-  nc translate --from D --to PROFILE FILE translate G-code (not implemented yet)
+  nc parse --dialect PROFILE [--format text|xml] FILE
+                                          G-code read with a profile's dialect
+  nc translate --from PROFILE --to PROFILE FILE
+                                          G-code of one machine as another's
 
 Every verb that reads a program also takes --schemas DIR, --strict and, where it interprets,
 --tools TABLE; `ncpost VERB --help` shows a verb's own usage. FILE may be '-' for standard
@@ -37,11 +39,6 @@ struct Verb {
   int (*run)(Args);
 };
 
-int not_implemented(std::string_view what, std::string_view issue) {
-  std::cerr << "ncpost: error: NCPOST-001: '" << what << "' is not implemented yet (" << issue
-            << ")\n";
-  return ncpost::cli::kExitUsage;
-}
 
 }  // namespace
 
@@ -62,14 +59,13 @@ int main(int argc, char** argv) {
       Verb{"inspect", ncpost::cli::run_inspect}, Verb{"convert", ncpost::cli::run_convert},
       Verb{"schema", ncpost::cli::run_schema},   Verb{"trace", ncpost::cli::run_trace},
       Verb{"post", ncpost::cli::run_post},       Verb{"profiles", ncpost::cli::run_profiles},
-      Verb{"verify", ncpost::cli::run_verify},
+      Verb{"verify", ncpost::cli::run_verify},   Verb{"nc", ncpost::cli::run_nc},
   };
   const std::string_view verb = args[0];
   const Args rest = Args(args).subspan(1);
   for (const auto& v : kVerbs)
     if (v.name == verb) return v.run(rest);
 
-  if (verb == "nc") return not_implemented("ncpost nc", "G-code reader");
   std::cerr << "ncpost: unknown verb '" << verb << "'\n" << kUsage;
   return ncpost::cli::kExitUsage;
 }

@@ -14,9 +14,18 @@ namespace ncpost::cli {
 int run_post(Args args) {
   static const VerbSpec spec{
       "post",
-      "post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] [--strict] FILE|-\n"
-      "  Controller code for one machine profile (see `ncpost profiles`).\n",
-      {{"profile", "ID"}, {"profiles", "DIR"}, kToolsOption, kSchemasOption, kStrictOption}};
+      "post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] [--strict] [--no-checks]\n"
+      "     FILE|-\n"
+      "  Controller code for one machine profile (see `ncpost profiles`). --no-checks: skip the\n"
+      "  profile's pre-post checks of CL input (docs/cls.md). --from PROFILE: G-code input is read\n"
+      "  with that profile's dialect.json (as `ncpost nc translate`).\n",
+      {{"profile", "ID"},
+       {"profiles", "DIR"},
+       kToolsOption,
+       kSchemasOption,
+       kStrictOption,
+       kFromOption,
+       {"no-checks", ""}}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;
   const auto id = options.value("profile");
@@ -31,11 +40,15 @@ int run_post(Args args) {
 
   auto job = prepare_job(options);
   if (!job) return kExitRejected;
+  pipeline::PostOptions post_options;
+  post_options.shop_checks = !options.flag("no-checks");
   const pipeline::PostJobResult result = pipeline::post(
-      std::move(job->input), job->context, *lookup.profile, [](std::string_view piece) {
+      std::move(job->input), job->context, *lookup.profile,
+      [](std::string_view piece) {
         write_stdout(piece);
         std::cout.flush();
-      });
+      },
+      post_options);
   std::cout.flush();
   print_diagnostics(result.diagnostics());
   return result.ok() ? kExitOk : kExitRejected;

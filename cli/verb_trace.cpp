@@ -12,10 +12,11 @@ namespace ncpost::cli {
 int run_trace(Args args) {
   static const VerbSpec spec{
       "trace",
-      "trace [--format text|xml] [--tools TABLE] [--schemas DIR] [--strict] FILE|-\n"
+      "trace [--format text|xml] [--tools TABLE] [--schemas DIR] [--strict] [--dialect PROFILE]\n"
+      "      FILE|-\n"
       "  The canonical machining program: one call per line (text), or the XML form that\n"
-      "  stylesheets read (xml).\n",
-      {{"format", "text|xml"}, kToolsOption, kSchemasOption, kStrictOption}};
+      "  stylesheets read (xml). G-code is read with PROFILE's dialect.json.\n",
+      {{"format", "text|xml"}, kToolsOption, kSchemasOption, kStrictOption, kDialectOption}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;
   const std::string format = options.value("format").value_or("text");

@@ -20,5 +20,6 @@ int run_trace(Args args);
 int run_post(Args args);
 int run_profiles(Args args);
 int run_verify(Args args);
+int run_nc(Args args);
 
 }  // namespace ncpost::cli

@@ -10,10 +10,14 @@ build_packages=(
   libxml2-dev libxslt1-dev                    # libxml2, libxslt and libexslt
   nlohmann-json3-dev libspdlog-dev libfmt-dev
   libpolyclipping-dev                         # Clipper 1: offsets of general feature profiles
+  libxxhash-dev                               # XXH64 of the server's ETags
+  nettle-dev                                  # SHA-256 of profile versions
+  libre2-dev                                  # RE2: the CL checks' tool- and operation-name patterns
 )
 test_packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3 xsltproc clang-format
+  python3-jsonschema                          # the profile schema checks (profile, cls checks)
   nginx                                       # the load balancer of tests/deploy (scale-out)
 )
 # rs274 (LinuxCNC's stand-alone interpreter) is used by tests/interop; recommends would pull in X11.

@@ -8,7 +8,9 @@ bash scripts/install-deps.sh all
 jobs=$(nproc)
 
 # Tests are switched on explicitly: scripts/start.sh configures the same build/ without them.
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNCPOST_BUILD_TESTS=ON -DNCPOST_BUILD_BENCH=ON
+# Without link-time optimisation: each of the test programs would repeat it (CMakeLists.txt).
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNCPOST_BUILD_TESTS=ON -DNCPOST_BUILD_BENCH=ON \
+  -DNCPOST_LTO=OFF
 cmake --build build -j"$jobs"
 (cd build && ctest --output-on-failure --no-tests=error -j"$jobs")
 

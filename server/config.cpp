@@ -6,6 +6,8 @@
 #include <thread>
 #include <vector>
 
+#include "memory_budget.hpp"
+
 namespace ncpost::server {
 namespace {
 
@@ -29,6 +31,9 @@ constexpr std::string_view kUsage = R"(usage: ncpostd --listen HOST:PORT [option
   --web-root DIR            the front end served at / (default: DATA/web; DATA: docs/deploy.md)
   --openapi FILE            the file served at /openapi.yaml (default: DATA/openapi.yaml)
   --access-log on|off       one JSON line per request on stderr (default on)
+  --max-inflight BYTES      memory budget: bytes that admitted requests may hold (uploads, and
+                            2.3x the upload for a model); 503 beyond (default: half the memory)
+  --inflight-reserve BYTES  the part of the budget kept for small requests (default: an eighth)
 )";
 
 template <typename T>
@@ -119,6 +124,14 @@ ParsedArgs parse_args(std::span<const std::string_view> args) {
       if (!parse_seconds(value, config.write_timeout)) return bad();
     } else if (name == "shutdown-timeout") {
       if (!parse_seconds(value, config.shutdown_timeout)) return bad();
+    } else if (name == "max-inflight") {
+      std::uint64_t bytes = 0;
+      if (!parse_number(value, bytes) || bytes < (std::uint64_t{1} << 20)) return bad();
+      config.max_inflight = bytes;
+    } else if (name == "inflight-reserve") {
+      std::uint64_t bytes = 0;
+      if (!parse_number(value, bytes)) return bad();
+      config.inflight_reserve = bytes;
     } else if (name == "access-log") {
       if (value != "on" && value != "off") return bad();
       config.access_log = value == "on";
@@ -127,8 +140,19 @@ ParsedArgs parse_args(std::span<const std::string_view> args) {
     }
   }
   if (!listen_given) return fail("--listen HOST:PORT is required");
+  if (config.max_inflight && config.inflight_reserve &&
+      *config.inflight_reserve >= *config.max_inflight)
+    return fail("--inflight-reserve must be smaller than --max-inflight");
   result.config = std::move(config);
   return result;
+}
+
+Config resolve_memory(Config config) {
+  if (!config.max_inflight) config.max_inflight = default_max_inflight(machine_memory());
+  if (!config.inflight_reserve)
+    config.inflight_reserve = default_inflight_reserve(*config.max_inflight);
+  config.inflight_reserve = std::min(*config.inflight_reserve, *config.max_inflight - 1);
+  return config;
 }
 
 Config resolve_threads(Config config) {

@@ -39,6 +39,11 @@ struct Config {
   // SIGTERM: in-flight requests get this long to finish before they are cut.
   std::chrono::milliseconds shutdown_timeout{std::chrono::seconds(30)};
   bool access_log = true;
+  // The memory budget (docs/server.md, "Memory budget"): what admitted requests may hold in
+  // bytes; none given: half the machine's (or the cgroup's) memory, read at start.
+  std::optional<std::uint64_t> max_inflight;
+  // The top of the budget kept for small requests; none given: an eighth of the budget.
+  std::optional<std::uint64_t> inflight_reserve;
 };
 
 struct ParsedArgs {
@@ -53,5 +58,7 @@ struct ParsedArgs {
 
 // Resolves the 0 ("from the core count") thread settings.
 [[nodiscard]] Config resolve_threads(Config config);
+// Resolves the memory budget's defaults from the machine (memory_budget.hpp).
+[[nodiscard]] Config resolve_memory(Config config);
 
 }  // namespace ncpost::server

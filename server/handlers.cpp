@@ -153,18 +153,38 @@ std::string timing_ms(std::chrono::nanoseconds d) {
 
 // The context of a job route's pipeline call: the server's schemas and worker pool, the
 // request's cancel flag, and `strict=true`. Nullopt after a 400 for a malformed `strict`.
+// A true/false query parameter: its value (`otherwise` when absent), or nullopt after a 400.
+std::optional<bool> bool_query(const Request& request, std::string_view name, bool otherwise,
+                               Exchange& exchange) {
+  const auto value = query_param(request.target(), name);
+  if (!value) return otherwise;
+  if (*value != "true" && *value != "false") {
+    exchange.respond(
+        bad_request("the query parameter '" + std::string(name) + "' must be true or false"));
+    return std::nullopt;
+  }
+  return *value == "true";
+}
+
+pipeline::ProfileLookup find_profile_or_respond(Services& services, Exchange& exchange,
+                                                std::string_view id);
+
 std::optional<pipeline::JobContext> job_context(const Request& request, Services& services,
                                                 Exchange& exchange) {
   pipeline::JobContext context;
   context.schemas = services.schemas;
   context.cancel = exchange.cancel_flag();
   context.helpers = &services.helpers;
-  const auto strict = query_param(request.target(), "strict");
-  if (strict && *strict != "true" && *strict != "false") {
-    exchange.respond(bad_request("the query parameter 'strict' must be true or false"));
-    return std::nullopt;
+  const auto strict = bool_query(request, "strict", false, exchange);
+  if (!strict) return std::nullopt;
+  context.strict = *strict;
+  // from= (or dialect=): the profile whose dialect.json reads a G-code upload (docs/gcode.md).
+  auto dialect = query_param(request.target(), "from");
+  if (!dialect) dialect = query_param(request.target(), "dialect");
+  if (dialect) {
+    context.gcode_dialect = find_profile_or_respond(services, exchange, *dialect).profile;
+    if (!context.gcode_dialect) return std::nullopt;
   }
-  context.strict = strict == "true";
   return context;
 }
 
@@ -196,13 +216,16 @@ void handle_healthz(Request&, Services&, Exchange& exchange) {
 void handle_readyz(Request&, Services& services, Exchange& exchange) {
   const auto profiles = services.profiles->list().profiles;
   const bool saturated = services.saturated && services.saturated();
+  const bool memory = services.memory_exhausted && services.memory_exhausted();
+  const bool ready = !profiles.empty() && !saturated && !memory;
   json body;
-  body["status"] = (!profiles.empty() && !saturated) ? "ready" : "not ready";
+  body["status"] = ready ? "ready" : "not ready";
   body["profiles"] = profiles.size();
   body["queue_saturated"] = saturated;
-  Response r = json_response(!profiles.empty() && !saturated ? 200 : 503, body);
+  body["memory_exhausted"] = memory;
+  Response r = json_response(ready ? 200 : 503, body);
   r.set(http::field::cache_control, "no-store");
-  if (saturated) r.set(http::field::retry_after, "1");
+  if (saturated || memory) r.set(http::field::retry_after, "1");
   exchange.respond(std::move(r));
 }
 
@@ -236,16 +259,6 @@ void handle_index(Request&, Services& services, Exchange& exchange) {
   r.set("Content-Security-Policy",
         "default-src 'self'; script-src 'unsafe-inline'; style-src 'unsafe-inline'");
   exchange.respond(std::move(r));
-}
-
-void handle_not_implemented(Request& request, Services&, Exchange& exchange) {
-  const std::string what = std::string(request.target().substr(0, request.target().find('?')));
-  const std::vector<diag::FileDiagnostic> one = {
-      {"request", diag::make(diag::Code::NotImplemented, 0, 0,
-                             "'" + what + "' is not implemented yet (the G-code reader)")}};
-  exchange.respond(problem(501, "NCPOST-001", "Not implemented",
-                           what + " needs the G-code reader, which the engine does not have yet",
-                           one));
 }
 
 void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
@@ -418,11 +431,12 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
 // blocks to the workingsteps they came from (the browser front end's view).
 void post_json(Services& services, Exchange& exchange, pipeline::Input input,
                const pipeline::JobContext& context, const profile::LoadedProfile& profile,
-               const std::string& filename) {
+               const std::string& filename, bool shop_checks) {
   std::string text;
   std::vector<pipeline::WorkingstepMark> marks;
   pipeline::PostOptions options;
   options.workingstep_marks = &marks;
+  options.shop_checks = shop_checks;
   const pipeline::PostJobResult result = pipeline::post(
       std::move(input), context, profile, [&text](std::string_view piece) { text.append(piece); },
       options);
@@ -468,6 +482,9 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   if (!loaded_profile) return;
   const auto context = job_context(request, services, exchange);
   if (!context) return;
+  // checks=false: without the profile's pre-post checks of CL input (docs/cls.md).
+  const auto shop_checks = bool_query(request, "checks", true, exchange);
+  if (!shop_checks) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   // The same input, profile version and engine give the same program. A large upload was
@@ -475,7 +492,9 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   const std::uint64_t input_hash =
       upload->streamed ? upload->streamed->hash() : body_hash(upload->bytes);
   const std::uint64_t context_hash = body_hash(
-      loaded_profile->version + "/" + services.engine_version + (context->strict ? "/strict" : ""));
+      loaded_profile->version + "/" + services.engine_version + (context->strict ? "/strict" : "") +
+      (*shop_checks ? "" : "/no-checks") +
+      (context->gcode_dialect ? "/from:" + context->gcode_dialect->version : ""));
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
   if (request[http::field::if_none_match] == etag && !as_json) {
@@ -486,7 +505,8 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   }
   const std::string filename = file_stem(upload->name) + loaded_profile->profile.extension;
   if (as_json) {
-    post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename);
+    post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename,
+              *shop_checks);
     return;
   }
 
@@ -502,6 +522,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   bool begun = false;
   bool alive = true;
   pipeline::PostOptions options;
+  options.shop_checks = *shop_checks;
   // One thread per job: --workers bounds the threads doing CPU work, which a render thread of
   // the job's own would not respect (docs/architecture.md, "Two threads in a post").
   options.render_thread_min_instances = 0;
@@ -664,6 +685,61 @@ void handle_trace(Request& request, Services& services, Exchange& exchange) {
   }
   exchange.respond(
       text_response(format == "text" ? "text/plain; charset=utf-8" : "application/xml", text));
+}
+
+// G-code read with ?dialect=PROFILE: the canonical program as text (as a trace), or the XML
+// intermediate form (format=xml) with its <error> elements; a program with errors is still
+// answered in XML (that is what the form is for), with their count in Ncpost-Errors.
+void handle_nc_parse(Request& request, Services& services, Exchange& exchange) {
+  if (!query_param(request.target(), "dialect")) {
+    exchange.respond(bad_request(
+        "the query parameter 'dialect' is required (POST /v1/nc/parse?dialect=PROFILE)"));
+    return;
+  }
+  const std::string format = query_param(request.target(), "format").value_or("text");
+  if (format == "text") {
+    handle_trace(request, services, exchange);
+    return;
+  }
+  if (format != "xml") {
+    exchange.respond(bad_request("the query parameter 'format' must be text or xml"));
+    return;
+  }
+  const auto context = job_context(request, services, exchange);
+  if (!context) return;
+  auto upload = take_upload_or_respond(request, exchange);
+  if (!upload) return;
+  std::string text;
+  const pipeline::JobResult result = pipeline::gcode_xml(
+      job_input(*upload), *context, [&text](std::string_view piece) { text.append(piece); });
+  record_read(*services.metrics, result);
+  if (stop_if_cancelled(exchange)) return;
+  if (!result.input_ok || text.empty()) {
+    exchange.respond(input_rejected(result.diagnostics));
+    return;
+  }
+  Response r = text_response("application/xml", text);
+  const auto errors = std::count_if(result.diagnostics.begin(), result.diagnostics.end(),
+                                    [](const diag::FileDiagnostic& d) {
+                                      return d.diagnostic.severity == diag::Severity::Error;
+                                    });
+  r.set("Ncpost-Errors", std::to_string(errors));
+  exchange.respond(std::move(r));
+}
+
+// G-code of one machine (?from=PROFILE, read with its dialect.json) posted for another
+// (?to=PROFILE): exactly a post of the upload with profile=to.
+void handle_nc_translate(Request& request, Services& services, Exchange& exchange) {
+  const auto to = query_param(request.target(), "to");
+  if (!query_param(request.target(), "from") || !to || to->empty()) {
+    exchange.respond(bad_request("the query parameters 'from' and 'to' are required "
+                                 "(POST /v1/nc/translate?from=PROFILE&to=PROFILE)"));
+    return;
+  }
+  const std::string_view target = request.target();
+  const auto question = target.find('?');
+  request.target("/v1/posts?profile=" + *to + "&" + std::string(target.substr(question + 1)));
+  handle_post(request, services, exchange);
 }
 
 void handle_verification(Request& request, Services& services, Exchange& exchange) {
@@ -850,10 +926,9 @@ const std::vector<Route>& routes() {
       {http::verb::post, "/v1/verifications", "POST /v1/verifications", Where::Worker,
        handle_verification, true},
       {http::verb::post, "/v1/schemas", "POST /v1/schemas", Where::Worker, handle_schema},
-      {http::verb::post, "/v1/nc/parse", "POST /v1/nc/parse", Where::Inline,
-       handle_not_implemented},
-      {http::verb::post, "/v1/nc/translate", "POST /v1/nc/translate", Where::Inline,
-       handle_not_implemented},
+      {http::verb::post, "/v1/nc/parse", "POST /v1/nc/parse", Where::Worker, handle_nc_parse, true},
+      {http::verb::post, "/v1/nc/translate", "POST /v1/nc/translate", Where::Worker,
+       handle_nc_translate, true},
       {http::verb::get, "/v1/profiles", "GET /v1/profiles", Where::Inline, handle_profiles_list},
       // Loading may compile a stylesheet, and PUT always does: worker work.
       {http::verb::get, "/v1/profiles/{id}", "GET /v1/profiles/{id}", Where::Worker,
@@ -890,6 +965,7 @@ RouteMatch match_route(http::verb method, std::string_view target) {
       matches = path == pattern;
     }
     if (!matches) continue;
+    result.pattern = route.pattern;
     // HEAD is answered as GET by the session.
     if (route.method == method || (method == http::verb::head && route.method == http::verb::get)) {
       result.route = &route;
@@ -898,6 +974,7 @@ RouteMatch match_route(http::verb method, std::string_view target) {
     }
     if (!allow.empty()) allow += ", ";
     allow += std::string(http::to_string(route.method));
+    if (route.method == http::verb::get) allow += ", HEAD";
   }
   result.status = allow.empty() ? 404 : 405;
   result.allow = std::move(allow);

@@ -41,6 +41,8 @@ struct Services {
   std::filesystem::path web_root;
   std::filesystem::path openapi_file;
   std::function<bool()> saturated;  // the job queue is full (readyz)
+  // Only the memory budget's reserve is left (readyz): large requests are refused.
+  std::function<bool()> memory_exhausted;
   std::string engine_version;
   // The worker pool lent to a job for reading and checking a large upload in pieces: a piece
   // waits behind queued jobs, and the job does it itself if no worker is free first.
@@ -70,6 +72,11 @@ class Exchange {
   // Set when the client went away or the job's time limit passed; the engine polls it.
   [[nodiscard]] virtual const std::atomic<bool>* cancel_flag() const noexcept = 0;
   [[nodiscard]] virtual bool timed_out() const noexcept = 0;
+  // The memory budget (docs/server.md, "Memory budget"): the job no longer holds its upload's
+  // text nor the model read from it (after interpretation, say), so their share of
+  // --max-inflight may go to the next request now rather than when the handler returns, which
+  // gives it back anyway. Any thread; once is enough.
+  virtual void release_model() {}
 
   // Filled by the router / handler for the access log.
   std::string path_id;  // the {id} of /v1/profiles/{id}
@@ -98,7 +105,8 @@ struct RouteMatch {
   const Route* route = nullptr;  // null: no route (status says 404 or 405)
   std::string id;
   unsigned status = 0;
-  std::string allow;  // for 405
+  std::string allow;         // for 405
+  std::string_view pattern;  // for 405: the pattern the path matched (metrics count it there)
 };
 
 [[nodiscard]] const std::vector<Route>& routes();
@@ -129,8 +137,10 @@ struct Upload {
                                                 std::shared_ptr<StreamedUpload> streamed = {});
 
 // At most this much of the diagnostics goes into the Ncpost-Diagnostics trailer (whole entries;
-// Ncpost-Warnings still counts them all), so that the trailer stays within any client's limits.
-inline constexpr std::size_t kMaxDiagnosticsTrailer = 8 * 1024;
+// Ncpost-Warnings still counts them all), so that the trailer stays within any client's limits:
+// curl (7.88) fails a transfer whose trailer line passes 4 KiB ("Out of memory in
+// chunked-encoding"), and the line holds the field's name too.
+inline constexpr std::size_t kMaxDiagnosticsTrailer = 4000;
 // The trailer of a complete stream: Ncpost-Warnings (how many diagnostics the job gave; a job
 // that streams to the end has no errors) and Ncpost-Diagnostics (them as compact ASCII JSON).
 [[nodiscard]] http::fields diagnostics_trailer(

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     std::cerr << "ncpostd: " << parsed.error << "\n" << server::usage();
     return 2;
   }
-  const server::Config config = server::resolve_threads(*parsed.config);
+  const server::Config config = server::resolve_memory(server::resolve_threads(*parsed.config));
 
   // One JSON object per line on stderr: the start-up line (with "listening"), access lines,
   // signals. Machine-readable, so the port can be taken from it.

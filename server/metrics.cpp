@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "memory_budget.hpp"
+
 namespace ncpost::server {
 namespace {
 
@@ -45,6 +47,13 @@ void Metrics::request(std::string_view route, unsigned status, std::chrono::nano
   Histogram* histogram = nullptr;
   {
     std::lock_guard lock(mutex_);
+    if (status == 0 || status == kClientClosed) {
+      auto closed = client_closed_.find(route);
+      if (closed == client_closed_.end())
+        closed = client_closed_.try_emplace(std::string(route)).first;
+      ++closed->second;
+      return;
+    }
     const auto key = std::pair<std::string_view, unsigned>(route, status);
     auto counter = requests_.find(key);
     if (counter == requests_.end())
@@ -56,6 +65,10 @@ void Metrics::request(std::string_view route, unsigned status, std::chrono::nano
   }
   // std::map nodes never move, so the histogram can be updated outside the lock.
   histogram->observe(duration);
+}
+
+void Metrics::memory_refused(MemoryRefusal reason) noexcept {
+  memory_refusals_[static_cast<std::size_t>(reason)].fetch_add(1, std::memory_order_relaxed);
 }
 
 void Metrics::stage(std::string_view stage, std::chrono::nanoseconds duration) {
@@ -78,6 +91,13 @@ std::string Metrics::render(const CacheCounters& cache) const {
   for (const auto& [key, count] : requests_)
     out += "ncpost_http_requests_total{route=\"" + key.first + "\",status=\"" +
            std::to_string(key.second) + "\"} " + std::to_string(count) + "\n";
+  out +=
+      "# HELP ncpost_http_client_closed_total Requests whose client left before it was answered "
+      "(logged with status 499, or 0 when the request itself was not read whole), by route.\n"
+      "# TYPE ncpost_http_client_closed_total counter\n";
+  for (const auto& [route, count] : client_closed_)
+    out +=
+        "ncpost_http_client_closed_total{route=\"" + route + "\"} " + std::to_string(count) + "\n";
   out +=
       "# HELP ncpost_http_request_duration_seconds Time from the request's arrival to the end "
       "of its response, by route.\n";
@@ -106,6 +126,28 @@ std::string Metrics::render(const CacheCounters& cache) const {
       "# HELP ncpost_jobs_rejected_total Jobs answered 503 because the queue was full.\n"
       "# TYPE ncpost_jobs_rejected_total counter\n";
   out += "ncpost_jobs_rejected_total " + std::to_string(rejected_full.load()) + "\n";
+  if (budget != nullptr) {
+    out +=
+        "# HELP ncpost_inflight_bytes Bytes admitted requests hold or will hold (uploads, and "
+        "the expected size of the models read from them).\n# TYPE ncpost_inflight_bytes gauge\n";
+    out += "ncpost_inflight_bytes " + std::to_string(budget->in_flight()) + "\n";
+    out +=
+        "# HELP ncpost_inflight_budget_bytes The memory budget (--max-inflight).\n"
+        "# TYPE ncpost_inflight_budget_bytes gauge\n";
+    out += "ncpost_inflight_budget_bytes " + std::to_string(budget->budget()) + "\n";
+    out +=
+        "# HELP ncpost_inflight_reserve_bytes The part of the budget only small requests may "
+        "use (--inflight-reserve).\n# TYPE ncpost_inflight_reserve_bytes gauge\n";
+    out += "ncpost_inflight_reserve_bytes " + std::to_string(budget->reserve()) + "\n";
+  }
+  out +=
+      "# HELP ncpost_inflight_refusals_total Requests the memory budget refused: 503 on the "
+      "header, 503 while a chunked upload grew, 413 alone over the budget.\n"
+      "# TYPE ncpost_inflight_refusals_total counter\n";
+  static constexpr const char* kReasons[] = {"header", "upload", "too_large"};
+  for (std::size_t i = 0; i < memory_refusals_.size(); ++i)
+    out += std::string("ncpost_inflight_refusals_total{reason=\"") + kReasons[i] + "\"} " +
+           std::to_string(memory_refusals_[i].load()) + "\n";
   out +=
       "# HELP ncpost_http_connections_total Connections accepted.\n"
       "# TYPE ncpost_http_connections_total counter\n";

@@ -33,8 +33,25 @@ struct CacheCounters {
   std::uint64_t misses = 0;
 };
 
+class MemoryBudget;
+
 class Metrics {
  public:
+  // Why the memory budget refused a request (ncpost_inflight_refusals_total{reason}).
+  enum class MemoryRefusal : std::uint8_t {
+    Header,    // 503 on the header: its upload and model do not fit now
+    Upload,    // 503 while a chunked upload grew past what is free
+    TooLarge,  // 413: it alone needs more than the budget admits
+  };
+  void memory_refused(MemoryRefusal reason) noexcept;
+  // The budget whose gauges /metrics shows (set once by the server; null: none shown).
+  const MemoryBudget* budget = nullptr;
+
+  // The status nginx logs for a client that left before its answer: the access log writes it,
+  // but it was never sent, so /metrics counts such requests apart (client_closed), as it does
+  // those that left before they were read whole (status 0).
+  static constexpr unsigned kClientClosed = 499;
+
   void request(std::string_view route, unsigned status, std::chrono::nanoseconds duration,
                std::uint64_t bytes_in, std::uint64_t bytes_out);
   void stage(std::string_view stage, std::chrono::nanoseconds duration);
@@ -62,6 +79,8 @@ class Metrics {
   std::map<std::pair<std::string, unsigned>, std::uint64_t, RouteStatusLess> requests_;
   std::map<std::string, Histogram, std::less<>> latency_;
   std::map<std::string, Histogram, std::less<>> stages_;
+  std::map<std::string, std::uint64_t, std::less<>> client_closed_;
+  std::array<std::atomic<std::uint64_t>, 3> memory_refusals_{};
   std::atomic<std::uint64_t> bytes_in_{0};
   std::atomic<std::uint64_t> bytes_out_{0};
 };

@@ -1,5 +1,7 @@
 #include "server.hpp"
 
+#include <malloc.h>
+
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/post.hpp>
@@ -23,12 +25,18 @@ namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
 constexpr auto kReloadPoll = std::chrono::seconds(2);
+// A job that ran this long may have held much memory (a large model, millions of diagnostics):
+// giving the free pages back costs a walk over the heap, small beside such a job and spared
+// the many short ones.
+constexpr auto kTrimAfter = std::chrono::milliseconds(100);
 
 }  // namespace
 
 Server::Server(Config config, pipeline::Profiles& profiles, std::optional<std::string> admin_token,
                std::shared_ptr<spdlog::logger> log)
-    : log_(std::move(log)),
+    : budget_(config.max_inflight.value_or(default_max_inflight(std::nullopt)),
+              config.inflight_reserve.value_or(0)),
+      log_(std::move(log)),
       pool_(config.workers),
       acceptor_(ioc_),
       stop_signals_(ioc_, SIGTERM, SIGINT),
@@ -42,6 +50,8 @@ Server::Server(Config config, pipeline::Profiles& profiles, std::optional<std::s
   services_.admin_token = std::move(admin_token);
   services_.engine_version = NCPOST_VERSION;
   services_.saturated = [this] { return saturated(); };
+  services_.memory_exhausted = [this] { return budget_.exhausted(); };
+  metrics_.budget = &budget_;
   services_.helpers.start = [pool = pool_.get_executor()](pipeline::Task task) {
     net::post(pool, std::move(task));
   };
@@ -74,6 +84,8 @@ int Server::run() {
   line["workers"] = config().workers;
   line["queue"] = config().queue;
   line["max_body"] = config().max_body;
+  line["max_inflight"] = budget_.budget();
+  line["inflight_reserve"] = budget_.reserve();
   line["admin_token"] = services_.admin_token.has_value();  // whether one is set, never which
   log_->info(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   log_->flush();
@@ -238,6 +250,12 @@ bool Server::try_admit() noexcept {
     if (now >= limit) return false;
   } while (!in_system_.compare_exchange_weak(now, now + 1));
   return true;
+}
+
+void Server::job_returned(std::chrono::nanoseconds ran) noexcept {
+  if (ran < kTrimAfter || trimming_.test_and_set()) return;
+  ::malloc_trim(0);
+  trimming_.clear();
 }
 
 void Server::release() noexcept {

@@ -19,9 +19,6 @@ namespace net = boost::asio;
 namespace beast = boost::beast;
 using Clock = std::chrono::steady_clock;
 
-// A worker blocks in write() once this much is waiting for the socket: memory per stream stays
-// bounded while a slow client reads.
-constexpr std::size_t kMaxPending = 1 << 20;
 // How long a connection that is closed after an error keeps reading (and discarding) what the
 // client still sends, so that the client sees the response instead of a reset.
 constexpr auto kLingerTime = std::chrono::seconds(2);
@@ -48,69 +45,44 @@ bool valid_request_id(std::string_view id) {
 // The handler's view of its request, from a worker thread (or inline on the IO thread).
 class SessionExchange final : public Exchange {
  public:
-  SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<RequestState> state)
-      : session_(std::move(session)), state_(std::move(state)) {}
+  SessionExchange(std::shared_ptr<Session> session, std::shared_ptr<JobChannel> channel,
+                  MemoryBudget::Reservation* reservation = nullptr)
+      : session_(std::move(session)), channel_(std::move(channel)), reservation_(reservation) {}
   using Exchange::end_stream;
 
   void respond(Response response) override {
-    {
-      std::lock_guard lock(state_->mutex);
-      if (state_->answered) return;
-      state_->answered = true;
-      state_->profile = profile;
-    }
-    session_->hand_over(state_, std::move(response));
+    if (channel_->claim_response(profile)) session_->hand_over(channel_, std::move(response));
   }
 
   bool begin_stream(StreamHead head) override {
-    {
-      std::lock_guard lock(state_->mutex);
-      if (state_->answered || state_->gone) return false;
-      state_->answered = true;
-      state_->streamed = true;
-      state_->head = std::move(head);
-      state_->profile = profile;
-    }
     // Nothing is posted yet: the head goes out with the first write() or end_stream(), whose
     // pump finds it (one hop to the IO thread instead of two).
-    return true;
+    return channel_->begin_stream(std::move(head), profile);
   }
 
   bool write(std::string_view piece) override {
-    bool post = false;
-    {
-      std::unique_lock lock(state_->mutex);
-      state_->drained.wait(lock, [&] {
-        return state_->pending.size() < kMaxPending || state_->gone || state_->abandoned;
-      });
-      if (state_->gone || state_->abandoned) return false;
-      state_->pending.append(piece);
-      post = !std::exchange(state_->pump_posted, true);
-    }
-    if (post) session_->post_pump(state_);
-    return true;
+    const JobChannel::Written written = channel_->write(piece);
+    if (written == JobChannel::Written::Wake) session_->post_pump(channel_);
+    return written != JobChannel::Written::Refused;
   }
 
   void end_stream(bool complete, http::fields trailer) override {
-    bool post = false;
-    {
-      std::lock_guard lock(state_->mutex);
-      state_->ended = true;
-      state_->complete = complete;
-      state_->trailer = std::move(trailer);
-      post = !std::exchange(state_->pump_posted, true);
-    }
-    if (post) session_->post_pump(state_);
+    if (channel_->end_stream(complete, std::move(trailer))) session_->post_pump(channel_);
   }
 
   [[nodiscard]] const std::atomic<bool>* cancel_flag() const noexcept override {
-    return &state_->cancel;
+    return &channel_->cancel_flag();
   }
-  [[nodiscard]] bool timed_out() const noexcept override { return state_->timed_out.load(); }
+  [[nodiscard]] bool timed_out() const noexcept override { return channel_->timed_out(); }
+
+  void release_model() override {
+    if (reservation_ != nullptr) reservation_->release();
+  }
 
  private:
   std::shared_ptr<Session> session_;
-  std::shared_ptr<RequestState> state_;
+  std::shared_ptr<JobChannel> channel_;
+  MemoryBudget::Reservation* reservation_;  // the job's, on its worker
 };
 
 }  // namespace
@@ -127,6 +99,9 @@ Session::Session(Socket socket, Server& server)
   if (!ec) remote_ = endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
   socket_.set_option(net::ip::tcp::no_delay(true), ec);
   server_.services().metrics->connections++;
+  chunk_counter_ = [this](std::uint64_t, std::string_view piece, beast::error_code& e) {
+    return count_chunk(piece, e);
+  };
 }
 
 Session::~Session() {
@@ -141,7 +116,7 @@ void Session::start() {
 void Session::drain() {
   net::post(executor_, [self = shared_from_this()] {
     if (self->phase_ == Phase::Idle) self->close();
-    // Otherwise keep_alive is false for the response in progress (server draining).
+    // Otherwise the response in progress says Connection: close (the server is draining).
   });
 }
 
@@ -151,18 +126,13 @@ void Session::force_close() {
     // A stream under way is cancelled and given a moment to end with the profile's error
     // marker, so that the cut shows in the program text as well as in the transfer. A second
     // force (a second signal) or the end of the moment closes it.
-    if (self->streaming_ && self->state_ && !self->forced_) {
-      self->forced_ = true;
-      self->state_->cancel = true;
+    if (self->stream_ && self->channel_ && self->shutdown_ == Shutdown::None) {
+      self->shutdown_ = Shutdown::StreamGrace;
+      self->channel_->cancel();
       self->arm_timer(std::chrono::duration_cast<std::chrono::milliseconds>(kForcedStreamGrace));
       return;
     }
-    if (self->state_) {
-      self->state_->cancel = true;
-      std::lock_guard lock(self->state_->mutex);
-      self->state_->gone = true;
-      self->state_->drained.notify_all();
-    }
+    if (self->channel_) self->channel_->client_gone();
     self->close();
   });
 }
@@ -172,10 +142,11 @@ void Session::force_close() {
 void Session::wait_request() {
   if (server_.draining()) return close();
   phase_ = Phase::Idle;
-  state_.reset();
+  channel_.reset();
+  stream_.reset();
   // A fresh connection was opened to send a request: it gets the read limit. A kept-alive one
   // may sit idle for the idle limit.
-  arm_timer(first_request_ ? server_.config().read_timeout : server_.config().idle_timeout);
+  arm_timer(requests_ == 0 ? server_.config().read_timeout : server_.config().idle_timeout);
   if (buffer_.size() > 0) return read_header();
   // A read rather than a wait for readability: the socket tries it at once (the next request
   // is often there already), and a wait would change the socket's epoll registration each time.
@@ -191,40 +162,60 @@ void Session::wait_request() {
 
 void Session::read_header() {
   phase_ = Phase::Reading;
-  first_request_ = false;
-  read_timed_out_ = false;
-  started_ = Clock::now();
-  bytes_in_ = 0;
-  bytes_out_ = 0;
-  status_ = 0;
-  route_name_ = "unmatched";
-  method_.clear();
-  path_.clear();
-  profile_.clear();
-  request_id_ = server_.next_request_id();
-  logged_ = false;
+  ++requests_;
+  record_ = RequestRecord{};
+  record_.started = Clock::now();
+  record_.request_id = server_.next_request_id();
+  record_.open = true;
+  after_ = After::NextRequest;
+  shutdown_ = Shutdown::None;
+  reservation_.release();
+  memory_refusal_ = MemoryBudget::Refusal::None;
   arm_timer(server_.config().read_timeout);
   upload_parser_.reset();
   upload_.reset();
   parser_.emplace();
   parser_->header_limit(server_.config().max_header);
   parser_->body_limit(server_.config().max_body);
-  // A header already in the buffer is parsed here: Beast's read would only hand it over through
-  // one more queued completion.
+  header_step();
+}
+
+// Beast 1.74 holds its header limit on what one put() sees, not on the whole header (fields it
+// has taken are not counted again), so the total is counted here; obs-fold, which its parser
+// unfolds silently, is found in the bytes it took. A header already in the buffer is parsed
+// without a queued completion.
+void Session::header_step() {
   beast::error_code ec;
-  const std::size_t used = parse_buffered(*parser_, ec, true);
-  if (ec || parser_->is_header_done()) return on_header(ec, used);
-  http::async_read_header(socket_, buffer_, *parser_,
-                          net::bind_executor(executor_, [self = shared_from_this(), used](
+  HeadProblem problem = HeadProblem::None;
+  std::size_t used = 0;
+  while (buffer_.size() > 0 && !parser_->is_header_done()) {
+    const auto bytes = buffer_.data();
+    const std::size_t n = parser_->put(bytes, ec);
+    if (has_obs_fold({static_cast<const char*>(bytes.data()), n})) problem = HeadProblem::ObsFold;
+    buffer_.consume(n);
+    used += n;
+    if (ec == http::error::need_more) ec = {};
+    if (ec || n == 0 || problem != HeadProblem::None) break;
+  }
+  record_.bytes_in += used;
+  const std::size_t unparsed = parser_->is_header_done() ? 0 : buffer_.size();
+  if (!ec && record_.bytes_in + unparsed > server_.config().max_header)
+    ec = http::error::header_limit;
+  if (ec || problem != HeadProblem::None || parser_->is_header_done())
+    return on_header(ec, problem);
+  socket_.async_read_some(buffer_.prepare(kFirstRead),
+                          net::bind_executor(executor_, [self = shared_from_this()](
                                                             beast::error_code e, std::size_t n) {
-                            self->on_header(e, used + n);
+                            if (e) return self->read_failed(e);
+                            self->buffer_.commit(n);
+                            self->header_step();
                           }));
 }
 
 template <class Parser>
-std::size_t Session::parse_buffered(Parser& parser, beast::error_code& ec, bool header_only) {
+std::size_t Session::parse_buffered(Parser& parser, beast::error_code& ec) {
   std::size_t used = 0;
-  while (buffer_.size() > 0 && !parser.is_done() && !(header_only && parser.is_header_done())) {
+  while (buffer_.size() > 0 && !parser.is_done()) {
     const std::size_t n = parser.put(buffer_.data(), ec);
     buffer_.consume(n);
     used += n;
@@ -234,26 +225,41 @@ std::size_t Session::parse_buffered(Parser& parser, beast::error_code& ec, bool 
   return used;
 }
 
-void Session::on_header(beast::error_code ec, std::size_t bytes) {
-  bytes_in_ += bytes;
+void Session::on_header(beast::error_code ec, HeadProblem problem) {
   if (ec) return read_failed(ec);
-  const auto& header = parser_->get();
-  method_ = std::string(header.method_string());
-  path_ = std::string(header.target().substr(0, header.target().find('?')));
-  if (const auto id = header["X-Request-Id"]; valid_request_id(id)) request_id_ = std::string(id);
+  auto& header = parser_->get();
+  if (problem == HeadProblem::None) problem = check_head(header);
+  // RFC 9112 §3.2.2: a server accepts the absolute form (a proxy's) and routes its path.
+  if (auto origin = origin_form(header.target())) header.target(*origin);
+  verb_ = header.method();
+  record_.method = std::string(header.method_string());
+  record_.path = std::string(header.target().substr(0, header.target().find('?')));
+  if (const auto id = header["X-Request-Id"]; valid_request_id(id))
+    record_.request_id = std::string(id);
+  const bool expects_continue = beast::iequals(header[http::field::expect], "100-continue");
   // Made now rather than at dispatch: a slice reading the upload as it arrives already needs
   // the request's cancel flag.
-  state_ = std::make_shared<RequestState>();
-  if (refused_as_full()) return;
+  channel_ = std::make_shared<JobChannel>();
+  if (problem != HeadProblem::None) {
+    // The body's framing is unknown or not trusted: nothing after the header is read as a
+    // request (no smuggling), and the connection closes.
+    after_ = After::Linger;
+    (void)channel_->claim_response({});
+    const unsigned status = status_of(problem);
+    return send(error_response(
+        status, status == 501 ? diag::Code::HttpTransferCoding : diag::Code::HttpBadRequest,
+        status == 501 ? "Not implemented" : "Bad request", std::string(describe(problem))));
+  }
+  if (refused_as_full() || refused_by_budget()) return;
   take_upload_as_it_arrives();
   // curl and browsers wait for 100 Continue before a large body; answer it only once the
   // header passed its checks, so a too-large upload is refused before it is sent.
-  if (beast::iequals(header[http::field::expect], "100-continue")) {
+  if (expects_continue) {
     static constexpr std::string_view kContinue = "HTTP/1.1 100 Continue\r\n\r\n";
     net::async_write(socket_, net::buffer(kContinue.data(), kContinue.size()),
                      net::bind_executor(executor_, [self = shared_from_this()](beast::error_code e,
                                                                                std::size_t n) {
-                       self->bytes_out_ += n;
+                       self->record_.bytes_out += n;
                        if (e) return self->close();
                        self->read_body();
                      }));
@@ -271,19 +277,75 @@ bool Session::refused_as_full() {
   const auto& header = parser_->get();
   const RouteMatch match = match_route(header.method(), header.target());
   if (match.route == nullptr || match.route->where != Where::Worker) return false;
-  route_name_ = match.route->name;
-  keep_alive_ = false;
-  refuse_as_full(true);
+  record_.route = match.route->name;
+  after_ = After::Linger;
+  refuse_as_full();
   return true;
 }
 
-void Session::refuse_as_full(bool then_linger) {
+void Session::refuse_as_full() {
   server_.services().metrics->rejected_full++;
-  state_->answered = true;
+  (void)channel_->claim_response({});
   Response r = error_response(503, diag::Code::HttpQueueFull, "Service unavailable",
                               "all workers are busy and the job queue is full; retry later");
   r.set(http::field::retry_after, "1");
-  send(std::move(r), then_linger);
+  send(std::move(r));
+}
+
+// Admission by bytes (docs/server.md, "Memory budget"): a body announced by its Content-Length
+// reserves, on the header, what it will hold, so that a request that does not fit is told 503
+// before it sends its body (after 100 Continue is not sent); a chunked body reserves as it
+// arrives. Requests without a body reserve nothing and are never refused here.
+bool Session::refused_by_budget() {
+  const bool chunked = parser_->chunked();
+  const auto length = parser_->content_length();
+  if (!chunked && length.value_or(0) == 0) return false;
+  const auto& header = parser_->get();
+  const RouteMatch match = match_route(header.method(), header.target());
+  body_factor_ =
+      match.route != nullptr && match.route->reads_model ? MemoryBudget::kModelFactor : 1.0;
+  reservation_ = server_.budget().open();
+  if (chunked) {
+    parser_->on_chunk_body(chunk_counter_);
+    return false;
+  }
+  memory_refusal_ = reservation_.grow(MemoryBudget::need(*length, body_factor_));
+  if (memory_refusal_ == MemoryBudget::Refusal::None) return false;
+  if (match.route != nullptr) record_.route = match.route->name;
+  refuse_for_memory(Metrics::MemoryRefusal::Header);
+  return true;
+}
+
+// A piece of a chunked body: kept when its bytes fit the budget, else the read stops and
+// read_failed() answers.
+std::size_t Session::count_chunk(std::string_view piece, beast::error_code& ec) {
+  memory_refusal_ = reservation_.grow(MemoryBudget::need(piece.size(), body_factor_));
+  if (memory_refusal_ != MemoryBudget::Refusal::None) {
+    ec = http::error::body_limit;
+    return 0;
+  }
+  parser_->get().body().append(piece);
+  return piece.size();
+}
+
+void Session::refuse_for_memory(Metrics::MemoryRefusal reason) {
+  const auto& budget = server_.budget();
+  const bool alone = memory_refusal_ == MemoryBudget::Refusal::TooLarge;
+  server_.services().metrics->memory_refused(alone ? Metrics::MemoryRefusal::TooLarge : reason);
+  after_ = After::Linger;
+  reservation_.release();
+  (void)channel_->claim_response({});
+  if (alone)
+    return send(error_response(
+        413, diag::Code::HttpMemoryBudget, "Content too large",
+        "the request would hold more than the memory budget admits for one request (" +
+            std::to_string(budget.budget() - budget.reserve()) + " bytes of --max-inflight " +
+            std::to_string(budget.budget()) + "; a model is about 2.3 times its upload)"));
+  Response r = error_response(503, diag::Code::HttpMemoryBudget, "Service unavailable",
+                              "the memory budget (--max-inflight) is taken by requests in "
+                              "flight; retry later");
+  r.set(http::field::retry_after, "1");
+  send(std::move(r));
 }
 
 // A large raw body to a route that reads a model is read as it arrives: hashed and, in slices
@@ -308,7 +370,7 @@ void Session::take_upload_as_it_arrives() {
   upload_ = std::make_shared<StreamedUpload>(
       static_cast<std::size_t>(*length), static_cast<std::size_t>(slice_step),
       server_.pool().get_executor(),
-      std::shared_ptr<const std::atomic<bool>>(state_, &state_->cancel), std::move(slot),
+      std::shared_ptr<const std::atomic<bool>>(channel_, &channel_->cancel_flag()), std::move(slot),
       &server_.services().helpers);
   upload_parser_.emplace(std::move(*parser_));
   parser_.reset();
@@ -327,7 +389,7 @@ void Session::read_body() {
   // No body, or all of it in the buffer (a small post usually comes in one segment with its
   // header): done here, without a queued completion.
   beast::error_code ec;
-  const std::size_t used = parse_buffered(*parser_, ec, false);
+  const std::size_t used = parse_buffered(*parser_, ec);
   if (ec || parser_->is_done()) return on_body(ec, used);
   http::async_read(socket_, buffer_, *parser_,
                    net::bind_executor(executor_, [self = shared_from_this(), used](
@@ -337,48 +399,43 @@ void Session::read_body() {
 }
 
 void Session::on_body(beast::error_code ec, std::size_t bytes) {
-  bytes_in_ += bytes;
+  record_.bytes_in += bytes;
   if (ec) return read_failed(ec);
   disarm_timer();
-  received_ = Clock::now();
+  record_.received = Clock::now();
   handle_request();
 }
 
 void Session::read_failed(beast::error_code ec) {
   if (phase_ == Phase::Closed) return;
-  keep_alive_ = false;
+  const bool timed_out = phase_ == Phase::ReadTimedOut;
+  after_ = After::Linger;
   if (upload_) {
     upload_->complete();  // no more slices of an upload that will not be answered
     upload_.reset();
   }
-  if (read_timed_out_) {
-    status_ = 408;
+  if (memory_refusal_ != MemoryBudget::Refusal::None)
+    return refuse_for_memory(Metrics::MemoryRefusal::Upload);
+  if (timed_out)
     return send(error_response(408, diag::Code::HttpReadTimeout, "Request timeout",
-                               "the request did not arrive within --read-timeout"),
-                true);
-  }
-  if (ec == http::error::body_limit) {
-    return send(error_response(413, diag::Code::HttpBodyTooLarge, "Content too large",
-                               "the body exceeds --max-body (" +
-                                   std::to_string(server_.config().max_body) + " bytes)"),
-                true);
-  }
-  if (ec == http::error::header_limit) {
-    return send(
-        error_response(431, diag::Code::HttpHeaderTooLarge, "Request header fields too large",
-                       "the request header exceeds --max-header (" +
-                           std::to_string(server_.config().max_header) + " bytes)"),
-        true);
-  }
+                               "the request did not arrive within --read-timeout"));
+  if (ec == http::error::body_limit)
+    return send(error_response(
+        413, diag::Code::HttpBodyTooLarge, "Content too large",
+        "the body exceeds --max-body (" + std::to_string(server_.config().max_body) + " bytes)"));
+  if (ec == http::error::header_limit)
+    return send(error_response(431, diag::Code::HttpHeaderTooLarge,
+                               "Request header fields too large",
+                               "the request header exceeds --max-header (" +
+                                   std::to_string(server_.config().max_header) + " bytes)"));
   if (ec == http::error::end_of_stream || ec == net::error::eof ||
       ec == net::error::connection_reset || ec == net::error::operation_aborted ||
       ec == http::error::partial_message) {
-    if (bytes_in_ > 0) finish_request(false);
+    if (record_.bytes_in > 0) finish_request(false);
     return close();
   }
   send(error_response(400, diag::Code::HttpBadRequest, "Bad request",
-                      "malformed HTTP request: " + ec.message()),
-       true);
+                      "malformed HTTP request: " + ec.message()));
 }
 
 // ---- dispatch -------------------------------------------------------------------------------
@@ -392,179 +449,161 @@ void Session::handle_request() {
     request_ = parser_->release();
     parser_.reset();
   }
-  keep_alive_ = request_.keep_alive();
-  is_head_ = request_.method() == http::verb::head;
+  after_ = request_.keep_alive() ? After::NextRequest : After::Close;
   RouteMatch match = match_route(request_.method(), request_.target());
   if (match.route == nullptr) {
-    Response r =
-        match.status == 405
-            ? error_response(405, diag::Code::HttpNotFound, "Method not allowed",
-                             "allowed here: " + match.allow)
-            : error_response(404, diag::Code::HttpNotFound, "Not found", "no route for " + path_);
-    if (match.status == 405) r.set(http::field::allow, match.allow);
-    state_->answered = true;
+    Response r = match.status == 405
+                     ? error_response(405, diag::Code::HttpNotFound, "Method not allowed",
+                                      "allowed here: " + match.allow)
+                     : error_response(404, diag::Code::HttpNotFound, "Not found",
+                                      "no route for " + record_.path);
+    if (match.status == 405) {
+      r.set(http::field::allow, match.allow);
+      record_.route_label = std::string(method_label(verb_)) + " " + std::string(match.pattern);
+      record_.route = record_.route_label;
+    }
+    (void)channel_->claim_response({});
     return send(std::move(r));
   }
-  route_name_ = match.route->name;
+  record_.route = match.route->name;
   if (match.route->where == Where::Inline) {
     phase_ = Phase::Handling;
-    SessionExchange exchange(shared_from_this(), state_);
+    SessionExchange exchange(shared_from_this(), channel_);
     exchange.path_id = std::move(match.id);
     try {
       match.route->handler(request_, server_.services(), exchange);
     } catch (const std::exception& e) {
       exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
     }
+    request_ = {};  // its body, whose share of the budget goes back now
+    reservation_.release();
     return;  // the handler's respond() started the write
   }
   if (!server_.try_admit()) {
     upload_.reset();
-    return refuse_as_full(false);
+    return refuse_as_full();  // the body was read: the connection may go on
   }
   dispatch_job(*match.route, std::move(match.id));
 }
 
 void Session::dispatch_job(const Route& route, std::string id) {
   phase_ = Phase::Handling;
-  job_running_ = true;
-  writing_ = false;
-  head_written_ = false;
-  streaming_ = false;
-  auto state = state_;
+  job_ = Job::Running;
+  stream_.reset();
+  auto channel = channel_;
   auto& metrics = *server_.services().metrics;
   metrics.queued++;
   job_timer_.expires_after(server_.config().job_timeout);
   job_timer_.async_wait(
-      net::bind_executor(executor_, [self = shared_from_this(), state](beast::error_code ec) {
-        if (!ec) self->on_job_timeout(state);
+      net::bind_executor(executor_, [self = shared_from_this(), channel](beast::error_code ec) {
+        if (!ec) self->on_job_timeout(channel);
       }));
   watch_client();
   auto request = std::make_shared<Request>(std::move(request_));
-  net::post(server_.pool(), [self = shared_from_this(), state, request, handler = route.handler,
-                             id = std::move(id), upload = std::move(upload_), received = received_,
-                             &metrics]() mutable {
-    metrics.queued--;
-    metrics.active++;
-    {
-      SessionExchange exchange(self, state);
-      exchange.path_id = std::move(id);
-      exchange.upload = std::move(upload);
-      exchange.received = received;
-      // A job whose client left (or whose time ran out) while it queued is not started.
-      if (!state->cancel.load()) {
-        try {
-          handler(*request, self->server_.services(), exchange);
-        } catch (const std::exception& e) {
-          exchange.respond(
-              error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
+  net::post(
+      server_.pool(), [self = shared_from_this(), channel, request, handler = route.handler,
+                       id = std::move(id), upload = std::move(upload_), received = record_.received,
+                       reservation = std::move(reservation_), &metrics]() mutable {
+        metrics.queued--;
+        metrics.active++;
+        const auto started = Clock::now();
+        {
+          SessionExchange exchange(self, channel, &reservation);
+          exchange.path_id = std::move(id);
+          exchange.upload = std::move(upload);
+          exchange.received = received;
+          // A job whose client left (or whose time ran out) while it queued is not started.
+          if (!channel->cancel_flag().load()) {
+            try {
+              handler(*request, self->server_.services(), exchange);
+            } catch (const std::exception& e) {
+              exchange.respond(
+                  error_response(500, diag::Code::HttpInternal, "Internal error", e.what()));
+            }
+          }
+          exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error",
+                                          "the handler gave no response"));  // dropped if answered
+          // A stream the handler began but did not end (it threw) is cut, never left open.
+          if (channel->handler_returned()) self->post_pump(channel);
         }
-      }
-      exchange.respond(error_response(500, diag::Code::HttpInternal, "Internal error",
-                                      "the handler gave no response"));  // dropped if answered
-      // A stream the handler began but did not end (it threw) is cut, never left open.
-      bool unended = false;
-      {
-        std::lock_guard lock(state->mutex);
-        unended = state->streamed && !state->ended;
-      }
-      if (unended) exchange.end_stream(false);
-    }
-    request.reset();  // free the upload on the worker, not on the IO thread
-    metrics.active--;
-    self->server_.release();
-    self->post_job_finished(state);
-  });
+        request.reset();  // free the upload on the worker, not on the IO thread
+        reservation.release();
+        self->server_.job_returned(Clock::now() - started);
+        metrics.active--;
+        self->server_.release();
+        self->post_job_finished(channel);
+      });
 }
 
 // While a job runs the connection is otherwise silent; a readable socket then means the client
 // hung up (EOF or reset), which cancels the job, or sent its next request early (pipelining).
 void Session::watch_client() {
-  if (watch_pending_ || phase_ == Phase::Closed) return;
-  watch_pending_ = true;
+  if (watch_ == Watch::Waiting || phase_ == Phase::Closed) return;
+  watch_ = Watch::Waiting;
   socket_.async_wait(
       Socket::wait_read,
       net::bind_executor(executor_, [self = shared_from_this()](beast::error_code ec) {
-        self->watch_pending_ = false;
-        if (!self->job_running_ || self->phase_ == Phase::Closed) return;
+        self->watch_ = Watch::Off;
+        if (self->job_ == Job::None || self->phase_ == Phase::Closed) return;
         beast::error_code e;
         const std::size_t available = self->socket_.available(e);
-        if (ec || e || available == 0) return self->client_gone(self->state_);
-        // Pipelined bytes: keep them for the next request, bounded by the header
-        // limit.
+        if (ec || e || available == 0) return self->client_gone(self->channel_);
+        // Pipelined bytes: keep them for the next request, bounded by the header limit.
         if (self->buffer_.size() + available > self->server_.config().max_header)
           return;  // stop watching; the next read enforces the limits
         auto buffers = self->buffer_.prepare(available);
         const std::size_t n = self->socket_.read_some(buffers, e);
         self->buffer_.commit(n);
-        if (e) return self->client_gone(self->state_);
+        if (e) return self->client_gone(self->channel_);
         self->watch_client();
       }));
 }
 
-void Session::on_job_timeout(const std::shared_ptr<RequestState>& state) {
-  if (!current(state) || !job_running_) return;
-  state->timed_out = true;
-  state->cancel = true;
-  bool answer_now = false;
-  {
-    std::lock_guard lock(state->mutex);
-    if (!state->answered) {
-      state->answered = true;
-      state->abandoned = true;
-      answer_now = true;
-    }
-    state->drained.notify_all();
-  }
+void Session::on_job_timeout(const std::shared_ptr<JobChannel>& channel) {
+  if (!current(channel) || job_ != Job::Running) return;
+  job_ = Job::Overdue;
   // A stream already under way is ended by the worker with the profile's error marker.
-  if (answer_now)
+  if (channel->time_out())
     send(error_response(504, diag::Code::HttpJobTimeout, "Job time limit exceeded",
                         "the job ran longer than --job-timeout (" +
                             std::to_string(server_.config().job_timeout.count()) + " ms)"));
 }
 
-void Session::post_job_finished(std::shared_ptr<RequestState> state) {
-  net::post(executor_, [self = shared_from_this(), state = std::move(state)] {
-    {
-      std::lock_guard lock(state->mutex);
-      state->finished = true;
-    }
-    if (state != self->state_) return;
-    self->job_running_ = false;
+void Session::post_job_finished(std::shared_ptr<JobChannel> channel) {
+  net::post(executor_, [self = shared_from_this(), channel = std::move(channel)] {
+    if (channel != self->channel_) return;
+    self->job_ = Job::None;
     self->job_timer_.cancel();
-    if (std::exchange(self->awaiting_job_, false) && self->phase_ != Phase::Closed)
-      self->wait_request();
+    if (self->phase_ == Phase::AwaitingJob) self->wait_request();
   });
 }
 
 // ---- buffered responses ---------------------------------------------------------------------
 
-void Session::hand_over(std::shared_ptr<RequestState> state, Response response) {
+void Session::hand_over(std::shared_ptr<JobChannel> channel, Response response) {
   // An inline handler answers on the IO thread already: no hop.
-  if (executor_.running_in_this_thread()) return deliver(state, std::move(response));
-  net::post(executor_, [self = shared_from_this(), state = std::move(state),
+  if (executor_.running_in_this_thread()) return deliver(channel, std::move(response));
+  net::post(executor_, [self = shared_from_this(), channel = std::move(channel),
                         response = std::move(response)]() mutable {
-    self->deliver(state, std::move(response));
+    self->deliver(channel, std::move(response));
   });
 }
 
-void Session::deliver(const std::shared_ptr<RequestState>& state, Response response) {
-  if (!current(state) || state->abandoned) return;
-  {
-    std::lock_guard lock(state->mutex);
-    profile_ = state->profile;
-  }
+void Session::deliver(const std::shared_ptr<JobChannel>& channel, Response response) {
+  if (!current(channel) || channel->answer() != JobChannel::Answer::Buffered) return;
+  record_.profile = channel->profile();
   send(std::move(response));
 }
 
-void Session::send(Response response, bool then_linger) {
+void Session::send(Response response) {
   phase_ = Phase::Writing;
-  if (server_.draining()) keep_alive_ = false;
-  status_ = response.result_int();
+  if (server_.draining() && after_ == After::NextRequest) after_ = After::Close;
+  record_.status = response.result_int();
   response.set(http::field::server, "ncpostd");
-  response.set("X-Request-Id", request_id_);
-  response.keep_alive(keep_alive_);
+  response.set("X-Request-Id", record_.request_id);
+  response.keep_alive(after_ == After::NextRequest);
   response.prepare_payload();
-  if (is_head_) {
+  if (verb_ == http::verb::head) {
     const auto length = response.body().size();
     response.body().clear();
     response.content_length(length);
@@ -572,172 +611,113 @@ void Session::send(Response response, bool then_linger) {
   response_ = std::make_shared<Response>(std::move(response));
   arm_timer(server_.config().write_timeout);
   http::async_write(socket_, *response_,
-                    net::bind_executor(executor_, [self = shared_from_this(), then_linger](
-                                                      beast::error_code ec, std::size_t n) {
-                      self->on_write(ec, n, then_linger);
+                    net::bind_executor(executor_, [self = shared_from_this()](beast::error_code ec,
+                                                                              std::size_t n) {
+                      self->on_write(ec, n);
                     }));
 }
 
-void Session::on_write(beast::error_code ec, std::size_t bytes, bool then_linger) {
-  bytes_out_ += bytes;
+void Session::on_write(beast::error_code ec, std::size_t bytes) {
+  record_.bytes_out += bytes;
   response_.reset();
   finish_request(!ec);
   if (ec) return close();
-  if (then_linger) return linger_close();
-  after_response();
+  switch (after_) {
+    case After::Linger:
+      return linger_close();
+    case After::Close:
+      return close();
+    case After::NextRequest:
+      return after_response();
+  }
 }
 
 void Session::after_response() {
-  if (!keep_alive_) return close();
-  if (job_running_) {
-    // A job that outlived its answer (504) may run on for long: no new request on this
-    // connection meanwhile.
-    if (state_ && state_->abandoned) return linger_close();
-    // The handler answered and is returning; the next read starts when it has.
-    awaiting_job_ = true;
-    phase_ = Phase::Handling;
-    return;
+  if (after_ != After::NextRequest) return close();
+  switch (job_) {
+    case Job::None:
+      return wait_request();
+    case Job::Overdue:
+      // A job that outlived its answer (504) may run on for long: no new request on this
+      // connection meanwhile.
+      return linger_close();
+    case Job::Running:
+      // The handler answered and is returning; the next read starts when it has.
+      phase_ = Phase::AwaitingJob;
+      return;
   }
-  wait_request();
 }
 
 // ---- streamed responses ---------------------------------------------------------------------
 
-void Session::post_pump(std::shared_ptr<RequestState> state) {
-  net::post(executor_, [self = shared_from_this(), state = std::move(state)] {
-    if (!self->streaming_ && self->current(state)) {
-      bool head = false;
-      {
-        std::lock_guard lock(state->mutex);
-        head = state->head.has_value();
-      }
-      if (head) return self->stream_begin(state);
-    }
-    self->pump(state);
+void Session::post_pump(std::shared_ptr<JobChannel> channel) {
+  net::post(executor_, [self = shared_from_this(), channel = std::move(channel)] {
+    if (!self->stream_ && self->current(channel) && channel->answer() == JobChannel::Answer::Stream)
+      return self->stream_begin(channel);
+    self->pump(channel);
   });
 }
 
-void Session::stream_begin(const std::shared_ptr<RequestState>& state) {
-  if (!current(state) || state->abandoned) return;
-  {
-    std::lock_guard lock(state->mutex);
-    stream_head_ = std::make_unique<StreamHead>(std::move(*state->head));
-    state->head.reset();
-    profile_ = state->profile;
-  }
+void Session::stream_begin(const std::shared_ptr<JobChannel>& channel) {
+  std::optional<StreamHead> head = channel->take_head();
+  if (!head) return channel->drop_wakeup();
+  record_.profile = channel->profile();
   phase_ = Phase::Writing;
-  if (server_.draining()) keep_alive_ = false;
-  status_ = stream_head_->result_int();
-  stream_head_->set(http::field::server, "ncpostd");
-  stream_head_->set("X-Request-Id", request_id_);
-  stream_head_->keep_alive(keep_alive_);
-  stream_head_->chunked(true);
+  if (server_.draining() && after_ == After::NextRequest) after_ = After::Close;
+  record_.status = head->result_int();
+  head->set(http::field::server, "ncpostd");
+  head->set("X-Request-Id", record_.request_id);
+  head->keep_alive(after_ == After::NextRequest);
   // The head is not written alone: it goes out with the first chunk (and, for a short program,
   // with the last one too), one write instead of three.
-  head_bytes_.clear();
-  http::response_serializer<http::empty_body> serializer(*stream_head_);
-  serializer.split(true);
-  beast::error_code ec;
-  while (!serializer.is_header_done() && !ec) {
-    serializer.next(ec, [&](beast::error_code& e, const auto& buffers) {
-      e = {};
-      for (const auto b : beast::buffers_range_ref(buffers))
-        head_bytes_.append(static_cast<const char*>(b.data()), b.size());
-      serializer.consume(beast::buffer_bytes(buffers));
-    });
-  }
-  head_written_ = false;
-  streaming_ = true;
-  pump(state);
+  stream_.emplace(*head);
+  pump(channel);
 }
 
-void Session::pump(const std::shared_ptr<RequestState>& state) {
-  if (!current(state) || writing_ || !streaming_) {
-    // Not yet (a write is in flight, or the head is not here yet) or no longer; the write's
-    // completion, or stream_begin, pumps.
-    if (state && !current(state)) {
-      std::lock_guard lock(state->mutex);
-      state->pump_posted = false;
-    }
+void Session::pump(const std::shared_ptr<JobChannel>& channel) {
+  if (!current(channel) || !stream_) {
+    // No longer (or not yet: stream_begin pumps once the head is here).
+    if (channel && !current(channel)) channel->drop_wakeup();
     return;
   }
-  bool ended = false;
-  bool complete = false;
-  {
-    std::lock_guard lock(state->mutex);
-    state->pump_posted = false;
-    out_chunk_.clear();
-    out_chunk_.swap(state->pending);
-    ended = state->ended;
-    complete = state->complete;
-    if (ended && complete) out_trailer_ = std::move(state->trailer);
-    state->drained.notify_all();
-  }
-  // One gathered write: the head (first time), the chunk, and the last chunk with its trailer
-  // once the job ended complete.
-  out_buffers_.clear();
-  if (!head_written_) out_buffers_.emplace_back(net::buffer(head_bytes_));
-  if (!out_chunk_.empty()) {
-    char size[24];
-    const int n = std::snprintf(size, sizeof size, "%zx\r\n", out_chunk_.size());
-    chunk_size_.assign(size, static_cast<std::size_t>(n));
-    out_buffers_.emplace_back(net::buffer(chunk_size_));
-    out_buffers_.emplace_back(net::buffer(out_chunk_));
-    out_buffers_.emplace_back(net::buffer("\r\n", 2));
-  }
-  const bool last = ended && complete;
-  if (last) {
-    last_chunk_ = "0\r\n";
-    for (const auto& field : out_trailer_) {
-      last_chunk_.append(field.name_string());
-      last_chunk_ += ": ";
-      last_chunk_.append(field.value());
-      last_chunk_ += "\r\n";
-    }
-    last_chunk_ += "\r\n";
-    out_buffers_.emplace_back(net::buffer(last_chunk_));
-  }
-  if (!out_buffers_.empty()) {
-    writing_ = true;
-    if (!forced_) arm_timer(server_.config().write_timeout);
-    net::async_write(socket_, out_buffers_,
-                     net::bind_executor(executor_, [self = shared_from_this(), state, last](
+  // A write in flight: its completion pumps again and takes what has come meanwhile.
+  if (stream_->write() == ChunkedWriter::Write::InFlight) return;
+  const JobChannel::Taken taken = channel->take(chunk_);
+  const bool last = taken.end == JobChannel::StreamEnd::Complete;
+  const auto& buffers = stream_->next(chunk_, last, taken.trailer);
+  if (!buffers.empty()) {
+    if (shutdown_ == Shutdown::None) arm_timer(server_.config().write_timeout);
+    net::async_write(socket_, buffers,
+                     net::bind_executor(executor_, [self = shared_from_this(), channel](
                                                        beast::error_code ec, std::size_t n) {
-                       self->on_stream_written(state, ec, n, last);
+                       self->on_stream_written(channel, ec, n);
                      }));
     return;
   }
-  if (!ended) return;
+  if (taken.end == JobChannel::StreamEnd::Open) return;
   // A failed or cancelled post: the text ends with the error marker and the transfer is cut
   // without its last chunk, so no client can take it for a whole program.
   finish_request(false);
   close();
 }
 
-void Session::on_stream_written(const std::shared_ptr<RequestState>& state, beast::error_code ec,
-                                std::size_t bytes, bool last) {
-  writing_ = false;
-  bytes_out_ += bytes;
-  if (!current(state)) return;
-  if (ec) return client_gone(state);
-  head_written_ = true;
-  if (last) {
-    streaming_ = false;
-    stream_head_.reset();
+void Session::on_stream_written(const std::shared_ptr<JobChannel>& channel, beast::error_code ec,
+                                std::size_t bytes) {
+  record_.bytes_out += bytes;
+  if (!current(channel) || !stream_) return;
+  if (ec) return client_gone(channel);
+  stream_->written();
+  if (stream_->sent() == ChunkedWriter::Sent::Everything) {
+    stream_.reset();
     finish_request(true);
     return after_response();
   }
-  pump(state);
+  pump(channel);
 }
 
-void Session::client_gone(const std::shared_ptr<RequestState>& state) {
-  if (state) {
-    state->cancel = true;
-    std::lock_guard lock(state->mutex);
-    state->gone = true;
-    state->drained.notify_all();
-  }
-  if (status_ == 0) status_ = 499;  // nginx's "client closed request", for the log only
+void Session::client_gone(const std::shared_ptr<JobChannel>& channel) {
+  if (channel) channel->client_gone();
+  if (record_.status == 0) record_.status = 499;  // nginx's "client closed request", logged
   finish_request(false);
   close();
 }
@@ -745,25 +725,26 @@ void Session::client_gone(const std::shared_ptr<RequestState>& state) {
 // ---- ending ---------------------------------------------------------------------------------
 
 void Session::finish_request(bool complete) {
-  if (logged_) return;
-  logged_ = true;
-  const auto duration = Clock::now() - started_;
-  server_.services().metrics->request(route_name_, status_, duration, bytes_in_, bytes_out_);
+  if (!record_.open) return;
+  record_.open = false;
+  const auto duration = Clock::now() - record_.started;
+  server_.services().metrics->request(record_.route, record_.status, duration, record_.bytes_in,
+                                      record_.bytes_out);
   if (!server_.config().access_log) return;
   // Never the body, the query string or the Authorization header.
-  AccessRecord record;
-  record.request_id = request_id_;
-  record.remote = remote_;
-  record.method = method_;
-  record.path = path_;
-  record.route = route_name_;
-  record.profile = profile_;
-  record.status = status_;
-  record.bytes_in = bytes_in_;
-  record.bytes_out = bytes_out_;
-  record.duration_ms = std::chrono::duration<double, std::milli>(duration).count();
-  record.complete = complete;
-  server_.log().info(access_line(record));
+  AccessRecord line;
+  line.request_id = record_.request_id;
+  line.remote = remote_;
+  line.method = record_.method;
+  line.path = record_.path;
+  line.route = record_.route;
+  line.profile = record_.profile;
+  line.status = record_.status;
+  line.bytes_in = record_.bytes_in;
+  line.bytes_out = record_.bytes_out;
+  line.duration_ms = std::chrono::duration<double, std::milli>(duration).count();
+  line.complete = complete;
+  server_.log().info(access_line(line));
 }
 
 void Session::linger_close() {
@@ -791,19 +772,15 @@ void Session::linger_close() {
 
 void Session::close() {
   if (phase_ == Phase::Closed) return;
-  if (!logged_ && bytes_in_ > 0) finish_request(false);
+  if (record_.bytes_in > 0) finish_request(false);
   phase_ = Phase::Closed;
   beast::error_code ec;
   socket_.shutdown(Socket::shutdown_both, ec);
   socket_.close(ec);
   timer_.cancel();
   job_timer_.cancel();
-  if (state_) {
-    state_->cancel = true;
-    std::lock_guard lock(state_->mutex);
-    if (!state_->finished) state_->gone = true;
-    state_->drained.notify_all();
-  }
+  reservation_.release();
+  if (channel_) channel_->client_gone();
 }
 
 // The connection's one deadline (read, idle or write, whichever phase it is in) is a time kept
@@ -813,7 +790,7 @@ void Session::close() {
 // before the deadline waits again.
 void Session::arm_timer(std::chrono::milliseconds duration) {
   deadline_ = Clock::now() + duration;
-  if (timer_waiting_ && timer_.expiry() <= deadline_) return;
+  if (timer_wait_ == Timer::Waiting && timer_.expiry() <= deadline_) return;
   wait_for_deadline();
 }
 
@@ -822,7 +799,7 @@ void Session::disarm_timer() {
 }
 
 void Session::wait_for_deadline() {
-  timer_waiting_ = true;
+  timer_wait_ = Timer::Waiting;
   timer_.expires_at(deadline_);  // cancels a wait that was later, whose completion is ignored
   timer_.async_wait(net::bind_executor(
       executor_, [self = shared_from_this()](beast::error_code ec) { self->on_timer(ec); }));
@@ -830,21 +807,23 @@ void Session::wait_for_deadline() {
 
 void Session::on_timer(beast::error_code ec) {
   if (ec == net::error::operation_aborted) return;  // moved earlier, or the connection closed
-  timer_waiting_ = false;
+  timer_wait_ = Timer::Idle;
   if (phase_ == Phase::Closed) return;
   if (deadline_ == Clock::time_point::max()) return;  // disarmed: the next arm_timer waits
   if (deadline_ > Clock::now()) return wait_for_deadline();
   switch (phase_) {
     case Phase::Reading:
       // The read's completion answers 408.
-      read_timed_out_ = true;
+      phase_ = Phase::ReadTimedOut;
       socket_.cancel(ec);
       return;
     case Phase::Writing:  // a client that does not read
-      if (state_) return client_gone(state_);
+      if (channel_) return client_gone(channel_);
       return close();
     case Phase::Handling:
-      return;  // the job timer rules
+    case Phase::AwaitingJob:
+    case Phase::ReadTimedOut:
+      return;  // the job timer rules, or the read is being cancelled
     case Phase::Idle:
     case Phase::Lingering:
     case Phase::Closed:

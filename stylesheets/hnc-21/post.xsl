@@ -73,25 +73,59 @@
     <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>
   </xsl:template>
 
+  <!-- The plane an arc lies in on the machine: the profile's set-up turns the canonical plane's
+       normal (+Z for xy, +Y for xz, +X for yz); 'xy', 'xz' or 'yz' when it lands on an axis,
+       followed by '+' or '-' for the direction it lands in (a '-' flips G02/G03), '' when the
+       set-up tilts the arc out of every G17/G18/G19 plane. The paper's set-up (90 degrees about
+       Z) takes a canonical XZ arc into the machine's YZ plane and a YZ arc into its XZ plane. -->
+  <xsl:template name="machine-plane">
+    <xsl:variable name="nx" select="number(@plane = 'yz')"/>
+    <xsl:variable name="ny" select="number(@plane = 'xz')"/>
+    <xsl:variable name="nz" select="number(@plane = 'xy')"/>
+    <xsl:variable name="i" select="ext:setup-i($nx, $ny, $nz)"/>
+    <xsl:variable name="j" select="ext:setup-j($nx, $ny, $nz)"/>
+    <xsl:variable name="k" select="ext:setup-k($nx, $ny, $nz)"/>
+    <xsl:choose>
+      <xsl:when test="$k &gt; 0.999999">xy+</xsl:when>
+      <xsl:when test="$k &lt; -0.999999">xy-</xsl:when>
+      <xsl:when test="$j &gt; 0.999999">xz+</xsl:when>
+      <xsl:when test="$j &lt; -0.999999">xz-</xsl:when>
+      <xsl:when test="$i &gt; 0.999999">yz+</xsl:when>
+      <xsl:when test="$i &lt; -0.999999">yz-</xsl:when>
+    </xsl:choose>
+  </xsl:template>
+
   <xsl:template match="ARC_FEED">
     <xsl:if test="not(@plane)">
       <xsl:message terminate="yes">ARC_FEED in a tilted plane has no G02/G03 form on this controller</xsl:message>
     </xsl:if>
-    <xsl:variable name="pw"><xsl:call-template name="plane-word"/></xsl:variable>
+    <xsl:variable name="machine"><xsl:call-template name="machine-plane"/></xsl:variable>
+    <xsl:if test="$machine = ''">
+      <xsl:message terminate="yes">ARC_FEED that the profile's set-up turns out of the G17/G18/G19 planes: not supported by this profile</xsl:message>
+    </xsl:if>
+    <xsl:variable name="plane" select="substring($machine, 1, 2)"/>
+    <xsl:variable name="pw">
+      <xsl:choose>
+        <xsl:when test="$plane = 'yz'">G19</xsl:when>
+        <xsl:when test="$plane = 'xz'">G18</xsl:when>
+        <xsl:otherwise>G17</xsl:otherwise>
+      </xsl:choose>
+    </xsl:variable>
     <xsl:variable name="planeword" select="ext:modal('plane', $pw)"/>
     <xsl:if test="$planeword != ''">
       <xsl:call-template name="block"><xsl:with-param name="text" select="$planeword"/></xsl:call-template>
     </xsl:if>
+    <!-- Counter-clockwise about the machine axis the normal lands on; about its negative, the
+         other way round. -->
     <xsl:variable name="g">
-      <xsl:choose><xsl:when test="@rotation &gt; 0">G03</xsl:when><xsl:otherwise>G02</xsl:otherwise></xsl:choose>
+      <xsl:choose><xsl:when test="(@rotation &gt; 0) = (substring($machine, 3, 1) = '+')">G03</xsl:when><xsl:otherwise>G02</xsl:otherwise></xsl:choose>
     </xsl:variable>
-    <xsl:variable name="plane" select="@plane"/>
     <xsl:variable name="cx" select="@cx"/>
     <xsl:variable name="cy" select="@cy"/>
     <xsl:variable name="cz" select="@cz"/>
     <xsl:choose>
       <xsl:when test="@rotation &gt; 1 or @rotation &lt; -1">
-        <xsl:if test="@plane != 'xy'">
+        <xsl:if test="@plane != 'xy' or $plane != 'xy'">
           <xsl:message terminate="yes">ARC_FEED of more than one turn outside the XY plane: not supported by this profile</xsl:message>
         </xsl:if>
         <!-- @turns is signed about the arc's normal; ext:arc-split wants the XY sense, as @rotation. -->

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <string_view>
@@ -113,6 +114,32 @@ inline RawResponse decode_chunked(const std::string& raw) {
     r.body += raw.substr(eol + 2, size);
     pos = eol + 2 + size + 2;
   }
+}
+
+// The resident memory of a process, from /proc (0 when it cannot be read).
+inline std::uint64_t resident_bytes(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+  return 0;
+}
+
+// Everything a raw connection receives until the server closes it (or `timeout` passes).
+inline std::string receive_all(RawConnection& c, std::chrono::milliseconds timeout) {
+  std::string all;
+  const auto deadline = Clock::now() + timeout;
+  while (!c.closed() && Clock::now() < deadline)
+    all +=
+        c.receive(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
+  return all;
+}
+
+inline std::size_t count_of(std::string_view text, std::string_view needle) {
+  std::size_t n = 0;
+  for (auto at = text.find(needle); at != std::string_view::npos; at = text.find(needle, at + 1))
+    ++n;
+  return n;
 }
 
 inline std::string post_head(std::string_view target, std::size_t length) {

@@ -90,7 +90,7 @@ TEST(ServerRoutes, UnknownRouteAndMethod) {
   EXPECT_EQ(missing.header("Content-Type"), "application/problem+json");
   auto method = curl({"-X", "DELETE", server.url("/healthz")});
   EXPECT_EQ(method.status, 405);
-  EXPECT_EQ(method.header("Allow"), "GET");
+  EXPECT_EQ(method.header("Allow"), "GET, HEAD");
   expect_serving(server);
 }
 
@@ -133,16 +133,33 @@ TEST(ServerRoutes, Profiles) {
   EXPECT_EQ(unknown.body.find(NCPOST_SOURCE_DIR), std::string::npos) << unknown.body;
 }
 
-TEST(ServerRoutes, NcRoutesAreNotImplemented) {
+// G-code in (docs/gcode.md): read with a profile's dialect, translated, or refused with the
+// way to read it.
+TEST(ServerRoutes, GcodeIsReadWithAProfilesDialect) {
   ServerProcess server;
   ASSERT_TRUE(server.started()) << server.log();
-  for (const char* path :
-       {"/v1/nc/parse?dialect=fanuc", "/v1/nc/translate?from=fanuc&to=linuxcnc"}) {
-    auto r = curl({"--data-binary", "G0 X0", server.url(path)});
-    EXPECT_EQ(r.status, 501) << path;
-    EXPECT_EQ(r.header("Content-Type"), "application/problem+json");
-    EXPECT_NE(r.body.find("NCPOST-001"), std::string::npos) << r.body;
-  }
+  const std::string program =
+      std::string("@") + NCPOST_SOURCE_DIR + "/tests/golden/post/fanuc-0i/curves.nc";
+  auto parsed = curl({"--data-binary", program, server.url("/v1/nc/parse?dialect=fanuc-0i")});
+  EXPECT_EQ(parsed.status, 200) << parsed.body;
+  EXPECT_NE(parsed.body.find("ARC_FEED("), std::string::npos) << parsed.body;
+  auto xml = curl(
+      {"--data-binary", program, server.url("/v1/nc/parse?dialect=fanuc-0i&format=xml")});
+  EXPECT_EQ(xml.status, 200) << xml.body;
+  EXPECT_EQ(xml.header("Ncpost-Errors"), "0");
+  EXPECT_NE(xml.body.find("<gcode-program"), std::string::npos);
+  auto translated = curl({"--data-binary", program,
+                          server.url("/v1/nc/translate?from=fanuc-0i&to=siemens-840d")});
+  EXPECT_EQ(translated.status, 200) << translated.body;
+  EXPECT_NE(translated.body.find(" M30\n"), std::string::npos) << translated.body;
+  auto without = curl({"--data-binary", program, server.url("/v1/posts?profile=linuxcnc")});
+  EXPECT_EQ(without.status, 422);
+  EXPECT_NE(without.body.find("IO-003"), std::string::npos) << without.body;
+  EXPECT_NE(without.body.find("/v1/nc/translate"), std::string::npos) << without.body;
+  auto unknown = curl({"--data-binary", program, server.url("/v1/nc/parse?dialect=no-such")});
+  EXPECT_EQ(unknown.status, 404);
+  auto missing = curl({"--data-binary", program, server.url("/v1/nc/translate?to=linuxcnc")});
+  EXPECT_EQ(missing.status, 400);
 }
 
 // ---- posts ---------------------------------------------------------------------------------

@@ -91,7 +91,7 @@ TEST(Router, MatchesRoutesAndParameters) {
   EXPECT_EQ(m.status, 404u);
   m = match_route(http::verb::post, "/healthz");
   EXPECT_EQ(m.status, 405u);
-  EXPECT_EQ(m.allow, "GET");
+  EXPECT_EQ(m.allow, "GET, HEAD");
   m = match_route(http::verb::head, "/healthz");
   EXPECT_NE(m.route, nullptr);
 }

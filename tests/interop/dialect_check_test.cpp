@@ -10,6 +10,7 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -31,8 +32,6 @@ namespace ncpost::interop {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr int kNurbsSamples = 33;
 
 // ---- Word-address G-code (Sinumerik, Okuma, Mitsubishi, HNC) --------------------------------
 
@@ -670,25 +669,6 @@ class KlartextReader {
 
 // ---- The checks -------------------------------------------------------------------------------
 
-struct Check {
-  // How our canonical program maps onto this dialect's output.
-  MotionOptions ours;
-  // How the reader's canonical calls become motions (the same, without set-up and arc split:
-  // the text already has them).
-  MotionOptions theirs;
-};
-
-Check check_for(const std::string& profile_id, const profile::Profile& p) {
-  Check c{options_for(p), options_for(p)};
-  if (p.nurbs == profile::NurbsMode::Native) {
-    c.ours.nurbs_samples = kNurbsSamples;
-    c.theirs.nurbs_samples = kNurbsSamples;
-  }
-  if (profile_id == "hnc-21" || profile_id == "okuma-osp") c.ours.split_multi_turn_degrees = 180;
-  if (profile_id == "hnc-21") c.ours.setup = &p.setup;
-  return c;
-}
-
 GDialect g_dialect(const std::string& profile_id) {
   GDialect d;
   if (profile_id == "siemens-840d") d.semicolon_comments = true;
@@ -709,7 +689,7 @@ std::vector<Motion> read_back(const std::string& profile_id, const std::string& 
 // Reads `text` back and compares it with `calls`' motions (both normalised).
 Outcome check_text(const std::string& profile_id, const profile::Profile& p,
                    const std::vector<canon::Call>& calls, const std::string& text) {
-  const Check c = check_for(profile_id, p);
+  const ReadBackOptions c = read_back_options(profile_id, p);
   const auto ours = normalised(motions_of(calls, c.ours));
   const auto theirs = normalised(read_back(profile_id, text, c.theirs));
   return expect_same_motions(ours, theirs, profile_id + " read back");
@@ -748,89 +728,52 @@ TEST(DialectCheck, NistEx1E) {
   check_file(corpus / "p21" / "nist_toolkit_ex1E.stp", "ex1E", 400);
 }
 
-// None of the four inputs has a drilling cycle: a hand-made program with every kind, rendered
-// with each profile, checks the native cycles (and the expansions of the others).
-std::vector<canon::Call> cycles_program() {
-  std::vector<canon::Call> calls;
-  calls.emplace_back(canon::Begin{canon::Scope::Project, {1, "PROJECT", "CYCLES"}});
-  calls.emplace_back(canon::UseLengthUnits{canon::Units::Millimetres});
-  calls.emplace_back(canon::SelectPlane{canon::Plane::Xy});
-  calls.emplace_back(
-      canon::Begin{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "HOLES"}});
-  calls.emplace_back(canon::SelectTool{3});
-  calls.emplace_back(canon::ChangeTool{3});
-  calls.emplace_back(canon::UseToolLengthOffset{80});
-  calls.emplace_back(canon::SetFeedRate{400});
-  calls.emplace_back(canon::SetSpindleSpeed{1200});
-  calls.emplace_back(canon::StartSpindleClockwise{});
-  calls.emplace_back(canon::FloodOn{});
-  calls.emplace_back(canon::StraightTraverse{{0, 0, 50}});
-  canon::Cycle c;
-  c.x = 10;
-  c.y = 20;
-  c.safe_z = 50;
-  c.r_z = 2;
-  c.bottom_z = -15;
-  c.feed = 150;
-  calls.emplace_back(c);  // G81
-  c.x = 30;
-  c.dwell = 0.5;
-  calls.emplace_back(c);  // G82
-  c.kind = canon::CycleKind::PeckDrill;
-  c.x = 50;
-  c.dwell = 0;
-  c.peck = 6;
-  c.peck_clearance = 1.0;
-  calls.emplace_back(c);  // G83
-  c.x = 70;
-  c.peck_clearance = 0;
-  c.peck_retract = 0.5;
-  c.safe_z = 2;           // back to the R plane (G99)
-  calls.emplace_back(c);  // G73
-  c = canon::Cycle{};
-  c.kind = canon::CycleKind::Ream;
-  c.x = 90;
-  c.y = 20;
-  c.safe_z = 50;
-  c.r_z = 2;
-  c.bottom_z = -12;
-  c.feed = 120;
-  calls.emplace_back(c);  // G85
-  c.kind = canon::CycleKind::Tap;
-  c.x = 110;
-  c.pitch = 1.5;
-  c.spindle_speed = 300;
-  c.feed = 450;
-  calls.emplace_back(c);  // G84
-  c.kind = canon::CycleKind::Bore;
-  c.x = 130;
-  c.spindle_stop = true;
-  c.feed = 100;
-  calls.emplace_back(c);  // G86
-  calls.emplace_back(canon::SetFeedRate{300});
-  calls.emplace_back(canon::StraightFeed{{130, 40, 50}});
-  calls.emplace_back(canon::End{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "HOLES"}});
-  calls.emplace_back(canon::StopSpindleTurning{});
-  calls.emplace_back(canon::FloodOff{});
-  calls.emplace_back(canon::ProgramEnd{});
-  calls.emplace_back(canon::End{canon::Scope::Project, {1, "PROJECT", "CYCLES"}});
-  return calls;
+// AP238 AIM programs (issue 18), through engine/ap238, in every dialect. heidenhain-tnc640
+// refuses arcs outside the XY plane (its post.xsl: tool axis Z, no CC in XZ or YZ): for a
+// program that has one, the refusal is what is checked.
+bool has_arc_outside_xy(const std::vector<canon::Call>& calls) {
+  return std::any_of(calls.begin(), calls.end(), [](const canon::Call& c) {
+    const auto* arc = std::get_if<canon::ArcFeed>(&c);
+    if (arc == nullptr) return false;
+    const auto p = canon::plane_arc(*arc);
+    return !p || p->plane != canon::Plane::Xy;
+  });
 }
 
-std::shared_ptr<const profile::LoadedProfile> load(const std::string& id) {
-  static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  xslt::initialise();
-  std::vector<diag::FileDiagnostic> diagnostics;
-  auto p = store.load(id, diagnostics);
-  EXPECT_TRUE(p) << id;
-  return p;
+TEST(DialectCheck, Ap238Programs) {
+  std::size_t refused = 0;
+  for (const fs::path& input : ap238_programs()) {
+    const std::string label = input.stem().string();
+    for (const char* id : kDialects) {
+      SCOPED_TRACE(std::string(id) + " " + label);
+      const bool xy_only = std::string(id) == "heidenhain-tnc640";
+      const Posted posted = post_file(input, id, !xy_only);
+      if (!posted.profile) continue;
+      if (xy_only && has_arc_outside_xy(posted.calls)) {
+        ASSERT_TRUE(diag::has_errors(posted.render_diagnostics));
+        std::string all;
+        for (const auto& d : posted.render_diagnostics) all += diag::format(d) + "\n";
+        EXPECT_NE(all.find("ARC_FEED outside the XY plane"), std::string::npos) << all;
+        ++refused;
+        continue;
+      }
+      EXPECT_FALSE(diag::has_errors(posted.render_diagnostics));
+      const auto o = check_text(id, posted.profile->profile, posted.calls, posted.text);
+      EXPECT_GE(o.compared, 1u);
+      std::printf("[ dialect  ] %s %s: %zu motions compared, max deviation %.6f\n", id,
+                  label.c_str(), o.compared, o.max_deviation);
+    }
+  }
+  if (test::corpus_dir()) {
+    EXPECT_EQ(refused, 3u);  // the programs with XZ or YZ arcs
+  }
 }
 
 TEST(DialectCheck, Cycles) {
   const auto calls = cycles_program();
   for (const char* id : kDialects) {
     SCOPED_TRACE(id);
-    const auto p = load(id);
+    const auto p = load_profile(id);
     if (!p) continue;
     std::vector<diag::FileDiagnostic> diagnostics;
     const std::string text = render::render_program(*p, calls, diagnostics);
@@ -855,7 +798,7 @@ TEST(DialectCheck, TinyChunksReadTheSame) {
   for (const char* name : {"curves", "placement-rotated-setup", "executables"})
     programs.emplace_back(name, post_file(trace_case(name), "linuxcnc").calls);
   for (const char* id : kDialects) {
-    const auto p = load(id);
+    const auto p = load_profile(id);
     if (!p) continue;
     for (const auto& [name, calls] : programs) {
       SCOPED_TRACE(std::string(id) + " " + name);
@@ -882,7 +825,7 @@ TEST(DialectCheck, NativeCyclesAreWritten) {
       {"heidenhain-tnc640", {"CYCL DEF 200 DRILLING", "CYCL DEF 203 UNIVERSAL DRILLING"}},
       {"mitsubishi-m80", {"G81 ", "G82 ", "G83 ", "G73 ", "G85 ", "G84 ", "G86 "}}};
   for (const auto& [id, words] : expected) {
-    const auto p = load(id);
+    const auto p = load_profile(id);
     if (!p) continue;
     std::vector<diag::FileDiagnostic> diagnostics;
     const std::string text = render::render_program(*p, calls, diagnostics);
@@ -978,7 +921,7 @@ TEST(DialectCheck, CatchesAWrongCycleDepth) {
   const auto calls = cycles_program();
   for (const auto& [id, change] : changes) {
     SCOPED_TRACE(id);
-    const auto p = load(id);
+    const auto p = load_profile(id);
     if (!p) continue;
     std::vector<diag::FileDiagnostic> diagnostics;
     std::string text = render::render_program(*p, calls, diagnostics);

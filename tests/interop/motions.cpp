@@ -1,13 +1,17 @@
 #include "motions.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <regex>
 #include <sstream>
 
 #include "corpus.hpp"
+#include "ncpost/ap238/ap238.hpp"
 #include "ncpost/canon/cycle.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
@@ -76,13 +80,14 @@ void Motions::add_arc(const canon::ArcFeed& original) {
                                  : canon::Point{cx + r * std::cos(angle), cy + r * std::sin(angle),
                                                 z0 + (end.z - z0) * t};
       motions.push_back(
-          {"ARC_FEED", {q.x, q.y, cx, cy, double(p->rotation > 0 ? 1 : -1), q.z}, feed_});
+          {"ARC_FEED", {q.x, q.y, cx, cy, double(p->rotation > 0 ? 1 : -1), q.z}, feed_, q});
     }
   } else {
     motions.push_back({"ARC_FEED",
                        {p->first_end, p->second_end, p->first_axis, p->second_axis,
                         double(p->rotation), p->axis_end_point},
-                       feed_});
+                       feed_,
+                       end});
   }
   position_ = end;
 }
@@ -166,62 +171,190 @@ std::vector<Motion> normalised(const std::vector<Motion>& motions) {
   return out;
 }
 
+std::vector<Motion> without_null_moves(const std::vector<Motion>& motions) {
+  std::vector<Motion> out;
+  // Both LinuxCNC and the converter start at the origin.
+  std::optional<canon::Point> at = canon::Point{0, 0, 0};
+  for (const auto& m : motions) {
+    const bool straight = m.kind == "STRAIGHT_TRAVERSE" || m.kind == "STRAIGHT_FEED";
+    if (!straight) {
+      out.push_back(m);
+      at = m.end;  // unknown when the reader did not say
+      continue;
+    }
+    const canon::Point to{m.values[0], m.values[1], m.values[2]};
+    if (at && std::abs(at->x - to.x) < 1e-12 && std::abs(at->y - to.y) < 1e-12 &&
+        std::abs(at->z - to.z) < 1e-12)
+      continue;
+    at = to;
+    out.push_back(m);
+  }
+  return out;
+}
+
 std::vector<canon::Point> linearize(const canon::NurbsFeed& nurbs, double tolerance) {
   return render::linearize(nurbs, tolerance);
 }
 
-Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
-                            const std::string& who) {
-  Outcome outcome;
-  EXPECT_EQ(ours.size(), theirs.size()) << "motion count, ours vs " << who;
+Comparison compare_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
+                           const std::string& who, bool compare_feeds) {
+  Comparison c;
+  if (ours.size() != theirs.size())
+    c.differences.push_back("motion count: ours " + std::to_string(ours.size()) + ", " + who + " " +
+                            std::to_string(theirs.size()));
   const std::size_t n = std::min(ours.size(), theirs.size());
   for (std::size_t i = 0; i < n; ++i) {
     const auto& a = ours[i];
     const auto& b = theirs[i];
     if (a.kind != b.kind || a.values.size() != b.values.size()) {
-      ADD_FAILURE() << "motion " << i << ": ours " << describe(a) << ", " << who << " "
-                    << describe(b);
-      outcome.compared = i;
-      return outcome;
+      c.differences.push_back("motion " + std::to_string(i) + ": ours " + describe(a) + ", " + who +
+                              " " + describe(b));
+      c.outcome.compared = i;
+      return c;
     }
-    double dev = std::abs(a.feed - b.feed);
-    if (a.kind != "STRAIGHT_TRAVERSE")
-      EXPECT_LE(dev, kTolerance) << "feed of motion " << i << ": ours " << describe(a) << ", "
-                                 << who << " " << describe(b);
-    else
-      dev = 0;
+    double dev = 0;
+    if (a.kind != "STRAIGHT_TRAVERSE" && compare_feeds) {
+      dev = std::abs(a.feed - b.feed);
+      if (dev > kTolerance)
+        c.differences.push_back("feed of motion " + std::to_string(i) + ": ours " + describe(a) +
+                                ", " + who + " " + describe(b));
+    }
+    double position = 0;
     for (std::size_t k = 0; k < a.values.size(); ++k)
-      dev = std::max(dev, std::abs(a.values[k] - b.values[k]));
-    EXPECT_LE(dev, kTolerance) << "motion " << i << ": ours " << describe(a) << ", " << who << " "
-                               << describe(b);
-    outcome.max_deviation = std::max(outcome.max_deviation, dev);
+      position = std::max(position, std::abs(a.values[k] - b.values[k]));
+    if (position > kTolerance)
+      c.differences.push_back("motion " + std::to_string(i) + ": ours " + describe(a) + ", " + who +
+                              " " + describe(b));
+    c.outcome.max_deviation = std::max({c.outcome.max_deviation, dev, position});
   }
-  outcome.compared = n;
-  return outcome;
+  c.outcome.compared = n;
+  return c;
 }
 
-Posted post_file(const std::filesystem::path& input, const std::string& profile_id) {
+Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
+                            const std::string& who) {
+  const Comparison c = compare_motions(ours, theirs, who);
+  for (const auto& d : c.differences) ADD_FAILURE() << d;
+  return c.outcome;
+}
+
+std::vector<Motion> parse_rs274(const std::string& text) {
+  static const std::regex line(R"(^\s*(?:\d+\s+)?N(?:\.\.\.\.\.|\d+)\s+([A-Z_0-9]+)\((.*)\)\s*$)");
+  std::vector<Motion> out;
+  double feed = 0;
+  std::string plane = "CANON_PLANE_XY";
+  std::istringstream in(text);
+  std::string s;
+  while (std::getline(in, s)) {
+    std::smatch m;
+    if (!std::regex_match(s, m, line)) continue;
+    const std::string name = m[1];
+    if (name == "SELECT_PLANE") plane = m[2];
+    std::vector<double> args;
+    std::string arg;
+    std::istringstream a(m[2]);
+    while (std::getline(a, arg, ',')) args.push_back(std::strtod(arg.c_str(), nullptr));
+    if (name == "SET_FEED_RATE" && !args.empty()) feed = args[0];
+    if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED") {
+      args.resize(3);  // x, y, z; a, b, c are compared by the callers that need them
+      out.push_back({name, args, feed});
+    } else if (name == "ARC_FEED") {
+      args.resize(6);  // first_end, second_end, first_axis, second_axis, rotation, axis_end_point
+      // rs274's plane order: XY (x, y; z), XZ (z, x; y), YZ (y, z; x).
+      const canon::Point end = plane == "CANON_PLANE_XZ" ? canon::Point{args[1], args[5], args[0]}
+                               : plane == "CANON_PLANE_YZ"
+                                   ? canon::Point{args[5], args[0], args[1]}
+                                   : canon::Point{args[0], args[1], args[5]};
+      out.push_back({name, args, feed, end});
+    } else if (name == "NURBS_FEED") {
+      out.push_back({name, {}, feed});
+    }
+  }
+  return out;
+}
+
+Rs274Run run_rs274(const std::filesystem::path& dir, const std::filesystem::path& program,
+                   const std::vector<std::string>& args) {
+  namespace fs = std::filesystem;
+  Rs274Run run;
+  const fs::path work = fs::temp_directory_path() / ("ncpost-rs274-" + std::to_string(::getpid()) +
+                                                     "-" + std::to_string(::rand()));
+  fs::create_directories(work);
+  // A program that loops for ever must not hang the test: rs274 gets two minutes.
+  std::string command = "cd '" + dir.string() + "' && timeout 120 " + kRs274 + " -g";
+  for (const auto& a : args) command += " '" + a + "'";
+  command += " '" + program.string() + "' '" + (work / "canon.txt").string() + "' > '" +
+             (work / "rs274.log").string() + "' 2>&1 < /dev/null";
+  const int rc = std::system(command.c_str());
+  run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  run.canon = test::read_file(work / "canon.txt");
+  run.log = test::read_file(work / "rs274.log");
+  std::error_code ec;
+  fs::remove_all(work, ec);
+  return run;
+}
+
+namespace {
+
+std::shared_ptr<const profile::LoadedProfile> builtin_profile(const std::string& profile_id) {
   xslt::initialise();
-  static const express::SchemaRegistry registry;
   static profile::ProfileStore store(test::source_dir() / "stylesheets");
-  Posted posted;
   std::vector<diag::FileDiagnostic> diagnostics;
-  posted.profile = store.load(profile_id, diagnostics);
-  EXPECT_TRUE(posted.profile) << profile_id << ": "
-                              << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
+  auto loaded = store.load(profile_id, diagnostics);
+  EXPECT_TRUE(loaded) << profile_id << ": "
+                      << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
+  return loaded;
+}
+
+}  // namespace
+
+Posted post_calls(std::vector<canon::Call> calls, const std::string& profile_id,
+                  bool expect_rendered) {
+  Posted posted;
+  posted.profile = builtin_profile(profile_id);
   if (!posted.profile) return posted;
+  posted.calls = std::move(calls);
+  posted.text = render::render_program(*posted.profile, posted.calls, posted.render_diagnostics);
+  if (expect_rendered) {
+    EXPECT_FALSE(diag::has_errors(posted.render_diagnostics))
+        << profile_id << ": " << diag::format(posted.render_diagnostics.front());
+  }
+  return posted;
+}
+
+Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
+                 bool expect_rendered) {
+  static const express::SchemaRegistry registry;
   auto loaded = pipeline::load(test::read_file(input), registry);
   EXPECT_TRUE(loaded.ok()) << input;
-  if (!loaded.ok()) return posted;
+  if (!loaded.ok()) return {builtin_profile(profile_id), {}, {}, {}};
   const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
   canon::ProgramBuffer buffer;
-  EXPECT_TRUE(stepnc::interpret(loaded.model, attributes, buffer, {}).ok()) << input;
-  posted.calls = buffer.calls();
-  std::vector<diag::FileDiagnostic> render_diagnostics;
-  posted.text = render::render_program(*posted.profile, posted.calls, render_diagnostics);
-  EXPECT_FALSE(diag::has_errors(render_diagnostics))
-      << profile_id << ": " << diag::format(render_diagnostics.front());
-  return posted;
+  // AP238 AIM programs through engine/ap238, as the pipeline takes them (docs/ap238.md).
+  const auto interpreted = ap238::is_aim(loaded.model)
+                               ? ap238::interpret(loaded.model, attributes, buffer, {})
+                               : stepnc::interpret(loaded.model, attributes, buffer, {});
+  EXPECT_TRUE(interpreted.ok()) << input;
+  return post_calls(std::move(buffer).take(), profile_id, expect_rendered);
+}
+
+std::vector<std::filesystem::path> ap238_programs() {
+  std::vector<std::filesystem::path> out;
+  const auto own = test::source_dir() / "tests" / "golden" / "ap238" / "cases";
+  for (const char* name : {"own-mill-mm.aim.stp", "own-mill-inch.aim.stp"})
+    out.push_back(own / name);
+  if (const auto corpus = test::corpus_dir()) {
+    std::vector<std::filesystem::path> milling;
+    for (const auto& e : std::filesystem::directory_iterator(*corpus / "p21-aim")) {
+      const std::string stem = e.path().stem().string();
+      if (e.path().extension() == ".stpnc" && stem != "nextnc_autodesk-face" &&
+          stem != "nextnc_autodesk-profile")  // the two turning programs, refused
+        milling.push_back(e.path());
+    }
+    std::sort(milling.begin(), milling.end());
+    out.insert(out.end(), milling.begin(), milling.end());
+  }
+  return out;
 }
 
 std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
@@ -229,6 +362,93 @@ std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
   Motions m(options);
   for (const auto& c : calls) m.call(c);
   return std::move(m.motions);
+}
+
+ReadBackOptions read_back_options(const std::string& profile_id, const profile::Profile& p) {
+  ReadBackOptions c{options_for(p), options_for(p)};
+  if (p.nurbs == profile::NurbsMode::Native) {
+    c.ours.nurbs_samples = kNurbsSamples;
+    c.theirs.nurbs_samples = kNurbsSamples;
+  }
+  if (profile_id == "hnc-21" || profile_id == "okuma-osp") c.ours.split_multi_turn_degrees = 180;
+  if (profile_id == "hnc-21") c.ours.setup = &p.setup;
+  return c;
+}
+
+std::vector<canon::Call> cycles_program() {
+  std::vector<canon::Call> calls;
+  calls.emplace_back(canon::Begin{canon::Scope::Project, {1, "PROJECT", "CYCLES"}});
+  calls.emplace_back(canon::UseLengthUnits{canon::Units::Millimetres});
+  calls.emplace_back(canon::SelectPlane{canon::Plane::Xy});
+  calls.emplace_back(
+      canon::Begin{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "HOLES"}});
+  calls.emplace_back(canon::SelectTool{3});
+  calls.emplace_back(canon::ChangeTool{3});
+  calls.emplace_back(canon::UseToolLengthOffset{80});
+  calls.emplace_back(canon::SetFeedRate{400});
+  calls.emplace_back(canon::SetSpindleSpeed{1200});
+  calls.emplace_back(canon::StartSpindleClockwise{});
+  calls.emplace_back(canon::FloodOn{});
+  calls.emplace_back(canon::StraightTraverse{{0, 0, 50}});
+  canon::Cycle c;
+  c.x = 10;
+  c.y = 20;
+  c.safe_z = 50;
+  c.r_z = 2;
+  c.bottom_z = -15;
+  c.feed = 150;
+  calls.emplace_back(c);  // G81
+  c.x = 30;
+  c.dwell = 0.5;
+  calls.emplace_back(c);  // G82
+  c.kind = canon::CycleKind::PeckDrill;
+  c.x = 50;
+  c.dwell = 0;
+  c.peck = 6;
+  c.peck_clearance = 1.0;
+  calls.emplace_back(c);  // G83
+  c.x = 70;
+  c.peck_clearance = 0;
+  c.peck_retract = 0.5;
+  c.safe_z = 2;           // back to the R plane (G99)
+  calls.emplace_back(c);  // G73
+  c = canon::Cycle{};
+  c.kind = canon::CycleKind::Ream;
+  c.x = 90;
+  c.y = 20;
+  c.safe_z = 50;
+  c.r_z = 2;
+  c.bottom_z = -12;
+  c.feed = 120;
+  calls.emplace_back(c);  // G85
+  c.kind = canon::CycleKind::Tap;
+  c.x = 110;
+  c.pitch = 1.5;
+  c.spindle_speed = 300;
+  c.feed = 450;
+  calls.emplace_back(c);  // G84
+  c.kind = canon::CycleKind::Bore;
+  c.x = 130;
+  c.spindle_stop = true;
+  c.feed = 100;
+  calls.emplace_back(c);  // G86
+  calls.emplace_back(canon::SetFeedRate{300});
+  calls.emplace_back(canon::StraightFeed{{130, 40, 50}});
+  calls.emplace_back(canon::End{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "HOLES"}});
+  calls.emplace_back(canon::StopSpindleTurning{});
+  calls.emplace_back(canon::FloodOff{});
+  calls.emplace_back(canon::ProgramEnd{});
+  calls.emplace_back(canon::End{canon::Scope::Project, {1, "PROJECT", "CYCLES"}});
+  return calls;
+}
+
+std::shared_ptr<const profile::LoadedProfile> load_profile(const std::string& id) {
+  static profile::ProfileStore store(test::source_dir() / "stylesheets");
+  xslt::initialise();
+  std::vector<diag::FileDiagnostic> diagnostics;
+  auto p = store.load(id, diagnostics);
+  EXPECT_TRUE(p) << id;
+  return p;
 }
 
 }  // namespace ncpost::interop

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct Motion {
   std::string kind;
   std::vector<double> values;
   double feed = 0;
+  // Where an arc ends in X Y Z (its values are in its plane's order), when the reader knows it.
+  std::optional<canon::Point> end{};
 };
 
 [[nodiscard]] std::string describe(const Motion& m);
@@ -75,6 +78,11 @@ class Motions final : public canon::Sink {
 // controller's cycle may retract in two steps where the canonical expansion takes one).
 [[nodiscard]] std::vector<Motion> normalised(const std::vector<Motion>& motions);
 
+// The motions without the straight ones that end where they start: a traverse to where the
+// tool stands moves nothing (rs274 prints them for a G0 to the current position, and a
+// canonical cycle's approach to an R level it already stands at). Motions start at the origin.
+[[nodiscard]] std::vector<Motion> without_null_moves(const std::vector<Motion>& motions);
+
 // Linearises a NURBS exactly as the Motions sink does (same tolerance → same points), for
 // checkers that read a native spline back.
 [[nodiscard]] std::vector<canon::Point> linearize(const canon::NurbsFeed& nurbs, double tolerance);
@@ -84,23 +92,91 @@ struct Outcome {
   double max_deviation = 0;
 };
 
-// Compares motion by motion (kind, count, every number, the feed of feed motions) and adds a
-// gtest failure for each difference above kTolerance (and for a different count or kind; the
-// comparison stops at the first different kind). `who` names the other side in messages.
+// What compare_motions found: the motions compared, the largest deviation, and each
+// difference (a different count, a different kind — where the comparison stops —, a number or
+// a feed beyond kTolerance) as a message naming the other side.
+struct Comparison {
+  Outcome outcome;
+  std::vector<std::string> differences;
+  [[nodiscard]] bool same() const { return differences.empty(); }
+};
+
+// Compares motion by motion: kind, count, every number, and the feed of feed motions unless
+// `compare_feeds` is false (a program in inverse time or per revolution, whose feeds rs274
+// prints as written while the canonical program has them per minute).
+[[nodiscard]] Comparison compare_motions(const std::vector<Motion>& ours,
+                                         const std::vector<Motion>& theirs, const std::string& who,
+                                         bool compare_feeds = true);
+
+// compare_motions, with a gtest failure for each difference.
 Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
                             const std::string& who);
+
+// ---- LinuxCNC's rs274 -----------------------------------------------------------------------
+
+inline constexpr const char* kRs274 = "/usr/bin/rs274";
+
+// The motions of rs274's canonical output: lines "   30 N..... STRAIGHT_TRAVERSE(91.9000, ...)"
+// (the counter may have been cut off, as the interpreter tests' `expected` files do), with the
+// SET_FEED_RATE in force. NURBS_FEED, which rs274 prints without its numbers, becomes a motion
+// of kind "NURBS_FEED" without values.
+[[nodiscard]] std::vector<Motion> parse_rs274(const std::string& text);
+
+struct Rs274Run {
+  int status = -1;    // exit status of rs274 (0: the program was accepted)
+  std::string canon;  // its canonical calls
+  std::string log;    // what it wrote to stdout and stderr besides
+};
+
+// Runs `rs274 -g ARGS... PROGRAM CANON` in `dir` (it may write rs274ngc.var there). Callers
+// hold the rs274 lock (ctest RESOURCE_LOCK rs274, or flock /tmp/ncpost-rs274.lock): LinuxCNC
+// keeps the tool table in shared memory.
+[[nodiscard]] Rs274Run run_rs274(const std::filesystem::path& dir,
+                                 const std::filesystem::path& program,
+                                 const std::vector<std::string>& args);
 
 // An input file posted with one profile: the canonical program and the text.
 struct Posted {
   std::shared_ptr<const profile::LoadedProfile> profile;
   std::vector<canon::Call> calls;
   std::string text;
+  std::vector<diag::FileDiagnostic> render_diagnostics;
 };
 
-// Loads the built-in profile `profile_id`, interprets `input` (STEP-NC) and renders it. Adds
-// gtest failures for load, interpretation or rendering errors; `profile` is null when the
-// profile does not load.
-[[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id);
+// Loads the built-in profile `profile_id`, interprets `input` (STEP-NC: ISO 14649, or AP238 AIM
+// through engine/ap238) and renders it. Adds gtest failures for load, interpretation or (unless
+// `expect_rendered` is false) rendering errors; `profile` is null when the profile does not load.
+[[nodiscard]] Posted post_file(const std::filesystem::path& input, const std::string& profile_id,
+                               bool expect_rendered = true);
+
+// The AP238 AIM programs every checker posts: the project's own (tests/golden/ap238/cases)
+// and, when the corpus is there, its 17 milling programs of p21-aim/ (the two turning ones are
+// refused and not posted).
+[[nodiscard]] std::vector<std::filesystem::path> ap238_programs();
+// Renders a canonical program (from any reader: the CL reader's, a hand-made one) with the
+// built-in profile `profile_id`, with the same gtest failures.
+[[nodiscard]] Posted post_calls(std::vector<canon::Call> calls, const std::string& profile_id,
+                                bool expect_rendered = true);
+
+// How a canonical program maps onto a dialect's output, for reading the output back: `ours`
+// for the canonical program (the profile's set-up transform for dialects that write machine
+// axes, multi-turn arcs cut where the dialect cuts them, splines sampled where it writes them),
+// `theirs` for the calls read back (the text already has all that).
+struct ReadBackOptions {
+  MotionOptions ours;
+  MotionOptions theirs;
+};
+inline constexpr int kNurbsSamples = 33;
+[[nodiscard]] ReadBackOptions read_back_options(const std::string& profile_id,
+                                                const profile::Profile& profile);
+
+// None of the golden inputs has a drilling cycle: a hand-made canonical program with every
+// kind (drill, drill with dwell, G83 with a 1 mm clearance, G73 with a 0.5 mm back-off back to
+// R, ream, tap, bore with spindle stop).
+[[nodiscard]] std::vector<canon::Call> cycles_program();
+
+// A built-in profile, loaded once per test program (adds a failure when it does not load).
+[[nodiscard]] std::shared_ptr<const profile::LoadedProfile> load_profile(const std::string& id);
 
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,

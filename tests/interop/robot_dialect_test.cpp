@@ -248,6 +248,8 @@ std::vector<fs::path> cases() {
                             dir / "placement-rotated-setup.stp"};
   if (const auto corpus = test::corpus_dir())
     out.push_back(*corpus / "p21" / "nist_toolkit_ex1E.stp");
+  const auto aim = ap238_programs();  // AP238 AIM programs through engine/ap238
+  out.insert(out.end(), aim.begin(), aim.end());
   return out;
 }
 

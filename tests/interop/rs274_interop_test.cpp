@@ -7,60 +7,26 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 
 #include "corpus.hpp"
 #include "motions.hpp"
+#include "ncpost/cls/reader.hpp"
 
 namespace ncpost::interop {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kRs274 = "/usr/bin/rs274";
-
-// rs274's lines: "   30 N..... STRAIGHT_TRAVERSE(91.9000, -13.5000, 30.0000, 0.0000, 0.0000,
-// 0.0000)".
-std::vector<Motion> parse_rs274(const std::string& text) {
-  static const std::regex line(R"(^\s*\d+\s+N(?:\.\.\.\.\.|\d+)\s+([A-Z_0-9]+)\((.*)\)\s*$)");
-  std::vector<Motion> out;
-  double feed = 0;
-  std::istringstream in(text);
-  std::string s;
-  while (std::getline(in, s)) {
-    std::smatch m;
-    if (!std::regex_match(s, m, line)) continue;
-    const std::string name = m[1];
-    std::vector<double> args;
-    std::string arg;
-    std::istringstream a(m[2]);
-    while (std::getline(a, arg, ',')) args.push_back(std::strtod(arg.c_str(), nullptr));
-    if (name == "SET_FEED_RATE" && !args.empty()) feed = args[0];
-    if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED") {
-      args.resize(3);  // x, y, z; a, b, c are 0 in a 3-axis program
-      out.push_back({name, args, feed});
-    } else if (name == "ARC_FEED") {
-      args.resize(6);  // first_end, second_end, first_axis, second_axis, rotation, axis_end_point
-      out.push_back({name, args, feed});
-    }
-  }
-  return out;
-}
-
-std::string read_all(const fs::path& p) {
-  return test::read_file(p);
-}
-
-Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
-                           const std::string& profile_id) {
-  // Ours: the canonical program, and the posted text.
-  const Posted posted = post_file(input, profile_id);
+// Ours (the canonical program `posted` was rendered from) against rs274's reading of the text.
+Outcome compare_posted_with_rs274(const Posted& posted, const std::string& case_name,
+                                  const std::string& profile_id) {
   if (!posted.profile) return {};
   const auto ours = motions_of(posted.calls, options_for(posted.profile->profile));
   std::set<int> tools;
@@ -88,26 +54,48 @@ Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
     std::ofstream table(dir / "tools.tbl");
     for (int t : tools) table << "T" << t << " P" << t << " Z0 D10 ;\n";
   }
-  // rs274 runs in the work folder (it may write rs274ngc.var there).
-  const std::string command =
-      "cd '" + dir.string() + "' && " + std::string(kRs274) + " -g -t '" +
-      (dir / "tools.tbl").string() + "' '" + (dir / "program.ngc").string() + "' '" +
-      (dir / "canon.txt").string() + "' > '" + (dir / "rs274.log").string() + "' 2>&1 < /dev/null";
   // Another rs274 running at the same time (another test) can disturb the shared tool table:
   // one retry.
-  int rc = std::system(command.c_str());
-  if (rc != 0 || read_all(dir / "canon.txt").find("PROGRAM_END()") == std::string::npos)
-    rc = std::system(command.c_str());
-  EXPECT_EQ(rc, 0) << read_all(dir / "rs274.log");
-  const std::string canon_text = read_all(dir / "canon.txt");
+  const std::vector<std::string> args{"-t", (dir / "tools.tbl").string()};
+  Rs274Run run = run_rs274(dir, dir / "program.ngc", args);
+  if (run.status != 0 || run.canon.find("PROGRAM_END()") == std::string::npos)
+    run = run_rs274(dir, dir / "program.ngc", args);
+  EXPECT_EQ(run.status, 0) << run.log;
+  const std::string& canon_text = run.canon;
   EXPECT_NE(canon_text.find("PROGRAM_END()"), std::string::npos) << "rs274 stopped early:\n"
-                                                                 << read_all(dir / "rs274.log");
-  const auto theirs = parse_rs274(canon_text);
+                                                                 << run.log;
+  auto theirs = parse_rs274(canon_text);
+  // rs274 prints millimetres whatever the program's unit: an inch program's are scaled back.
+  const bool inches = std::any_of(posted.calls.begin(), posted.calls.end(), [](const auto& c) {
+    const auto* u = std::get_if<canon::UseLengthUnits>(&c);
+    return u && u->units == canon::Units::Inches;
+  });
+  for (auto& m : theirs) {
+    if (!inches) break;
+    for (std::size_t i = 0; i < m.values.size(); ++i)
+      if (m.kind != "ARC_FEED" || i != 4) m.values[i] /= 25.4;  // not the turn count
+    m.feed /= 25.4;
+  }
 
   const Outcome outcome = expect_same_motions(ours, theirs, "rs274");
   std::error_code ec;
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
   return outcome;
+}
+
+Outcome compare_with_rs274(const fs::path& input, const std::string& case_name,
+                           const std::string& profile_id) {
+  return compare_posted_with_rs274(post_file(input, profile_id), case_name, profile_id);
+}
+
+// A CL file read by engine/cls and posted.
+Outcome compare_cl_with_rs274(const fs::path& input, const std::string& case_name,
+                              const std::string& profile_id) {
+  canon::ProgramBuffer buffer;
+  const auto read = cls::read(test::read_file(input), buffer);
+  EXPECT_TRUE(read.ok()) << input;
+  return compare_posted_with_rs274(post_calls(std::move(buffer).take(), profile_id), case_name,
+                                   profile_id);
 }
 
 bool rs274_available() {
@@ -182,6 +170,64 @@ TEST(Rs274Interop, HaasNgcProfile) {
   check_profile("haas-ngc");
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
   check_ex1e(corpus, "haas-ngc");
+}
+
+// AP238 AIM programs (issue 18): the project's own and the corpus's milling programs, posted
+// through engine/ap238. Lines in three planes, full circles, multi-turn helices, dwells, tool
+// changes.
+void check_ap238(const std::string& profile_id) {
+  std::size_t compared = 0;
+  for (const fs::path& input : ap238_programs()) {
+    SCOPED_TRACE(input.filename().string());
+    const std::string name = input.stem().string();
+    const auto o = compare_with_rs274(input, name, profile_id);
+    EXPECT_GT(o.compared, 0u);
+    compared += o.compared;
+    std::printf("[ rs274    ] %s %s: %zu motions compared, max deviation %.6f\n",
+                profile_id.c_str(), name.c_str(), o.compared, o.max_deviation);
+  }
+  EXPECT_GT(compared, 30u);
+}
+
+TEST(Rs274Interop, LinuxcncAp238Programs) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_ap238("linuxcnc");
+}
+
+TEST(Rs274Interop, FanucAp238Programs) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_ap238("fanuc-0i");
+}
+
+TEST(Rs274Interop, HaasNgcAp238Programs) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_ap238("haas-ngc");
+}
+
+// Cutter-location files (issue 20): every file of the corpus's cls/ folder and the project's own
+// CL programs that a 3-axis machine can run, read by engine/cls and posted for LinuxCNC.
+TEST(Rs274Interop, LinuxcncClFiles) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "cls" / "cases";
+  for (const char* name :
+       {"arcs-planes", "apt-cycles", "feeds-spindle", "inch", "continuation", "five-axis"}) {
+    SCOPED_TRACE(name);
+    const auto o = compare_cl_with_rs274(cases / (std::string(name) + ".cls"), name, "linuxcnc");
+    EXPECT_GT(o.compared, 0u);
+    std::printf("[ rs274    ] linuxcnc %s.cls: %zu motions compared, max deviation %.6f\n", name,
+                o.compared, o.max_deviation);
+  }
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(corpus / "cls")) {
+    SCOPED_TRACE(e.path().filename().string());
+    const auto o = compare_cl_with_rs274(e.path(), e.path().stem().string(), "linuxcnc");
+    EXPECT_GT(o.compared, 50u);
+    std::printf("[ rs274    ] linuxcnc %s: %zu motions compared, max deviation %.6f\n",
+                e.path().filename().string().c_str(), o.compared, o.max_deviation);
+    ++files;
+  }
+  EXPECT_EQ(files, 4u);
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
-# cmake -DINPUT=<file> -DOUTPUT=<file.cpp> -P embed_file.cmake
-# Writes a C++ source that defines ncpost::express::detail::builtin_schema_bytes(): the bytes of
-# INPUT as an unsigned char array. A byte array (not a raw string literal) so that no content of
+# cmake -DINPUT=<file> -DOUTPUT=<file.cpp> [-DFUNCTION=<name>] -P embed_file.cmake
+# Writes a C++ source that defines ncpost::express::detail::<FUNCTION>() (default
+# builtin_schema_bytes): the bytes of INPUT as an unsigned char array. A byte array (not a raw string literal) so that no content of
 # the schema, whatever it is, can end the literal early. Without INPUT (the schema was missing
 # when the build was configured) the function returns an empty view.
 if(NOT OUTPUT)
   message(FATAL_ERROR "embed_file.cmake: OUTPUT is required")
+endif()
+if(NOT FUNCTION)
+  set(FUNCTION builtin_schema_bytes)
 endif()
 
 if(INPUT)
@@ -35,14 +38,14 @@ ${bytes}
 };
 }  // namespace
 
-std::string_view builtin_schema_bytes() noexcept {
+std::string_view ${FUNCTION}() noexcept {
   return {reinterpret_cast<const char*>(kBytes), sizeof kBytes};
 }
 ")
 else()
   set(body "// The schema file was missing when the build was configured: the built-in is empty, and
 // SchemaRegistry reports EXP-054.
-std::string_view builtin_schema_bytes() noexcept { return {}; }
+std::string_view ${FUNCTION}() noexcept { return {}; }
 ")
 endif()
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <system_error>
 #include <utility>
 
@@ -11,16 +12,20 @@
 namespace ncpost::express {
 
 namespace detail {
-// Defined in the generated builtin_schema_data.cpp (engine/express/cmake/embed_file.cmake).
+// Defined in the generated sources of engine/express/cmake/embed_file.cmake.
 std::string_view builtin_schema_bytes() noexcept;
+std::string_view builtin_aim_schema_bytes() noexcept;
 }  // namespace detail
 
 namespace {
 
 constexpr std::string_view kBuiltinOrigin = "<built-in>";
-// FILE_SCHEMA names that always mean the built-in, even if it failed to embed: the schemas that
-// ISO 14649 part programs declare (FILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'))).
+constexpr std::string_view kBuiltinAimOrigin = "<built-in AP238 AIM>";
+// FILE_SCHEMA names that always mean a built-in, even if it failed to embed: the schemas that
+// ISO 14649 part programs declare (FILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'))), and the
+// one AP238 AIM programs declare.
 constexpr std::string_view kBuiltinNames[] = {"machining_schema", "milling_schema"};
+constexpr std::string_view kBuiltinAimNames[] = {"integrated_cnc_schema"};
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -57,6 +62,16 @@ std::shared_ptr<const ParseResult> builtin_schema() {
   return parsed;
 }
 
+std::string_view builtin_aim_schema_text() noexcept {
+  return detail::builtin_aim_schema_bytes();
+}
+
+std::shared_ptr<const ParseResult> builtin_aim_schema() {
+  static const std::shared_ptr<const ParseResult> parsed =
+      std::make_shared<const ParseResult>(parse_express(builtin_aim_schema_text()));
+  return parsed;
+}
+
 const CheckPlan& SchemaSource::check_plan() const {
   std::call_once(plan_made_, [this] { plan_ = std::make_unique<const CheckPlan>(set()); });
   return *plan_;
@@ -65,17 +80,23 @@ const CheckPlan& SchemaSource::check_plan() const {
 // ---------------------------------------------------------------------------------------------
 
 SchemaRegistry::SchemaRegistry() {
-  auto source = std::make_unique<SchemaSource>();
-  source->origin = std::string(kBuiltinOrigin);
-  source->parsed = builtin_schema();
-  source->builtin = true;
-  builtin_ = source.get();
-  sources_.push_back(std::move(source));
-  for (const Schema& schema : builtin_->set().schemas())
-    names_.push_back(Name{schema.name, builtin_});
-  for (const std::string_view name : kBuiltinNames)
-    if (std::none_of(names_.begin(), names_.end(), [&](const Name& n) { return n.name == name; }))
-      names_.push_back(Name{std::string(name), builtin_});
+  const auto add_builtin = [this](std::string_view origin,
+                                  std::shared_ptr<const ParseResult> parsed,
+                                  std::span<const std::string_view> always) {
+    auto source = std::make_unique<SchemaSource>();
+    source->origin = std::string(origin);
+    source->parsed = std::move(parsed);
+    source->builtin = true;
+    const SchemaSource* added = source.get();
+    sources_.push_back(std::move(source));
+    for (const Schema& schema : added->set().schemas()) names_.push_back(Name{schema.name, added});
+    for (const std::string_view name : always)
+      if (std::none_of(names_.begin(), names_.end(), [&](const Name& n) { return n.name == name; }))
+        names_.push_back(Name{std::string(name), added});
+    return added;
+  };
+  builtin_ = add_builtin(kBuiltinOrigin, builtin_schema(), kBuiltinNames);
+  builtin_aim_ = add_builtin(kBuiltinAimOrigin, builtin_aim_schema(), kBuiltinAimNames);
 }
 
 std::string SchemaRegistry::normalise_name(std::string_view entry) {
@@ -169,17 +190,23 @@ std::vector<SchemaFileReport> SchemaRegistry::add_directory(const std::filesyste
 
 std::vector<diag::Diagnostic> SchemaRegistry::builtin_diagnostics() const {
   std::vector<diag::Diagnostic> out;
-  if (builtin_schema_text().empty()) {
-    out.push_back(diag::make(diag::Code::ExpBuiltinMissing, 0, 0,
-                             "the built-in schema is empty: schemas/iso14649.exp did not exist "
-                             "when this build was configured"));
-  } else if (!builtin_->parsed->diagnostics.empty()) {
-    out.push_back(diag::make(
-        diag::Code::ExpBuiltinMissing, 0, 0,
-        "the built-in schema (schemas/iso14649.exp) has " +
-            std::to_string(builtin_->parsed->diagnostics.size()) + " diagnostic(s), the first: " +
-            diag::format(builtin_->parsed->diagnostics.front(), "iso14649.exp")));
-  }
+  const auto check = [&](std::string_view text, const SchemaSource& source, std::string_view file,
+                         std::string_view what) {
+    if (text.empty()) {
+      out.push_back(diag::make(diag::Code::ExpBuiltinMissing, 0, 0,
+                               "the built-in " + std::string(what) + " schema is empty: schemas/" +
+                                   std::string(file) +
+                                   " did not exist when this build was configured"));
+    } else if (!source.parsed->diagnostics.empty()) {
+      out.push_back(diag::make(
+          diag::Code::ExpBuiltinMissing, 0, 0,
+          "the built-in " + std::string(what) + " schema (schemas/" + std::string(file) + ") has " +
+              std::to_string(source.parsed->diagnostics.size()) + " diagnostic(s), the first: " +
+              diag::format(source.parsed->diagnostics.front(), file)));
+    }
+  };
+  check(builtin_schema_text(), *builtin_, "iso14649.exp", "ISO 14649");
+  check(builtin_aim_schema_text(), *builtin_aim_, "ap238_aim.exp", "AP238 AIM");
   return out;
 }
 

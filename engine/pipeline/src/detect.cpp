@@ -2,6 +2,9 @@
 
 #include <cctype>
 
+#include "ncpost/cls/reader.hpp"
+#include "ncpost/gcode/gcode.hpp"
+
 namespace ncpost::pipeline {
 
 InputFormat detect_format(std::string_view bytes) noexcept {
@@ -22,6 +25,8 @@ InputFormat detect_format(std::string_view bytes) noexcept {
   // precisely what is wrong (P21-020) instead of "not a format ncpost reads".
   if (bytes.starts_with("ISO-10303-21") || bytes.starts_with("HEADER;")) return InputFormat::P21;
   if (bytes.starts_with("<")) return InputFormat::P28;
+  if (cls::looks_like_cl(bytes)) return InputFormat::Cl;
+  if (gcode::looks_like_gcode(bytes)) return InputFormat::Gcode;
   return InputFormat::Unknown;
 }
 
@@ -31,6 +36,10 @@ std::string_view to_string(InputFormat format) noexcept {
       return "p21";
     case InputFormat::P28:
       return "p28";
+    case InputFormat::Cl:
+      return "cl";
+    case InputFormat::Gcode:
+      return "G-code";
     case InputFormat::Unknown:
       break;
   }

@@ -1,8 +1,9 @@
 #include "ncpost/pipeline/jobs.hpp"
 
+#include "ncpost/ap238/ap238.hpp"
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/canon/xml.hpp"
-#include "ncpost/diag/json.hpp"
+#include "ncpost/pipeline/diagnostics.hpp"
 #include "ncpost/express/express_x.hpp"
 #include "ncpost/express/parse.hpp"
 #include "ncpost/p21/writer.hpp"
@@ -61,6 +62,7 @@ json to_json(const stepnc::Executable& x) {
       if (x.tool) j["tool"] = to_json(*x.tool);
       break;
     case Shape::Sequence:
+      if (x.setup) j["setup"] = to_json(*x.setup);
       j["elements"] = children();
       break;
     case Shape::Parallel:
@@ -110,6 +112,11 @@ json to_json(const stepnc::ProgramInfo& info) {
   for (const auto& t : info.tools) {
     json j = to_json(t.self);
     j["used_by"] = t.used_by;
+    if (t.number) j["number"] = *t.number;
+    if (t.body) j["body"] = *t.body;
+    if (t.diameter) j["diameter"] = *t.diameter;
+    if (t.corner_radius) j["corner_radius"] = *t.corner_radius;
+    if (t.length) j["length"] = *t.length;
     tools.push_back(std::move(j));
   }
   json& statistics = out["statistics"];
@@ -192,12 +199,17 @@ std::vector<diag::FileDiagnostic> verify_diagnostics(const VerifyOutcome& outcom
 Inspection inspect(Input input, const JobContext& context) {
   ReadOptions options;
   options.name_what_is_not_a_program = false;  // the structure report below says it
-  const Program program = read(std::move(input), context, options);
+  Program program = read(std::move(input), context, options);
+  const bool has_model =
+      program.cancelled ||
+      require_model(program, "inspect", "trace it (ncpost trace, POST /v1/traces) instead");
   Inspection inspection;
   inspection.job = read_result(program);
-  if (program.cancelled) return inspection;
+  if (program.cancelled || !has_model) return inspection;
   const auto started = Clock::now();
-  inspection.info = stepnc::inspect(program.loaded.model, *program.loaded.schema);
+  const p21::Model& model = program.loaded.model;
+  inspection.info = ap238::is_aim(model) ? ap238::inspect(model, *program.loaded.schema)
+                                         : stepnc::inspect(model, *program.loaded.schema);
   inspection.job.work_time = Clock::now() - started;
   append(inspection.job.diagnostics, diag::with_file(inspection.info.diagnostics, program.name));
   inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);
@@ -210,7 +222,7 @@ nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info) {
 
 nlohmann::ordered_json inspection_json(const Inspection& inspection) {
   nlohmann::ordered_json json = to_json(inspection.info);
-  json["diagnostics"] = diag::to_json(inspection.job.diagnostics);
+  json["diagnostics"] = diagnostics_json(inspection.job.diagnostics);
   return json;
 }
 
@@ -221,7 +233,8 @@ std::string inspection_text(const Inspection& inspection) {
 JobResult convert(Input input, const JobContext& context, ConvertTo to, const TextSink& out) {
   ReadOptions options;
   options.validate = false;
-  const Program program = read(std::move(input), context, options);
+  Program program = read(std::move(input), context, options);
+  if (program.ok()) (void)require_model(program, "convert", "it has no P21/P28 form to convert to");
   JobResult result = read_result(program);
   if (!result.ok) return result;
   const auto started = Clock::now();

@@ -296,6 +296,7 @@ PostResult post(const Program& program, const JobContext& context,
     return post_raw(program.loaded, profile, out, with_context);
   InterpretSettings settings;
   settings.stop_at_first_error = true;
+  if (options.shop_checks) settings.checks_of = &profile;
   const auto interpret_into = [&](canon::Sink& sink) {
     return interpret(program, sink, context, settings);
   };
@@ -312,7 +313,10 @@ std::vector<diag::FileDiagnostic> PostJobResult::diagnostics() const {
 PostJobResult post(Input input, const JobContext& context, const profile::LoadedProfile& profile,
                    const render::TextSink& out, const PostOptions& options, const OnRead& on_read) {
   PostJobResult result;
-  const Program program = read(std::move(input), context);
+  Program program = read(std::move(input), context);
+  if (profile.profile.mode == profile::Mode::Raw && program.ok())
+    (void)require_model(program, "a raw profile (" + profile.profile.id + ")",
+                        "choose a profile that writes G-code");
   result.read = read_result(program);
   if (!result.read.ok) return result;
   if (on_read) on_read(result.read);

@@ -240,7 +240,7 @@ std::optional<Profile> parse_profile(std::string_view text,
   c.check_keys(
       doc, "",
       {"$schema", "id", "name", "controller", "mode", "output", "block_numbers", "formats", "units",
-       "capabilities", "setup", "limits", "render"},
+       "capabilities", "setup", "limits", "render", "checks"},
       {"id", "name", "controller", "output", "block_numbers", "formats", "units", "capabilities"});
   if (auto v = c.string(doc, "", "id", 1, 64)) {
     if (valid_id(*v))
@@ -395,6 +395,14 @@ std::optional<Profile> parse_profile(std::string_view text,
       p.limits.max_line_length = static_cast<std::size_t>(*v);
     if (auto v = c.enumeration(*l, "/limits", "severity", {"warning", "error"}))
       p.limits.severity = *v == "error" ? diag::Severity::Error : diag::Severity::Warning;
+  }
+  // Carried as text: engine/cls reads and checks it (cls::parse_checks), so that the profile stage
+  // does not depend on the CL reader.
+  if (const auto it = doc.find("checks"); it != doc.end()) {
+    if (it->is_object())
+      p.checks_json = it->dump();
+    else
+      c.fail("/checks", "must be an object");
   }
   if (!c.ok()) return std::nullopt;
   return p;

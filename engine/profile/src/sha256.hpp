@@ -1,10 +1,10 @@
 #pragma once
 // SHA-256 (FIPS 180-4) for profile versions: a content hash that names version folders and
-// goes into the server's ETag. Written here because no Debian-packaged dependency of the
-// project provides one (OpenSSL would be a new dependency for 100 lines).
+// goes into the server's ETag. The digest is nettle's (Debian's nettle-dev, docs/dependencies.md):
+// a well-kept, small library whose only job is such primitives.
 
-#include <array>
-#include <cstdint>
+#include <nettle/sha2.h>
+
 #include <string>
 #include <string_view>
 
@@ -18,11 +18,7 @@ class Sha256 {
   [[nodiscard]] std::string hex();
 
  private:
-  void block(const unsigned char* p);
-  std::array<std::uint32_t, 8> h_;
-  std::array<unsigned char, 64> buffer_{};
-  std::size_t used_ = 0;
-  std::uint64_t length_ = 0;  // bytes
+  sha256_ctx context_;
 };
 
 [[nodiscard]] std::string sha256_hex(std::string_view bytes);

@@ -14,6 +14,7 @@
 #include <random>
 #include <sstream>
 
+#include "ncpost/gcode/gcode.hpp"
 #include "ncpost/profile/profile.hpp"
 #include "sha256.hpp"
 
@@ -251,8 +252,11 @@ Built build(const fs::path& folder, std::string_view id, const std::vector<fs::p
   Built out;
   const fs::path json_file = folder / "profile.json";
   const fs::path xsl_file = folder / "post.xsl";
+  const fs::path dialect_file = folder / "dialect.json";
   out.stamps.push_back(make_stamp(json_file, false));
   out.stamps.push_back(make_stamp(xsl_file, false));
+  // Stamped present or not, so that adding one is seen by reload().
+  out.stamps.push_back(make_stamp(dialect_file, false));
   if (!json) {
     json = read_text(json_file);
     if (!json) {
@@ -275,9 +279,25 @@ Built build(const fs::path& folder, std::string_view id, const std::vector<fs::p
         "the stylesheet of profile '" + std::string(id) + "' does not compile");
     return out;
   }
+  std::optional<std::string> dialect;
+  std::error_code exists_error;
+  if (fs::exists(dialect_file, exists_error)) {
+    dialect = read_text(dialect_file);
+    if (!dialect) {
+      add(diagnostics, dialect_file, diag::Code::ProfileDirectory,
+          "cannot read " + dialect_file.string());
+      return out;
+    }
+  }
   detail::Sha256 h;
   h.update("ncpost-profile-version-1");
   hash_piece(h, *json);
+  // The dialect belongs to the version too (what a translation reads by); without one the
+  // version is what it was before dialects existed.
+  if (dialect) {
+    h.update("dialect");
+    hash_piece(h, *dialect);
+  }
   for (const fs::path& f : compiled.stylesheet->files()) {
     if (f != compiled.stylesheet->files().front()) out.stamps.push_back(make_stamp(f, false));
     const auto text = read_text(f);
@@ -293,6 +313,7 @@ Built build(const fs::path& folder, std::string_view id, const std::vector<fs::p
   loaded->stylesheet = std::move(compiled.stylesheet);
   loaded->version = h.hex();
   loaded->json = std::move(*json);
+  loaded->dialect_json = std::move(dialect);
   out.loaded = std::move(loaded);
   return out;
 }
@@ -353,7 +374,8 @@ std::shared_ptr<const LoadedProfile> ProfileStore::load(
 }
 
 PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
-                            std::string_view stylesheet) {
+                            std::string_view stylesheet,
+                            std::optional<std::string_view> dialect_json) {
   PutResult result;
   auto& diagnostics = result.diagnostics;
   if (!valid_id(id)) {
@@ -376,6 +398,17 @@ PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
     if (profile->id != id) {
       add(diagnostics, "profile.json", diag::Code::ProfileInvalid,
           "/id: '" + profile->id + "' differs from the id in the path '" + std::string(id) + "'");
+      return result;
+    }
+  }
+  if (dialect_json) {
+    auto dialect = gcode::load_dialect(*dialect_json);
+    for (auto& d : dialect.diagnostics) diagnostics.push_back({"dialect.json", std::move(d)});
+    if (!dialect.dialect) return result;
+    if (dialect.dialect->id != id) {
+      add(diagnostics, "dialect.json", diag::Code::GcodeDialectInvalid,
+          "/id: '" + dialect.dialect->id + "' differs from the id in the path '" + std::string(id) +
+              "'");
       return result;
     }
   }
@@ -403,6 +436,10 @@ PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
   detail::Sha256 content;
   hash_piece(content, json);
   hash_piece(content, stylesheet);
+  if (dialect_json) {
+    content.update("dialect");
+    hash_piece(content, *dialect_json);
+  }
   std::string name = version_prefix(id) + content.hex().substr(0, 16);
   fs::path version = directory_ / name;
   const fs::path entry = directory_ / std::string(id);
@@ -411,8 +448,11 @@ PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
   if (::lstat(version.c_str(), &st) == 0) {
     // The same content was stored before (a re-upload, or a version a crash left behind):
     // reuse it when it is intact, otherwise write beside it.
-    reused = S_ISDIR(st.st_mode) && read_text(version / "profile.json") == json &&
-             read_text(version / "post.xsl") == std::string(stylesheet);
+    reused =
+        S_ISDIR(st.st_mode) && read_text(version / "profile.json") == json &&
+        read_text(version / "post.xsl") == std::string(stylesheet) &&
+        read_text(version / "dialect.json") ==
+            (dialect_json ? std::optional<std::string>(std::string(*dialect_json)) : std::nullopt);
     if (!reused) {
       name += "-" + random_hex().substr(0, 8);
       version = directory_ / name;
@@ -427,6 +467,7 @@ PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
       return fail("cannot create a folder in the profile directory: " + ec.message());
     std::optional<std::string> error = write_new_file(temp / "profile.json", json);
     if (!error) error = write_new_file(temp / "post.xsl", stylesheet);
+    if (!error && dialect_json) error = write_new_file(temp / "dialect.json", *dialect_json);
     if (!error && !fsync_directory(temp)) error = "cannot sync the new version's folder";
     if (!error && ::rename(temp.c_str(), version.c_str()) != 0)
       error = "cannot rename the new version's folder: " + errno_text(errno);

@@ -40,7 +40,38 @@ void reverse(std::vector<Segment>& segments) {
   }
 }
 
-std::optional<std::vector<Segment>> CurveReader::segments(const p21::Instance& curve, int depth) {
+void scale(std::vector<Segment>& segments, double factor) {
+  if (factor == 1) return;
+  for (Segment& s : segments) {
+    s.start = s.start * factor;
+    s.end = s.end * factor;
+    s.centre = s.centre * factor;
+    for (Vec3& p : s.control_points) p = p * factor;
+  }
+}
+
+std::optional<std::vector<Segment>> CurveReader::segments(const p21::Instance& curve) {
+  auto out = curve_segments(curve, 0);
+  if (out) scale(*out, mm_per_unit_);
+  return out;
+}
+
+bool CurveReader::apply_tool_axis(std::vector<Segment>& segments, const p21::Instance& axis_curve) {
+  const auto axes =
+      geometry_.is_a(axis_curve, "polyline") ? polyline_points(axis_curve) : std::nullopt;
+  if (!axes || axes->size() != segments.size() + 1 ||
+      std::any_of(segments.begin(), segments.end(),
+                  [](const Segment& s) { return s.kind != Segment::Kind::Line; }))
+    return false;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Vec3 d = (*axes)[i + 1];
+    segments[i].tool_axis = d * (1.0 / std::max(d.length(), 1e-12));
+  }
+  return true;
+}
+
+std::optional<std::vector<Segment>> CurveReader::curve_segments(const p21::Instance& curve,
+                                                                int depth) {
   if (depth > kMaxCurveNesting) {
     geometry_.error(diag::Code::StepncBadGeometry, curve,
                     describe(geometry_.model(), curve) + " nests curves deeper than " +
@@ -130,8 +161,10 @@ std::optional<Vec3> CurveReader::trim_point(const p21::Instance& trimmed,
     const auto frame = geometry_.placement(geometry_.get(basis, "position"));
     const auto radius = geometry_.number(basis, "radius");
     if (!frame || !radius) return std::nullopt;
-    // ISO 10303-42 circle parameter: the angle, in radians here (the ARM has no unit context).
-    return frame->point({*radius * std::cos(*parameter), *radius * std::sin(*parameter), 0});
+    // ISO 10303-42 circle parameter: the angle, in the context's plane angle unit (radians for
+    // ISO 14649, which has no unit context).
+    const double angle = *parameter * radians_per_unit_;
+    return frame->point({*radius * std::cos(angle), *radius * std::sin(angle), 0});
   }
   geometry_.error(diag::Code::StepncNotImplemented, trimmed,
                   describe(m, trimmed) + " trimmed by parameter on " + describe(m, basis) +
@@ -167,7 +200,7 @@ std::optional<std::vector<Segment>> CurveReader::trimmed(const p21::Instance& cu
   if (!frame || !radius) return std::nullopt;
   for (const auto& [p, which] : {std::pair{*start, "start"}, std::pair{*end, "end"}}) {
     const double r = radial_distance(p, frame->origin, frame->z);
-    if (std::abs(r - *radius) > arc_tolerance_) {
+    if (std::abs(r - *radius) * mm_per_unit_ > arc_tolerance_) {
       geometry_.error(diag::Code::StepncArcMismatch, curve,
                       describe(m, curve) + ": the " + which + " point is " + std::to_string(r) +
                           " from the axis of " + describe(m, *basis) + ", whose radius is " +
@@ -186,7 +219,7 @@ std::optional<std::vector<Segment>> CurveReader::trimmed(const p21::Instance& cu
   sweep = std::fmod(sweep + 2 * kTwoPi, kTwoPi);
   if (!helix) {
     const double rise = (*end - *start).dot(frame->z);
-    if (std::abs(rise) > arc_tolerance_) {
+    if (std::abs(rise) * mm_per_unit_ > arc_tolerance_) {
       geometry_.error(diag::Code::StepncArcMismatch, curve,
                       describe(m, curve) + ": the end points of a circular arc differ by " +
                           std::to_string(rise) + " along its axis");
@@ -208,7 +241,7 @@ std::optional<std::vector<Segment>> CurveReader::trimmed(const p21::Instance& cu
   const double partial = sweep < 1e-9 ? kTwoPi : sweep;
   const double full_turns = std::floor((total - partial) / kTwoPi + 0.5);
   const double mismatch = std::abs(full_turns * kTwoPi + partial - total) * *radius;
-  if (mismatch > std::max(arc_tolerance_, 1e-3 * total * *radius)) {
+  if (mismatch * mm_per_unit_ > std::max(arc_tolerance_, 1e-3 * total * *radius * mm_per_unit_)) {
     geometry_.error(diag::Code::StepncArcMismatch, curve,
                     describe(m, curve) + ": a rise of " + std::to_string(rise) + " at pitch " +
                         std::to_string(*pitch) + " does not end at the end point's angle on " +
@@ -230,7 +263,7 @@ std::optional<std::vector<Segment>> CurveReader::composite(const p21::Instance& 
     const p21::Instance* parent =
         geometry_.instance(geometry_.get(*seg, "parent_curve"), "curve", seg, "parent_curve");
     if (parent == nullptr) return std::nullopt;
-    auto part = segments(*parent, depth + 1);
+    auto part = curve_segments(*parent, depth + 1);
     if (!part) return std::nullopt;
     const auto same = geometry_.get(*seg, "same_sense");
     if (same && m.as_logical(*same) == p21::Logical::False) reverse(*part);

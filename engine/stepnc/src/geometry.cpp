@@ -16,6 +16,15 @@ bool Frame::identity() const {
   return same(origin, {}) && same(x, {1, 0, 0}) && same(y, {0, 1, 0}) && same(z, {0, 0, 1});
 }
 
+Frame inverse(const Frame& f) {
+  Frame out;
+  out.x = {f.x.x, f.y.x, f.z.x};
+  out.y = {f.x.y, f.y.y, f.z.y};
+  out.z = {f.x.z, f.y.z, f.z.z};
+  out.origin = {-f.x.dot(f.origin), -f.y.dot(f.origin), -f.z.dot(f.origin)};
+  return out;
+}
+
 std::string describe(const p21::Model& model, const p21::Instance& instance) {
   return "#" + std::to_string(instance.id) + " (" + std::string(model.type_name(instance)) + ")";
 }

@@ -7,51 +7,29 @@
 #include <cmath>
 #include <unordered_set>
 
-#include "curves.hpp"
 #include "features/generator.hpp"
-#include "geometry.hpp"
+#include "ncpost/stepnc/curves.hpp"
+#include "ncpost/stepnc/geometry.hpp"
+#include "ncpost/stepnc/machine.hpp"
 #include "ncpost/stepnc/program_info.hpp"
 
 namespace ncpost::stepnc {
 namespace {
 
 using detail::Frame;
+using detail::Machine;
 using detail::Segment;
 using detail::Vec3;
 using p21::Instance;
 using p21::Value;
 
-constexpr double kSamePoint = 1e-6;  // mm: positions closer than this are the same
-
-// ISO 14649 states feed rates in m/s (speed_measure) and spindle speeds in revolutions per
-// second (rot_speed_measure); the canonical program uses mm/min and rpm like RS274.
+// ISO 14649 states feed rates in m/s (speed_measure); the canonical program uses mm/min.
 constexpr double kFeedToMmPerMin = 60000.0;
-constexpr double kSpindleToRpm = 60.0;
-
-canon::Pose pose(Vec3 p, const std::optional<Vec3>& axis = std::nullopt) {
-  canon::Pose out{p.x, p.y, p.z, std::nullopt, std::nullopt};
-  if (axis) out.tool_axis = canon::Direction{axis->x, axis->y, axis->z};
-  return out;
-}
 
 // A three-axis pose (generated paths carry no tool axis).
 canon::Pose flat_pose(Vec3 p) {
   return {p.x, p.y, p.z, std::nullopt, std::nullopt};
 }
-
-class CountingSink final : public canon::Sink {
- public:
-  explicit CountingSink(canon::Sink& inner) : inner_(inner) {}
-  void call(const canon::Call& c) override {
-    ++count_;
-    inner_.call(c);
-  }
-  [[nodiscard]] std::size_t count() const { return count_; }
-
- private:
-  canon::Sink& inner_;
-  std::size_t count_ = 0;
-};
 
 class Interpreter {
  public:
@@ -59,7 +37,7 @@ class Interpreter {
               const InterpretOptions& options)
       : m_(model),
         a_(attributes),
-        out_(sink),
+        machine_(sink),
         options_(options),
         geometry_(model, attributes, diagnostics_),
         curves_(geometry_, options.arc_tolerance) {}
@@ -68,7 +46,7 @@ class Interpreter {
 
  private:
   // ---- helpers ----
-  void emit(canon::Call c) { out_.call(c); }
+  void emit(const canon::Call& c) { machine_.emit(c); }
   std::string name(const Instance& i) {
     const auto v = geometry_.get(i, "its_id");
     return v && v->kind() == p21::ValueKind::String ? m_.as_string(*v) : std::string();
@@ -109,17 +87,14 @@ class Interpreter {
   bool tool(const Instance& tool_instance);
   void technology(const Instance* tech);
   void machine_functions(const Instance* functions);
-  void retract_to_security_plane();
-  void approach(Vec3 start, bool rapid_only);
   void toolpaths(const Instance* list, const Frame& frame, bool rapid);
-  void motion(const std::vector<Segment>& segments, const Frame& frame, bool rapid);
   void generated(const Instance& ws, const Instance& operation, const Instance* feature,
                  const Instance& tool_instance, const Frame& frame);
-  void spindle(double speed);
+  void set_security_plane(const Instance& owner);
 
   const p21::Model& m_;
   const AttributeReader& a_;
-  CountingSink out_;
+  Machine machine_;
   const InterpretOptions& options_;
   std::vector<diag::Diagnostic> diagnostics_;
   detail::GeometryReader geometry_;
@@ -128,13 +103,6 @@ class Interpreter {
   Frame workpiece_;                       // machine ← workpiece (setup ∘ workpiece setup)
   std::vector<Frame> workpiece_origins_;  // workpiece setups of the current setup
   std::vector<const Instance*> workpiece_setups_;
-  std::optional<double> security_z_;  // in machine coordinates
-  std::optional<Vec3> position_;      // unknown until the first move
-  std::optional<std::uint64_t> tool_id_;
-  std::optional<double> feed_;
-  std::optional<double> spindle_;
-  bool flood_ = false;
-  bool mist_ = false;
   std::unordered_set<std::uint64_t> on_path_;
   std::size_t errors_checked_ = 0;
   bool stopped_ = false;
@@ -149,27 +117,18 @@ InterpretResult Interpreter::run() {
     diagnostics_.back().severity = diag::Severity::Error;
   } else {
     const Instance& project = *projects.front();
-    emit(canon::Begin{canon::Scope::Project, entity(project)});
-    emit(canon::UseLengthUnits{canon::Units::Millimetres});
-    emit(canon::SetOriginOffsets{{0, 0, 0}, std::nullopt});
-    emit(canon::SetFeedReference{canon::FeedReference::Xyz});
-    emit(canon::SelectPlane{canon::Plane::Xy});
+    machine_.start_program(entity(project));
     const Instance* main = ref(project, "main_workplan", "workplan");
     if (main != nullptr) executable(*main, 0);
     if (stopped()) {
       result.diagnostics = std::move(diagnostics_);
-      result.calls = out_.count();
+      result.calls = machine_.calls();
       return result;  // no end sequence: the program is incomplete
     }
-    retract_to_security_plane();
-    if (spindle_ && *spindle_ != 0) emit(canon::StopSpindleTurning{});
-    if (flood_) emit(canon::FloodOff{});
-    if (mist_) emit(canon::MistOff{});
-    emit(canon::ProgramEnd{});
-    emit(canon::End{canon::Scope::Project, entity(project)});
+    machine_.end_program(entity(project));
   }
   result.diagnostics = std::move(diagnostics_);
-  result.calls = out_.count();
+  result.calls = machine_.calls();
   return result;
 }
 
@@ -197,9 +156,14 @@ void Interpreter::set_up(const Instance& setup) {
     note(setup, detail::describe(m_, setup) + " has " + std::to_string(workpiece_origins_.size()) +
                     " workpiece set-ups; each workingstep uses the one of its feature's workpiece");
   // The setup's security plane until a workingstep names its own.
-  if (const Instance* plane = ref(setup, "its_secplane", "elementary_surface", true)) {
+  set_security_plane(setup);
+}
+
+// The owner's its_secplane, if set: a PLANE whose placement's location gives the height.
+void Interpreter::set_security_plane(const Instance& owner) {
+  if (const Instance* plane = ref(owner, "its_secplane", "elementary_surface", true)) {
     if (auto f = geometry_.placement(geometry_.get(*plane, "position")))
-      security_z_ = workpiece_.point(f->origin).z;
+      machine_.set_security_z(workpiece_.point(f->origin).z);
   }
 }
 
@@ -284,8 +248,7 @@ void Interpreter::nc_function(const Instance& f) {
   } else if (geometry_.is_a(f, "load_tool")) {
     if (const Instance* t = ref(f, "its_tool", "machining_tool")) tool(*t);
   } else if (geometry_.is_a(f, "unload_tool")) {
-    emit(canon::ChangeTool{0});
-    tool_id_.reset();
+    machine_.unload_tool();
   } else if (geometry_.is_a(f, "exchange_pallet") || geometry_.is_a(f, "index_pallet") ||
              geometry_.is_a(f, "index_table")) {
     // RS274 has no pallet or table call: the operator is told, and the program stops for it.
@@ -303,63 +266,27 @@ void Interpreter::nc_function(const Instance& f) {
 }
 
 bool Interpreter::tool(const Instance& t) {
-  if (tool_id_ == t.id) return true;
-  const std::string tool_name = name(t);
-  int pocket = static_cast<int>(std::min<std::uint64_t>(t.id, 2147483647));
-  double length = 0;
-  if (options_.tools) {
-    const ToolTableEntry* entry = options_.tools->find(tool_name);
-    if (entry == nullptr) {
-      geometry_.error(diag::Code::StepncToolTable, t,
-                      detail::describe(m_, t) + " '" + tool_name + "' is not in the tool table");
-      return false;
-    }
-    pocket = entry->pocket;
-    length = entry->length_offset;
-  } else if (const auto l = geometry_.get(t, "overall_assembly_length"); l && l->is_number()) {
-    length = m_.as_real(*l);
+  if (machine_.holds(t.id)) return true;
+  double assembly_length = 0;
+  if (const auto l = geometry_.get(t, "overall_assembly_length"); l && l->is_number())
+    assembly_length = m_.as_real(*l);
+  const auto load = detail::tool_load(t.id, name(t), assembly_length,
+                                      options_.tools ? &*options_.tools : nullptr);
+  if (!load) {
+    geometry_.error(diag::Code::StepncToolTable, t,
+                    detail::describe(m_, t) + " '" + name(t) + "' is not in the tool table");
+    return false;
   }
-  retract_to_security_plane();
-  if (spindle_ && *spindle_ != 0) {
-    emit(canon::StopSpindleTurning{});
-    spindle_ = 0.0;
-  }
-  emit(canon::Comment{"TOOL " + tool_name});
-  emit(canon::SelectTool{pocket});
-  emit(canon::ChangeTool{pocket});
-  emit(canon::UseToolLengthOffset{length});
-  tool_id_ = t.id;
+  machine_.change_tool(*load);
   return true;
 }
 
 void Interpreter::technology(const Instance* tech) {
   if (tech == nullptr) return;
-  if (const auto f = geometry_.number(*tech, "feedrate")) {
-    const double rate = *f * kFeedToMmPerMin;
-    if (!feed_ || *feed_ != rate) emit(canon::SetFeedRate{rate});
-    feed_ = rate;
-  }
+  if (const auto f = geometry_.number(*tech, "feedrate")) machine_.feed_rate(*f * kFeedToMmPerMin);
   if (!geometry_.is_a(*tech, "milling_technology")) return;
-  if (const auto s = geometry_.number(*tech, "spindle")) {
-    // NIST's convention (ex1.stp's notes): a negative speed turns clockwise.
-    spindle(*s);
-  }
-}
-
-void Interpreter::spindle(double s) {
-  const double rpm = std::abs(s) * kSpindleToRpm;
-  if (!spindle_ || *spindle_ != s) {
-    if (s == 0) {
-      emit(canon::StopSpindleTurning{});
-    } else {
-      emit(canon::SetSpindleSpeed{rpm});
-      if (s < 0)
-        emit(canon::StartSpindleClockwise{});
-      else
-        emit(canon::StartSpindleCounterclockwise{});
-    }
-  }
-  spindle_ = s;
+  // NIST's convention (ex1.stp's notes): a negative speed turns clockwise.
+  if (const auto s = geometry_.number(*tech, "spindle")) machine_.spindle(*s);
 }
 
 void Interpreter::machine_functions(const Instance* functions) {
@@ -371,86 +298,7 @@ void Interpreter::machine_functions(const Instance* functions) {
     if (!l) return std::nullopt;
     return *l == p21::Logical::True;
   };
-  if (const auto coolant = flag("coolant"); coolant && *coolant != flood_) {
-    if (*coolant)
-      emit(canon::FloodOn{});
-    else
-      emit(canon::FloodOff{});
-    flood_ = *coolant;
-  }
-  if (const auto mist = flag("mist"); mist && *mist != mist_) {
-    if (*mist)
-      emit(canon::MistOn{});
-    else
-      emit(canon::MistOff{});
-    mist_ = *mist;
-  }
-}
-
-void Interpreter::retract_to_security_plane() {
-  if (!position_ || !security_z_ || position_->z >= *security_z_ - kSamePoint) return;
-  position_->z = *security_z_;
-  emit(canon::StraightTraverse{pose(*position_)});
-}
-
-// Positions the tool at `start`: nothing when it is already there; otherwise up to the
-// security plane, across, and down, all at rapid.
-void Interpreter::approach(Vec3 start, bool rapid_only) {
-  if (position_ && (*position_ - start).length() < kSamePoint) return;
-  if (!rapid_only) retract_to_security_plane();
-  if (security_z_ && !rapid_only && start.z < *security_z_) {
-    const Vec3 above{start.x, start.y, *security_z_};
-    if (!position_ || (*position_ - above).length() >= kSamePoint)
-      emit(canon::StraightTraverse{pose(above)});
-  }
-  emit(canon::StraightTraverse{pose(start)});
-  position_ = start;
-}
-
-void Interpreter::motion(const std::vector<Segment>& segments, const Frame& frame, bool rapid) {
-  bool selected_xy = true;
-  for (const Segment& s : segments) {
-    const Vec3 end = frame.point(s.end);
-    std::optional<Vec3> axis;
-    if (s.tool_axis) axis = frame.direction(*s.tool_axis);
-    switch (s.kind) {
-      case Segment::Kind::Line:
-        if (rapid)
-          emit(canon::StraightTraverse{pose(end, axis)});
-        else
-          emit(canon::StraightFeed{pose(end, axis)});
-        break;
-      case Segment::Kind::Arc: {
-        const Vec3 normal = frame.direction(s.normal);
-        const Vec3 centre = frame.point(s.centre);
-        const canon::Plane plane = std::abs(normal.x) > 1 - 1e-9   ? canon::Plane::Yz
-                                   : std::abs(normal.y) > 1 - 1e-9 ? canon::Plane::Xz
-                                                                   : canon::Plane::Xy;
-        if ((plane == canon::Plane::Xy) != selected_xy || plane != canon::Plane::Xy) {
-          emit(canon::SelectPlane{plane});
-          selected_xy = plane == canon::Plane::Xy;
-        }
-        emit(canon::ArcFeed{pose(end, axis),
-                            {centre.x, centre.y, centre.z},
-                            {normal.x, normal.y, normal.z},
-                            s.turns});
-        break;
-      }
-      case Segment::Kind::Nurbs: {
-        canon::NurbsFeed n;
-        n.degree = s.degree;
-        for (std::size_t i = 0; i < s.control_points.size(); ++i) {
-          const Vec3 p = frame.point(s.control_points[i]);
-          n.points.push_back({p.x, p.y, p.z, s.weights[i]});
-        }
-        n.knots = s.knots;
-        emit(n);
-        break;
-      }
-    }
-    position_ = end;
-  }
-  if (!selected_xy) emit(canon::SelectPlane{canon::Plane::Xy});
+  machine_.coolant(flag("coolant"), flag("mist"));
 }
 
 void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid) {
@@ -472,48 +320,38 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
                       "per-axis commands)");
       continue;
     }
-    if (const auto speed = geometry_.get(*path, "its_speed"); speed && !speed->is_omitted())
-      not_implemented(*path, "a toolpath speed profile (its_speed)");
+    // its_speed .RAPID. (speed_name, bare or typed) moves at rapid; a ratio or a speed curve
+    // is not implemented.
+    bool rapid_speed = false;
+    if (const auto speed = geometry_.get(*path, "its_speed"); speed && !speed->is_omitted()) {
+      const Value named = speed->kind() == p21::ValueKind::Typed ? m_.typed_child(*speed) : *speed;
+      rapid_speed = named.kind() == p21::ValueKind::Enumeration && m_.enumeration(named) == "RAPID";
+      if (!rapid_speed)
+        not_implemented(*path, "a toolpath speed profile (its_speed) other than .RAPID.");
+    }
     technology(ref(*path, "its_technology", "technology", true));
     machine_functions(ref(*path, "its_machine_functions", "machine_functions", true));
     const Instance* curve = ref(*path, "basiccurve", "bounded_curve");
     if (curve == nullptr) continue;
     auto segments = curves_.segments(*curve);
     if (!segments || segments->empty()) continue;
-    if (const Instance* axis_curve = ref(*path, "its_toolaxis", "bounded_curve", true)) {
-      // A tool-axis curve: one axis vector per point of a polyline path.
-      const auto axes = geometry_.is_a(*axis_curve, "polyline")
-                            ? curves_.polyline_points(*axis_curve)
-                            : std::nullopt;
-      if (!axes || axes->size() != segments->size() + 1 ||
-          std::any_of(segments->begin(), segments->end(),
-                      [](const Segment& s) { return s.kind != Segment::Kind::Line; })) {
-        not_implemented(*path, "a tool-axis curve other than a polyline matching a polyline path");
-      } else {
-        for (std::size_t i = 0; i < segments->size(); ++i) {
-          const Vec3 d = (*axes)[i + 1];
-          (*segments)[i].tool_axis = d * (1.0 / std::max(d.length(), 1e-12));
-        }
-      }
-    }
+    // its_direction .F.: the path runs from the curve's end to its start.
+    if (const auto direction = geometry_.get(*path, "its_direction");
+        direction && m_.as_logical(*direction) == p21::Logical::False)
+      detail::reverse(*segments);
+    if (const Instance* axis_curve = ref(*path, "its_toolaxis", "bounded_curve", true);
+        axis_curve != nullptr && !curves_.apply_tool_axis(*segments, *axis_curve))
+      not_implemented(*path, "a tool-axis curve other than a polyline matching a polyline path");
     const auto type = geometry_.get(*path, "its_type");
     const bool non_contact = type && m_.enumeration(*type) == "NON_CONTACT";
     const Vec3 start = frame.point(segments->front().start);
     const bool first_of_list = v == m_.items(*items)[0];
-    if (first_of_list || !position_) {
-      approach(start, rapid);
-    } else if ((*position_ - start).length() >= kSamePoint) {
+    if (machine_.join(start, first_of_list, rapid))
       geometry_.error(diag::Code::StepncDiscontinuous, *path,
                       detail::describe(m_, *path) +
                           " starts away from where the previous toolpath ended; the tool " +
                           (rapid ? "moves" : "feeds") + " across");
-      if (rapid)
-        emit(canon::StraightTraverse{pose(start)});
-      else
-        emit(canon::StraightFeed{pose(start)});
-      position_ = start;
-    }
-    motion(*segments, frame, rapid || non_contact);
+    machine_.motion(*segments, frame, rapid || non_contact || rapid_speed);
   }
 }
 
@@ -521,10 +359,7 @@ void Interpreter::workingstep(const Instance& ws) {
   emit(canon::Begin{canon::Scope::Workingstep, entity(ws)});
   const Instance* operation = ref(ws, "its_operation", "machining_operation");
   const Instance* feature = ref(ws, "its_feature", "manufacturing_feature", true);
-  if (const Instance* plane = ref(ws, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(geometry_.get(*plane, "position")))
-      security_z_ = workpiece_.point(f->origin).z;
-  }
+  set_security_plane(ws);
   // The feature's workpiece picks the workpiece set-up; its placement is the toolpaths' frame.
   Frame frame = workpiece_;
   if (feature != nullptr) {
@@ -560,7 +395,8 @@ void Interpreter::workingstep(const Instance& ws) {
 // explicit one: the first rapid is the approach from the security plane.
 void Interpreter::generated(const Instance& ws, const Instance& operation, const Instance* feature,
                             const Instance& tool_instance, const Frame& frame) {
-  features::Request request{&ws, &operation, feature, &tool_instance, feed_, spindle_};
+  features::Request request{
+      &ws, &operation, feature, &tool_instance, machine_.feed(), machine_.spindle_speed()};
   const features::Path path = features::generate(geometry_, request, options_.features);
   if (!path.ok) return;
   const bool upright = std::abs(frame.z.z - 1) < 1e-9;
@@ -569,15 +405,15 @@ void Interpreter::generated(const Instance& ws, const Instance& operation, const
     switch (mv.kind) {
       case features::Move::Kind::Rapid:
         if (first)
-          approach(frame.point(mv.to), false);
+          machine_.approach(frame.point(mv.to), false);
         else
           emit(canon::StraightTraverse{flat_pose(frame.point(mv.to))});
-        position_ = frame.point(mv.to);
+        machine_.set_position(frame.point(mv.to));
         first = false;
         break;
       case features::Move::Kind::Feed:
         emit(canon::StraightFeed{flat_pose(frame.point(mv.to))});
-        position_ = frame.point(mv.to);
+        machine_.set_position(frame.point(mv.to));
         break;
       case features::Move::Kind::Arc: {
         const Vec3 end = frame.point(mv.to);
@@ -587,15 +423,14 @@ void Interpreter::generated(const Instance& ws, const Instance& operation, const
                             {centre.x, centre.y, centre.z},
                             {normal.x, normal.y, normal.z},
                             mv.turns});
-        position_ = end;
+        machine_.set_position(end);
         break;
       }
       case features::Move::Kind::FeedRate:
-        if (!feed_ || *feed_ != mv.value) emit(canon::SetFeedRate{mv.value});
-        feed_ = mv.value;
+        machine_.feed_rate(mv.value);
         break;
       case features::Move::Kind::Spindle:
-        spindle(mv.value);
+        machine_.spindle(mv.value);
         break;
       case features::Move::Kind::Dwell:
         emit(canon::Dwell{mv.value});
@@ -611,8 +446,8 @@ void Interpreter::generated(const Instance& ws, const Instance& operation, const
         }
         // Over the hole at the security plane (the cycle's initial level), then the cycle.
         const Vec3 top = frame.point({mv.to.x, mv.to.y, mv.to.z});
-        const double safe = std::max(security_z_.value_or(top.z), top.z);
-        approach({top.x, top.y, safe}, false);
+        const double safe = std::max(machine_.security_z().value_or(top.z), top.z);
+        machine_.approach({top.x, top.y, safe}, false);
         canon::Cycle c;
         c.kind = mv.cycle == features::Move::CycleKind::Drill  ? canon::CycleKind::Drill
                  : mv.cycle == features::Move::CycleKind::Peck ? canon::CycleKind::PeckDrill
@@ -633,7 +468,7 @@ void Interpreter::generated(const Instance& ws, const Instance& operation, const
         c.left_hand = mv.left_hand;
         c.spindle_stop = mv.spindle_stop;
         emit(c);
-        position_ = Vec3{top.x, top.y, safe};
+        machine_.set_position(Vec3{top.x, top.y, safe});
         first = false;
         break;
       }
@@ -643,10 +478,7 @@ void Interpreter::generated(const Instance& ws, const Instance& operation, const
 
 void Interpreter::rapid_movement(const Instance& rm) {
   emit(canon::Begin{canon::Scope::Workingstep, entity(rm)});
-  if (const Instance* plane = ref(rm, "its_secplane", "elementary_surface", true)) {
-    if (auto f = geometry_.placement(geometry_.get(*plane, "position")))
-      security_z_ = workpiece_.point(f->origin).z;
-  }
+  set_security_plane(rm);
   // A rapid movement has no feature: its toolpath is in the workpiece's coordinates.
   toolpaths(ref(rm, "its_toolpath", "toolpath_list", true), workpiece_, true);
   emit(canon::End{canon::Scope::Workingstep, entity(rm)});

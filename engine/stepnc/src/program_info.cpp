@@ -29,15 +29,69 @@ HeaderValue text_value(const Model& model, Value v) {
   return std::monostate{};
 }
 
+}  // namespace
+
+Header read_header(const Model& model) {
+  Header h;
+  static constexpr std::pair<std::string_view, std::array<std::string_view, 7>> kFields[] = {
+      {"FILE_DESCRIPTION", {"description", "implementation_level"}},
+      {"FILE_NAME",
+       {"name", "time_stamp", "author", "organization", "preprocessor_version",
+        "originating_system", "authorization"}},
+  };
+  for (const auto& [entity, fields] : kFields) {
+    const Instance* inst = model.header_entity(entity);
+    for (std::size_t i = 0; i < fields.size() && !fields[i].empty(); ++i) {
+      HeaderValue value;
+      if (inst != nullptr && i < inst->count) value = text_value(model, model.params(*inst)[i]);
+      h.fields.emplace_back(std::string(fields[i]), std::move(value));
+    }
+  }
+  if (const Instance* fs = model.header_entity("FILE_SCHEMA"); fs && fs->count > 0) {
+    HeaderValue schemas = text_value(model, model.params(*fs)[0]);
+    if (auto* list = std::get_if<std::vector<std::string>>(&schemas))
+      h.schemas = std::move(*list);
+    else if (auto* one = std::get_if<std::string>(&schemas))
+      h.schemas = {std::move(*one)};
+  }
+  return h;
+}
+
+Statistics count_instances(const Model& model, std::size_t workingsteps) {
+  Statistics s;
+  s.bytes = model.text().size();
+  s.instances = model.instances().size();
+  s.workingsteps = workingsteps;
+  for (p21::KeywordId k = 0; k < model.keyword_count(); ++k) {
+    const auto n = model.instance_indices_of(k).size();
+    if (n == 0) continue;
+    if (k == Model::kComplexKeyword) {
+      for (std::uint32_t index : model.instance_indices_of(k)) {
+        std::string name;
+        for (Value record : model.params(model.instances()[index])) {
+          if (!name.empty()) name += '+';
+          name += model.keyword(record.keyword_id());
+        }
+        ++s.by_type["(" + name + ")"];
+      }
+      continue;
+    }
+    s.by_type[std::string(model.keyword(k))] += n;
+  }
+  return s;
+}
+
+namespace {
+
 class Inspector {
  public:
   Inspector(const Model& model, const express::SchemaSet& schema, const InspectOptions& options)
       : model_(model), attributes_(model, schema), options_(options), lines_(model.text()) {}
 
   ProgramInfo run() {
-    info_.header = header();
+    info_.header = read_header(model_);
     info_.project = project();
-    note_statistics();
+    info_.statistics = count_instances(model_, workingsteps_);
     return std::move(info_);
   }
 
@@ -47,32 +101,6 @@ class Inspector {
     info_.diagnostics.push_back(diag::make(code, pos.line, pos.column, std::move(message)));
   }
   static std::string name_of(const Instance& i) { return "#" + std::to_string(i.id); }
-
-  Header header() const {
-    Header h;
-    static constexpr std::pair<std::string_view, std::array<std::string_view, 7>> kFields[] = {
-        {"FILE_DESCRIPTION", {"description", "implementation_level"}},
-        {"FILE_NAME",
-         {"name", "time_stamp", "author", "organization", "preprocessor_version",
-          "originating_system", "authorization"}},
-    };
-    for (const auto& [entity, fields] : kFields) {
-      const Instance* inst = model_.header_entity(entity);
-      for (std::size_t i = 0; i < fields.size() && !fields[i].empty(); ++i) {
-        HeaderValue value;
-        if (inst != nullptr && i < inst->count) value = text_value(model_, model_.params(*inst)[i]);
-        h.fields.emplace_back(std::string(fields[i]), std::move(value));
-      }
-    }
-    if (const Instance* fs = model_.header_entity("FILE_SCHEMA"); fs && fs->count > 0) {
-      HeaderValue schemas = text_value(model_, model_.params(*fs)[0]);
-      if (auto* list = std::get_if<std::vector<std::string>>(&schemas))
-        h.schemas = std::move(*list);
-      else if (auto* one = std::get_if<std::string>(&schemas))
-        h.schemas = {std::move(*one)};
-    }
-    return h;
-  }
 
   const Instance* deref(std::optional<Value> v) const {
     if (!v || !v->is_reference()) return nullptr;
@@ -184,7 +212,7 @@ class Inspector {
     const auto is = [&](std::string_view entity) { return attributes_.is_a(e, entity); };
     if (is("machining_workingstep")) {
       x.shape = Executable::Shape::Workingstep;
-      ++info_.statistics.workingsteps;
+      ++workingsteps_;
       if (const Instance* f = deref(attribute(e, "its_feature"))) x.feature = ref(*f);
       if (const Instance* op = deref(attribute(e, "its_operation"))) {
         x.operation = ref(*op);
@@ -233,28 +261,7 @@ class Inspector {
     it->used_by.push_back(user.id);
   }
 
-  void note_statistics() {
-    Statistics& s = info_.statistics;
-    s.bytes = model_.text().size();
-    s.instances = model_.instances().size();
-    for (p21::KeywordId k = 0; k < model_.keyword_count(); ++k) {
-      const auto n = model_.instance_indices_of(k).size();
-      if (n == 0) continue;
-      if (k == Model::kComplexKeyword) {
-        for (std::uint32_t index : model_.instance_indices_of(k)) {
-          std::string name;
-          for (Value record : model_.params(model_.instances()[index])) {
-            if (!name.empty()) name += '+';
-            name += model_.keyword(record.keyword_id());
-          }
-          ++s.by_type["(" + name + ")"];
-        }
-        continue;
-      }
-      s.by_type[std::string(model_.keyword(k))] += n;
-    }
-  }
-
+  std::size_t workingsteps_ = 0;
   const Model& model_;
   AttributeReader attributes_;
   const InspectOptions& options_;

@@ -7,6 +7,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <span>
@@ -197,6 +198,32 @@ bool append_centre_offsets(Call& call, std::string& out, const MotionValues& m,
   return true;
 }
 
+// The value a word of `quantity` shows once written (rounded to the profile's format), in the
+// canonical program's units.
+double as_written(Call& call, Quantity quantity, double value) {
+  const ScaledQuantity scaled =
+      scale_quantity(call.config(), Access::program_unit_mm(call.job()), quantity, value);
+  if (!std::isfinite(scaled.value) || scaled.value == 0 || value == 0) return value;
+  char digits[kNumberRoom + 1];
+  char* end = write_number(digits, scaled.value, *scaled.format);
+  *end = '\0';
+  const double shown = std::strtod(digits, nullptr);
+  return std::isfinite(shown) ? shown * (value / scaled.value) : value;
+}
+
+// Near a half circle the centre an R word implies moves far when R and the end points are
+// rounded (it sits sqrt(R^2 - (chord/2)^2) off the chord: 0.11 mm for a 25 mm half circle and
+// R to 3 decimals). R is written only when the centre a controller computes from the written
+// words stays within this of the true one; I/J/K otherwise.
+constexpr double kRCentreTolerance = 0.001;  // mm
+
+bool r_keeps_centre(Call& call, const PlaneArc& arc, double r) {
+  const auto shown = [&](double v) { return as_written(call, Quantity::Length, v); };
+  const auto centre = arc_centre(shown(arc.sx), shown(arc.sy), shown(arc.ex), shown(arc.ey),
+                                 shown(r), arc.turns < 0);
+  return centre && std::hypot((*centre)[0] - arc.cx, (*centre)[1] - arc.cy) <= kRCentreTolerance;
+}
+
 // The words of an arc (see ext:arc-words) appended to `out`; the end becomes the position.
 bool append_arc(Call& call, std::string& out, std::string_view form, const MotionValues& m) {
   for (const double v : m.centre) {
@@ -226,8 +253,10 @@ bool append_arc(Call& call, std::string& out, std::string_view form, const Motio
         call.fail("a zero radius has no R form");
         return false;
       }
-      if (!append_word(call, out, 'R', Quantity::Length, *r)) return false;
-      as_r = true;
+      if (r_keeps_centre(call, arc, *r)) {
+        if (!append_word(call, out, 'R', Quantity::Length, *r)) return false;
+        as_r = true;
+      }
     }
   }
   if (!as_r && !append_centre_offsets(call, out, m, start)) return false;

@@ -97,33 +97,9 @@ inline std::string rng_path() {
   return std::string(NCPOST_SOURCE_DIR) + "/engine/canon/canon.rng";
 }
 
-inline void collect_error(void* user, const xmlError* error) {
-  auto* errors = static_cast<std::string*>(user);
-  if (error != nullptr && error->message != nullptr) *errors += error->message;
-}
-
 // Empty when `xml` is well-formed and valid against canon.rng; otherwise what went wrong.
 inline std::string rng_errors(const std::string& xml) {
-  std::string errors;
-  xmlRelaxNGParserCtxtPtr parser = xmlRelaxNGNewParserCtxt(rng_path().c_str());
-  xmlRelaxNGPtr schema = parser != nullptr ? xmlRelaxNGParse(parser) : nullptr;
-  xmlRelaxNGFreeParserCtxt(parser);
-  if (schema == nullptr) return "canon.rng does not load: " + rng_path();
-  xmlDocPtr doc = xmlReadMemory(xml.data(), static_cast<int>(xml.size()), nullptr, nullptr,
-                                XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
-  if (doc == nullptr) {
-    errors = "not well-formed";
-  } else {
-    xmlRelaxNGValidCtxtPtr validator = xmlRelaxNGNewValidCtxt(schema);
-    xmlRelaxNGSetValidStructuredErrors(
-        validator, [](void* user, xmlErrorPtr error) { collect_error(user, error); }, &errors);
-    const int rc = xmlRelaxNGValidateDoc(validator, doc);
-    if (rc != 0 && errors.empty()) errors = "invalid (rc " + std::to_string(rc) + ")";
-    xmlRelaxNGFreeValidCtxt(validator);
-    xmlFreeDoc(doc);
-  }
-  xmlRelaxNGFree(schema);
-  return errors;
+  return ncpost::test::rng_errors(xml, rng_path());
 }
 
 }  // namespace ncpost::canon::test

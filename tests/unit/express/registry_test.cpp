@@ -78,7 +78,8 @@ TEST(express_registry, BuiltinIsTheProjectSchemaEmbeddedAtBuildTime) {
   EXPECT_NE(registry.builtin().set().find_entity("machining_workingstep"), nullptr);
   // Parsed once per process.
   EXPECT_EQ(builtin_schema().get(), builtin_schema().get());
-  EXPECT_EQ(registry.known_names(), (Strings{"machining_schema", "milling_schema"}));
+  EXPECT_EQ(registry.known_names(),
+            (Strings{"integrated_cnc_schema", "machining_schema", "milling_schema"}));
 }
 
 TEST(express_registry, Iso14649ProgramsSelectTheBuiltin) {
@@ -110,12 +111,12 @@ TEST(express_registry, UnknownSchemaIsNamedWithTheKnownOnes) {
   EXPECT_EQ(selection.source, nullptr);
   EXPECT_EQ(messages(selection.diagnostics),
             (Strings{"EXP-050 no schema for FILE_SCHEMA 'AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 "
-                     "1 }'; known: machining_schema, milling_schema"}));
+                     "1 }'; known: integrated_cnc_schema, machining_schema, milling_schema"}));
   const auto fallback = registry.select_or_builtin(model);
   EXPECT_EQ(fallback.source, &registry.builtin());
   EXPECT_EQ(messages(fallback.diagnostics),
             (Strings{"EXP-050 no schema for FILE_SCHEMA 'AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 "
-                     "1 }'; known: machining_schema, milling_schema",
+                     "1 }'; known: integrated_cnc_schema, machining_schema, milling_schema",
                      "EXP-052 no schema for the file's FILE_SCHEMA; the built-in ISO 14649 schema "
                      "is used to read it, and the file is not checked against a schema"}));
   EXPECT_EQ(fallback.diagnostics.back().severity, diag::Severity::Note);
@@ -129,8 +130,8 @@ TEST(express_registry, EmptyFileSchema) {
   const auto selection = registry.select_for(model_with_schemas(""));
   EXPECT_EQ(selection.source, nullptr);
   EXPECT_EQ(messages(selection.diagnostics),
-            (Strings{"EXP-050 the file names no schema in FILE_SCHEMA; known: machining_schema, "
-                     "milling_schema"}));
+            (Strings{"EXP-050 the file names no schema in FILE_SCHEMA; known: "
+                     "integrated_cnc_schema, machining_schema, milling_schema"}));
 }
 
 TEST(express_registry, AKnownNameWinsAndTheOthersAreReported) {
@@ -138,8 +139,8 @@ TEST(express_registry, AKnownNameWinsAndTheOthersAreReported) {
   const auto selection = registry.select_for(model_with_schemas("'OTHER','MILLING_SCHEMA'"));
   EXPECT_EQ(selection.source, &registry.builtin());
   EXPECT_EQ(messages(selection.diagnostics),
-            (Strings{"EXP-050 no schema for FILE_SCHEMA 'OTHER'; known: machining_schema, "
-                     "milling_schema"}));
+            (Strings{"EXP-050 no schema for FILE_SCHEMA 'OTHER'; known: "
+                     "integrated_cnc_schema, machining_schema, milling_schema"}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -172,8 +173,8 @@ TEST(express_registry, DirectoryOfSchemas) {
   EXPECT_EQ(reports[1].diagnostics[0].line, 1u);
   EXPECT_EQ(reports[1].diagnostics[0].severity, diag::Severity::Warning);
 
-  EXPECT_EQ(registry.known_names(),
-            (Strings{"example_geometry", "machining_schema", "milling_schema", "second"}));
+  EXPECT_EQ(registry.known_names(), (Strings{"example_geometry", "integrated_cnc_schema",
+                                             "machining_schema", "milling_schema", "second"}));
   const SchemaSource* geometry = registry.find("EXAMPLE_GEOMETRY");
   ASSERT_NE(geometry, nullptr);
   EXPECT_EQ(fs::path(geometry->origin).filename(), "a_geometry.exp");
@@ -213,7 +214,8 @@ TEST(express_registry, MissingDirectoryIsAnIoError) {
   ASSERT_EQ(reports.size(), 1u);
   ASSERT_EQ(reports[0].diagnostics.size(), 1u);
   EXPECT_EQ(reports[0].diagnostics[0].code_id(), "IO-001");
-  EXPECT_EQ(registry.known_names(), (Strings{"machining_schema", "milling_schema"}));
+  EXPECT_EQ(registry.known_names(),
+            (Strings{"integrated_cnc_schema", "machining_schema", "milling_schema"}));
 }
 
 TEST(express_registry, CorpusSchemasDirectory) {

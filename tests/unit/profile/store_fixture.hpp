@@ -26,4 +26,13 @@ inline std::string stylesheet(const std::string& marker) {
   return xsl + "<!-- " + marker + " -->\n";
 }
 
+// The built-in linuxcnc dialect under another id.
+inline std::string dialect_json(const std::string& id) {
+  auto doc = nlohmann::json::parse(
+      ncpost::test::read_file(ncpost::test::source_dir() / "stylesheets/linuxcnc/dialect.json"));
+  doc["id"] = id;
+  doc.erase("$schema");
+  return doc.dump(1);
+}
+
 }  // namespace ncpost::profile::test_store

@@ -75,6 +75,36 @@ TEST(Sha256, KnownVectors) {
   EXPECT_EQ(h.hex(), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
+// A version names the folder a profile is stored in and goes into every post's ETag: the digest
+// library must not change it. The profile is written here, so that edits to the built-in
+// profiles do not move the pinned value (computed with the hand-written SHA-256 it replaced).
+TEST_F(StoreTest, VersionOfAFixedProfileIsPinned) {
+  const std::string json = R"({
+  "id": "pinned", "name": "Pinned", "controller": "linuxcnc",
+  "output": {"extension": ".ngc", "mime_type": "text/plain", "line_ending": "lf"},
+  "block_numbers": {"start": 10, "increment": 10, "maximum": 99999, "wrap": true},
+  "formats": {
+    "length": {"decimals": 4, "decimal_point": true, "leading_zero": true, "trailing_zeros": false},
+    "angle": {"decimals": 3, "decimal_point": true, "leading_zero": true, "trailing_zeros": false},
+    "feed": {"decimals": 1, "decimal_point": true, "leading_zero": true, "trailing_zeros": false},
+    "speed": {"decimals": 0, "decimal_point": false, "leading_zero": true, "trailing_zeros": false},
+    "dwell": {"decimals": 3, "decimal_point": true, "leading_zero": true, "trailing_zeros": false}
+  },
+  "units": "mm",
+  "capabilities": {"arcs": "ijk", "helical": false, "canned_cycles": "expand", "nurbs": "linearize"}
+}
+)";
+  const std::string xsl =
+      "<xsl:stylesheet version=\"1.0\" xmlns:xsl=\"http://www.w3.org/1999/XSL/Transform\">\n"
+      "<xsl:output method=\"text\"/>\n<xsl:template match=\"/\">%</xsl:template>\n"
+      "</xsl:stylesheet>\n";
+  auto store = writable();
+  const auto put = store.put("pinned", json, xsl);
+  ASSERT_TRUE(put.profile) << all(put.diagnostics);
+  EXPECT_EQ(put.profile->version,
+            "3731b4181a81e77e90360a1fa32d9af40d49d306c2aa6790494fa5b93f9bc2f2");
+}
+
 TEST_F(StoreTest, PutCreatesThenReplacesAndKeepsRunningVersions) {
   auto store = writable();
   EXPECT_TRUE(store.writable());
@@ -217,6 +247,50 @@ TEST_F(StoreTest, OverlayOnTheBuiltIns) {
   ASSERT_TRUE(back);
   EXPECT_TRUE(back->read_only);
   EXPECT_EQ(back->version, builtin->version);
+}
+
+// A profile may carry dialect.json (issue 19): stored with the version, loaded with it, checked
+// by engine/gcode before anything is written.
+TEST_F(StoreTest, DialectIsStoredWithTheVersion) {
+  auto store = writable();
+  std::vector<diag::FileDiagnostic> d;
+  auto with = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("d"),
+                        test_store::dialect_json("mill-d"));
+  ASSERT_TRUE(with.profile) << all(with.diagnostics);
+  ASSERT_TRUE(with.profile->dialect_json);
+  EXPECT_NE(with.profile->dialect_json->find("\"mill-d\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "mill-d" / "dialect.json"));
+  // A fresh store reads it back, same version.
+  ProfileStore fresh(dir_, StoreOptions{.writable = true, .fallback = builtin_directory()});
+  const auto reread = fresh.load("mill-d", d);
+  ASSERT_TRUE(reread);
+  EXPECT_EQ(reread->dialect_json, with.profile->dialect_json);
+  EXPECT_EQ(reread->version, with.profile->version);
+
+  // The dialect is part of the version.
+  auto without = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("d"));
+  ASSERT_TRUE(without.profile) << all(without.diagnostics);
+  EXPECT_FALSE(without.profile->dialect_json);
+  EXPECT_NE(without.profile->version, with.profile->version);
+
+  // A dialect that does not load, or names another profile, is refused and nothing changes.
+  auto broken = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("x"),
+                          std::string_view("{\"id\": \"mill-d\"}"));
+  EXPECT_FALSE(broken.profile);
+  ASSERT_FALSE(broken.diagnostics.empty());
+  EXPECT_EQ(broken.diagnostics[0].file, "dialect.json");
+  EXPECT_TRUE(has_code(broken.diagnostics, diag::Code::GcodeDialectInvalid));
+  auto other = store.put("mill-d", profile_json("mill-d", "Mill D"), stylesheet("x"),
+                         test_store::dialect_json("mill-e"));
+  EXPECT_FALSE(other.profile);
+  EXPECT_TRUE(has_code(other.diagnostics, diag::Code::GcodeDialectInvalid));
+  EXPECT_EQ(store.load("mill-d", d)->version, without.profile->version);
+
+  // The built-in G-code profiles carry theirs.
+  ProfileStore builtins(builtin_directory());
+  const auto linuxcnc = builtins.load("linuxcnc", d);
+  ASSERT_TRUE(linuxcnc);
+  EXPECT_TRUE(linuxcnc->dialect_json);
 }
 
 TEST_F(StoreTest, RemoveThenNotFound) {

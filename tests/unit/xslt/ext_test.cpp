@@ -490,6 +490,21 @@ TEST_F(WordsTest, MotionAndArcWordsEqualTheSingleFunctions) {
   }
 }
 
+// Near a half circle R's rounding moves the centre far (here 0.11 mm: R 12.663 written for
+// 12.6625, over a chord of 25.325): the centre goes out as I J instead. A half circle whose
+// written numbers are exact (the docs' example below) keeps its R.
+TEST_F(WordsTest, RIsNotWrittenWhereItsRoundingMovesTheCentre) {
+  constexpr std::string_view kHalfCircle = R"x(<c>
+  <STRAIGHT_FEED x="-80" y="-24.375" z="-1"/>
+  <ARC_FEED x="-80" y="0.949999988079071" z="-1" cx="-80" cy="-11.712499618530273" cz="-1"
+            plane="xy" rotation="-1"/>
+</c>)x";
+  JobState job(fanuc());
+  TransformResult r = apply(kWordTemplates, kHalfCircle, job, {{"form", "r"}});
+  ASSERT_TRUE(r.ok) << all_messages(r.diagnostics);
+  EXPECT_EQ(r.output, " X-80. Y-24.375 Z-1.| X-80. Y.95 Z-1. I0. J12.663|");
+}
+
 TEST_F(WordsTest, FanucWordsAsTheDocsShowThem) {
   for (const auto& [form, arc] :
        {std::pair{"r", " X20. Y2. Z3. R5."}, {"ijk", " X20. Y2. Z3. I5. J0."}}) {

@@ -1,13 +1,15 @@
 #pragma once
 // Which EXPRESS schema describes a model.
 //
-// In:  the built-in schema (schemas/iso14649.exp, embedded into the library at build time) and,
-//      optionally, every `.exp` file of a directory (`ncpost ... --schemas DIR`).
+// In:  the built-in schemas (schemas/iso14649.exp for ISO 14649 programs, and schemas/ap238_aim.exp
+//      for AP238 AIM programs, FILE_SCHEMA 'INTEGRATED_CNC_SCHEMA'; both embedded into the
+//      library at build time) and, optionally, every `.exp` file of a directory
+//      (`ncpost ... --schemas DIR`).
 // Out: for a model, the SchemaSet that its FILE_SCHEMA header names.
 //
 // Names are compared case-insensitively, and a FILE_SCHEMA entry's ASN.1 object identifier is
 // ignored ('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }' names AUTOMOTIVE_DESIGN). Schemas of a
-// directory take precedence over the built-in, so a newer ISO 14649 schema can replace it.
+// directory take precedence over the built-ins, so a newer schema can replace either.
 //
 // Thread safety: build the registry first (constructor, add_directory, add); after that every
 // const member may be called from any number of threads at once. The registry holds each
@@ -36,6 +38,9 @@ namespace ncpost::express {
 [[nodiscard]] std::string_view builtin_schema_text() noexcept;
 // The parse of builtin_schema_text(), run once per process. Never null.
 [[nodiscard]] std::shared_ptr<const ParseResult> builtin_schema();
+// The same for schemas/ap238_aim.exp, the AP238 AIM subset (SCHEMA integrated_cnc_schema).
+[[nodiscard]] std::string_view builtin_aim_schema_text() noexcept;
+[[nodiscard]] std::shared_ptr<const ParseResult> builtin_aim_schema();
 
 // One source of schemas: a parsed file, or the built-in.
 struct SchemaSource {
@@ -74,8 +79,9 @@ struct SchemaSelection {
 
 class SchemaRegistry {
  public:
-  // A registry with the built-in schema only. Its declared schemas (MACHINING_SCHEMA,
-  // MILLING_SCHEMA) and those two names in any case map to it even if it is empty.
+  // A registry with the built-in schemas only. The ISO 14649 one's declared schemas
+  // (MACHINING_SCHEMA, MILLING_SCHEMA) and the AP238 AIM one's (INTEGRATED_CNC_SCHEMA) map to
+  // them, even if a built-in is empty.
   SchemaRegistry();
 
   // Adds each `*.exp` file of `directory` (not its subdirectories), in file-name order, each
@@ -88,8 +94,12 @@ class SchemaRegistry {
   // another added source; `parsed` must have no errors (else nothing is added, EXP-053).
   std::vector<diag::Diagnostic> add(std::string origin, std::shared_ptr<const ParseResult> parsed);
 
+  // The built-in ISO 14649 schema: the default and the fallback.
   [[nodiscard]] const SchemaSource& builtin() const noexcept { return *builtin_; }
-  // Problems of the built-in itself: EXP-054 when it is empty or does not parse cleanly.
+  // The built-in AP238 AIM schema (origin "<built-in AP238 AIM>").
+  [[nodiscard]] const SchemaSource& builtin_aim() const noexcept { return *builtin_aim_; }
+  // Problems of the built-ins themselves: EXP-054 for each that is empty or does not parse
+  // cleanly.
   [[nodiscard]] std::vector<diag::Diagnostic> builtin_diagnostics() const;
 
   // The source that declares `schema_name` (case-insensitive, ASN.1 id ignored); null if none.
@@ -119,6 +129,7 @@ class SchemaRegistry {
   // unique_ptr: SchemaSelection and Name point at sources, which must not move when more are added.
   std::vector<std::unique_ptr<SchemaSource>> sources_;
   const SchemaSource* builtin_ = nullptr;
+  const SchemaSource* builtin_aim_ = nullptr;
   std::vector<Name> names_;  // directory sources first, then the built-in's names
 };
 

@@ -25,6 +25,10 @@
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
 
+namespace ncpost::profile {
+struct LoadedProfile;
+}
+
 namespace ncpost::pipeline {
 
 // A P21 upload that is read while it arrives (ncpostd's large raw uploads): the text is handed
@@ -79,6 +83,10 @@ struct JobContext {
   bool strict = false;
   // Tools by pocket and length offset; without one, a tool's pocket is its instance id.
   std::optional<stepnc::ToolTable> tools;
+  // The profile whose dialect.json reads G-code input (`--from`/`--dialect`, `from=`/
+  // `dialect=`): one profile id names how a machine's programs are read and written. Null: a
+  // G-code input is refused with IO-003, which names the way to read it.
+  std::shared_ptr<const profile::LoadedProfile> gcode_dialect;
 };
 
 // Receives output text, piece by piece, in order.
@@ -104,6 +112,8 @@ struct Program {
   std::string name;
   InputFormat format = InputFormat::Unknown;
   LoadedModel loaded;
+  // The text of a format that is read as it is interpreted (CL): no model, one pass.
+  std::string text;
   // The schema files' reports, then reading, schema choice and check, in that order.
   std::vector<diag::FileDiagnostic> diagnostics;
   bool cancelled = false;
@@ -126,6 +136,10 @@ struct ReadOptions {
 // the diagnostics. A file that is not a program at all (an AP238 excerpt, say) is named so.
 [[nodiscard]] Program read(Input input, const JobContext& context, const ReadOptions& options = {});
 
+// Inspect, convert and a raw post work on the STEP-NC model itself, which a program of another
+// kind (CL) does not have. Adds IO-003, naming `instead`, and returns false for such a program.
+[[nodiscard]] bool require_model(Program& program, std::string_view job, std::string_view instead);
+
 struct Interpretation {
   std::vector<diag::FileDiagnostic> diagnostics;
   std::size_t calls = 0;
@@ -136,6 +150,9 @@ struct InterpretSettings {
   // Stop at the first executable after an error, without the program's end sequence: what is
   // posted to a machine must not look complete when it is not. A trace goes on to show all.
   bool stop_at_first_error = false;
+  // The post's profile: its `checks` section (the shop's pre-post checks) applies to CL input.
+  // Null: no checks (a trace, or `--no-checks`).
+  const profile::LoadedProfile* checks_of = nullptr;
 };
 
 // Program → canonical calls on `sink`, by the interpreter for the program's kind.

@@ -77,6 +77,14 @@ enum class ConvertTo : std::uint8_t { P21, P28Late, P28Early };
 [[nodiscard]] JobResult convert(Input input, const JobContext& context, ConvertTo to,
                                 const TextSink& out);
 
+// ---- G-code as XML -----------------------------------------------------------------------
+
+// `ncpost nc parse --format xml`, POST /v1/nc/parse?format=xml: a G-code program read with
+// `context.gcode_dialect` as the XML intermediate form (engine/gcode/gcode.rng): blocks, words,
+// evaluated values and canonical calls, with <error> elements where the program is wrong. The
+// text form is `trace` with the same context. Any other input is refused (IO-003).
+[[nodiscard]] JobResult gcode_xml(Input input, const JobContext& context, const TextSink& out);
+
 // ---- schema -------------------------------------------------------------------------------
 
 // An EXPRESS schema as EXPRESS-X XML. A schema with errors gives no XML: a partial schema would

@@ -38,6 +38,9 @@ struct PostOptions {
   // (block_map.hpp). Needs one transform per chunk, so the renderer's batching is turned off
   // and the post runs on one thread.
   std::vector<WorkingstepMark>* workingstep_marks = nullptr;
+  // The profile's pre-post checks on CL input (docs/cls.md); false: `--no-checks`,
+  // `checks=false`.
+  bool shop_checks = true;
 };
 
 struct PostResult {

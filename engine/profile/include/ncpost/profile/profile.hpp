@@ -78,6 +78,9 @@ struct Profile {
     bool arc = false;
     [[nodiscard]] bool any() const noexcept { return traverse || feed || arc; }
   } motion_runs{};
+  // The `checks` section as JSON text, for cls::parse_checks (the pre-post checks of CL input;
+  // validated there, docs/cls.md). Empty when the profile has none.
+  std::optional<std::string> checks_json;
 };
 
 // Parses and validates profile.json. On any problem returns nullopt and adds PROFILE-001/002
@@ -100,7 +103,10 @@ struct LoadedProfile {
   // SHA-256 (hex) of profile.json, post.xsl and every stylesheet it imports, in import order:
   // changes whenever the output of the profile can change (part of the server's ETag).
   std::string version;
-  std::string json;        // profile.json as stored (what GET /v1/profiles/{id} returns)
+  std::string json;  // profile.json as stored (what GET /v1/profiles/{id} returns)
+  // dialect.json as stored, when the profile folder has one: how to read this controller's
+  // G-code (engine/gcode load_dialect; stylesheets/dialect.schema.json).
+  std::optional<std::string> dialect_json;
   bool read_only = false;  // a built-in profile of a store's fallback, or of a read-only store
 };
 
@@ -172,11 +178,14 @@ class ProfileStore {
 
   // Validates and activates a new version of profile `id`: the id, profile.json against the
   // schema (its "id" must equal `id`), then post.xsl must compile with the same security as a
-  // built-in (imports only from its own folder and common/). On any failure nothing changes
-  // and the previous version stays active. Diagnostics name the files "profile.json" and
-  // "post.xsl" (never the server's paths). Writers are serialised.
+  // built-in (imports only from its own folder and common/), and the dialect, when given, must
+  // load (engine/gcode) with the same id. On any failure nothing changes and the previous
+  // version stays active. Diagnostics name the files "profile.json", "post.xsl" and
+  // "dialect.json" (never the server's paths). Writers are serialised. A version is the files
+  // given: one put without a dialect stores a profile without one.
   [[nodiscard]] PutResult put(std::string_view id, std::string_view profile_json,
-                              std::string_view stylesheet);
+                              std::string_view stylesheet,
+                              std::optional<std::string_view> dialect_json = std::nullopt);
   [[nodiscard]] RemoveOutcome remove(std::string_view id);
 
   // Drops every cached profile whose files changed on disk (or disappeared); the next load()

@@ -59,6 +59,10 @@ struct InterpretOptions {
   const std::atomic<bool>* cancel = nullptr;
   // Toolpath generation for workingsteps without explicit toolpaths (docs/features.md).
   FeatureOptions features{};
+  // The AP238 AIM interpreter (engine/ap238) stops after this many errors (AP238-011), so that
+  // a hostile file cannot make it report without end. The ISO 14649 interpreter reports at most
+  // a few errors per instance and does not count them.
+  std::size_t max_errors = 1000;
 };
 
 struct InterpretResult {

@@ -57,6 +57,7 @@ struct Executable {
   EntityRef self;
   Shape shape = Shape::Leaf;
   std::optional<EntityRef> feature, operation, tool;
+  std::optional<EntityRef> setup;  // a Sequence's set-up, where the reader names it (AP238)
   std::optional<std::string> text;
   std::vector<Executable> children;
   // An If branch or a While body that the file leaves unset: only `missing` is meaningful.
@@ -78,6 +79,11 @@ struct Workpiece {
 struct ToolUse {
   EntityRef self;
   std::vector<std::uint64_t> used_by;  // workingsteps and tool changes, in program order
+  // What an AP238 AIM file gives beyond the ARM's summary (engine/ap238), when it gives it:
+  // the number the tool is loaded as, its body, and its dimensions in mm.
+  std::optional<int> number;
+  std::optional<std::string> body;
+  std::optional<double> diameter, corner_radius, length;
 };
 
 struct Statistics {
@@ -110,8 +116,14 @@ struct InspectOptions {
 [[nodiscard]] ProgramInfo inspect(const p21::Model& model, const express::SchemaRegistry& schemas,
                                   const InspectOptions& options = {});
 
-// Why a model without a PROJECT is not an ISO 14649 program: an AP238 AIM file (STEPNC-006), or
-// no program at all (STEPNC-001). Shared by inspect and the interpreter.
+// The header (FILE_DESCRIPTION, FILE_NAME, FILE_SCHEMA) and the instance counts of any model,
+// whatever its schema: the AP238 AIM inspector shares them.
+[[nodiscard]] Header read_header(const p21::Model& model);
+[[nodiscard]] Statistics count_instances(const p21::Model& model, std::size_t workingsteps);
+
+// Why a model without a PROJECT is not an ISO 14649 program: an AP238 AIM file (STEPNC-006:
+// engine/ap238 reads those), or no program at all (STEPNC-001). Shared by inspect and the
+// interpreter.
 [[nodiscard]] diag::Diagnostic no_program_diagnostic(const p21::Model& model);
 
 // A human-readable tree of the same information (`ncpost inspect --format text`).

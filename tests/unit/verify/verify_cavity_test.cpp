@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "../../engine/verify/src/cavity.hpp"
+#include "../../../engine/verify/src/cavity.hpp"
 #include "corpus.hpp"
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/express/registry.hpp"

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../../engine/verify/src/region.hpp"
+#include "../../../engine/verify/src/region.hpp"
 #include "corpus.hpp"
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/express/registry.hpp"

@@ -1,0 +1,96 @@
+#include "lexer.hpp"
+
+#include <cstring>
+
+namespace ncpost::gcode::detail {
+
+std::string_view LineCursor::next(std::uint32_t& number) noexcept {
+  const std::size_t start = offset_;
+  const void* nl = std::memchr(text_.data() + start, '\n', text_.size() - start);
+  std::size_t end =
+      nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text_.data()) : text_.size();
+  offset_ = nl ? end + 1 : end;
+  if (end > start && text_[end - 1] == '\r') --end;
+  number = ++line_;
+  return text_.substr(start, end - start);
+}
+
+void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
+  line.raw = raw;
+  line.comments.clear();
+  line.block_delete = false;
+  line.has_error = false;
+  line.error = {};
+  // The text is at most as long as the raw line: written by index into buffers sized once (the
+  // Line is reused from line to line, so this allocates only for a longer line than before).
+  const std::size_t n = raw.size();
+  line.text.resize(n);
+  line.columns.resize(n);
+  char* text = line.text.data();
+  std::uint32_t* columns = line.columns.data();
+  std::size_t out = 0;
+  auto finish = [&]() {
+    // Trailing blanks carry nothing.
+    while (out > 0 && text[out - 1] == ' ') --out;
+    line.text.resize(out);
+    line.columns.resize(out);
+  };
+  const bool squeeze = dialect.ignore_whitespace;
+  const bool klartext = dialect.syntax == Syntax::Klartext;
+  std::size_t i = 0;
+  while (i < n && (raw[i] == ' ' || raw[i] == '\t')) ++i;
+  if (i < n && raw[i] == '/' && dialect.block_delete) {
+    line.block_delete = true;
+    ++i;
+    // Sinumerik and FANUC skip levels /1 ... /9: the level digit belongs to the '/'.
+    if (!dialect.ignore_whitespace && i < n && is_digit(raw[i])) ++i;
+  }
+  bool in_string = false;
+  std::uint32_t string_column = 0;
+  for (; i < n; ++i) {
+    const char c = raw[i];
+    const auto column = static_cast<std::uint32_t>(i + 1);
+    if (in_string) {
+      text[out] = c;
+      columns[out++] = column;
+      if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '(' && dialect.parenthesis_comments) {
+      const std::size_t close = raw.find(')', i + 1);
+      if (close == std::string_view::npos) {
+        line.has_error = true;
+        line.error.column = column;
+        line.error.unclosed_comment = true;
+        finish();
+        return;
+      }
+      line.comments.push_back({raw.substr(i + 1, close - i - 1), column, false});
+      i = close;
+      continue;
+    }
+    if (c == ';' && dialect.semicolon_comments) {
+      line.comments.push_back({raw.substr(i + 1), column, true});
+      break;
+    }
+    if (c == '*' && dialect.checksums && !klartext) break;  // '*NN' checksum to the line end
+    if (c == '"' && !squeeze) {
+      in_string = true;
+      string_column = column;
+      text[out] = c;
+      columns[out++] = column;
+      continue;
+    }
+    if ((c == ' ' || c == '\t') && squeeze) continue;
+    text[out] = c == '\t' ? ' ' : upper(c);
+    columns[out++] = column;
+  }
+  if (in_string) {
+    line.has_error = true;
+    line.error.column = string_column;
+    line.error.unclosed_string = true;
+  }
+  finish();
+}
+
+}  // namespace ncpost::gcode::detail

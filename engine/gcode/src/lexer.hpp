@@ -1,0 +1,83 @@
+#pragma once
+// Lines of program text, and each line in the form the block reader works on: comments taken
+// out (kept with their original text and column), letters in upper case, and — for dialects
+// where spaces may stand inside words (`X 1 0 . 5`, `X [ - #6 / 2. ]`) — without spaces.
+// Every character of the normalised text knows its column in the original line, so
+// diagnostics point at the source. One Line is reused for every block: no allocation per line
+// once it has grown to the longest line.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncpost/gcode/dialect.hpp"
+
+namespace ncpost::gcode::detail {
+
+struct Comment {
+  std::string_view text;  // without its delimiters, as written
+  std::uint32_t column = 0;
+  bool semicolon = false;  // `;` to the end of the line (not `( )`)
+};
+
+struct LexError {
+  std::uint32_t column = 0;
+  bool unclosed_comment = false;
+  bool unclosed_string = false;
+};
+
+struct Line {
+  std::uint32_t number = 0;            // 1-based line number in its file
+  std::string_view raw;                // the line as written, without the line end
+  std::string text;                    // normalised
+  std::vector<std::uint32_t> columns;  // columns[i]: 1-based column of text[i] in raw
+  std::vector<Comment> comments;
+  bool block_delete = false;  // '/' first
+  bool has_error = false;
+  LexError error{};
+
+  // 1-based column in `raw` of normalised position `i` (the end of the line past the text).
+  [[nodiscard]] std::uint32_t column(std::size_t i) const noexcept {
+    return i < columns.size() ? columns[i] : static_cast<std::uint32_t>(raw.size() + 1);
+  }
+};
+
+// Normalises `raw` into `line` (its number is left as set).
+void normalise(std::string_view raw, const Dialect& dialect, Line& line);
+
+// Walks a text line by line; offsets let control flow jump back and forth without copying.
+class LineCursor {
+ public:
+  LineCursor() = default;
+  explicit LineCursor(std::string_view text) : text_(text) {}
+
+  [[nodiscard]] bool at_end() const noexcept { return offset_ >= text_.size(); }
+  // The next line (without '\n' or "\r\n") and its number; advances.
+  std::string_view next(std::uint32_t& number) noexcept;
+  [[nodiscard]] std::size_t offset() const noexcept { return offset_; }
+  [[nodiscard]] std::uint32_t line_number() const noexcept { return line_; }
+  // Positions the cursor so that next() returns the line starting at `offset`, numbered `line`.
+  void seek(std::size_t offset, std::uint32_t line) noexcept {
+    offset_ = offset;
+    line_ = line - 1;
+  }
+  [[nodiscard]] std::string_view text() const noexcept { return text_; }
+
+ private:
+  std::string_view text_;
+  std::size_t offset_ = 0;
+  std::uint32_t line_ = 0;  // number of the line last returned
+};
+
+[[nodiscard]] constexpr char upper(char c) noexcept {
+  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
+[[nodiscard]] constexpr bool is_letter(char c) noexcept {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+}
+[[nodiscard]] constexpr bool is_digit(char c) noexcept {
+  return c >= '0' && c <= '9';
+}
+
+}  // namespace ncpost::gcode::detail

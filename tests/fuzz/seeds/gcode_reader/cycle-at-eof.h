@@ -1,0 +1,3 @@
+0 BEGIN PGM A MM
+1 CYCL DEF 200 ~
+  Q200=+2 ~
