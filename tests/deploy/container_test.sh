@@ -34,6 +34,37 @@ grep -Eq '^VOLUME.*/var/lib/ncpost/profiles' <<<"$runtime" || fail "no profile V
 grep -q 'scripts/install.sh /opt/ncpost' "$dockerfile" || fail "the build stage does not use scripts/install.sh"
 grep -q "^COPY docker/entrypoint.sh $entrypoint\$" <<<"$runtime" || fail "the ENTRYPOINT $entrypoint is not docker/entrypoint.sh"
 
+# Every Debian package whose library ncpostd or ncpost links must be installed by the runtime
+# stage (listed, or pulled in by one listed) or be part of the debian:12 base (libc6, libgcc-s1,
+# libstdc++6, as apt needs them).
+package_of() {  # the package owning a library path (usrmerge: /lib and /usr/lib both tried)
+  local path=$1 candidate
+  for candidate in "$path" "/usr$path" "$(realpath "$path")" "*/$(basename "$path")"; do
+    dpkg -S "$candidate" 2>/dev/null | head -n1 | cut -d: -f1 && return 0
+  done
+  return 1
+}
+check_runtime_packages() {
+  local listed closure linked package missing=()
+  listed=$(sed -n 's/.*--no-install-recommends[[:space:]]\{1,\}\([^&]*\)&&.*/\1/p' <<<"$runtime" | head -n1)
+  [[ -n $listed ]] || fail "no apt-get install --no-install-recommends line in the runtime stage"
+  # shellcheck disable=SC2086
+  if ! closure=$(apt-cache depends --recurse --no-recommends --no-suggests --no-conflicts \
+    --no-breaks --no-replaces --no-enhances $listed 2>/dev/null | grep -v '^ ' | sed 's/:.*//' | sort -u) ||
+    [[ -z $closure ]]; then
+    echo "NOTE: apt-cache knows no packages (no apt lists): run-time libraries not checked"
+    return 0
+  fi
+  linked=$(for binary in "$@"; do ldd "$binary" | awk '$3 ~ /^\// {print $3}'; done | sort -u)
+  for library in $linked; do
+    package=$(package_of "$library") || fail "no Debian package owns $library"
+    case $package in libc6 | libgcc-s1 | libstdc++6) continue ;; esac
+    grep -qx "$package" <<<"$closure" || missing+=("$package")
+  done
+  ((${#missing[@]} == 0)) || fail "the runtime stage does not install: $(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')"
+  echo "run-time libraries: $(wc -w <<<"$linked") linked, all installed by the runtime stage or the base"
+}
+
 work=$(mktemp -d)
 trap 'kill_started_servers; rm -rf "$work"' EXIT
 root=$work/image  # stands for the image's /
@@ -45,6 +76,7 @@ while read -r from to; do
   copies=$((copies + 1))
 done < <(sed -n 's/^COPY --from=build[[:space:]]\{1,\}\([^[:space:]]*\)[[:space:]]\{1,\}\([^[:space:]]*\)$/\1 \2/p' <<<"$runtime")
 ((copies > 0)) || fail "the runtime stage copies nothing from the build stage"
+check_runtime_packages "$root/opt/ncpost/bin/ncpostd" "$root/opt/ncpost/bin/ncpost"
 for file in bin/ncpostd share/ncpost/stylesheets/linuxcnc/post.xsl share/ncpost/openapi.yaml; do
   [[ -e $root/opt/ncpost/$file ]] || fail "the image would lack /opt/ncpost/$file"
 done
