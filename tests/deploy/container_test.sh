@@ -91,7 +91,11 @@ sed 's/"id": "linuxcnc"/"id": "cell-mill"/' "$source_dir/stylesheets/linuxcnc/pr
 cp "$here/lib.sh" "$here/container_checks.sh" "$source_dir/tests/golden/trace/cases/curves.stp" "$work/"
 
 # --- 2. the run-time contract --------------------------------------------------------------
-[[ $(id -u) -eq 0 ]] || fail "the emulation needs root (setpriv to uid $uid, mounts); CI runs as root"
+if [[ $(id -u) -ne 0 ]]; then
+  [[ ${NCPOST_REQUIRE_CORPUS:-} == 1 ]] && fail "the emulation needs root (setpriv to uid $uid, mounts)"
+  echo "SKIP: the image emulation needs root (setpriv to uid $uid, mounts); the Dockerfile checks passed"
+  exit 77
+fi
 unshare --mount --propagation private bash -c "
   set -e
   mount --bind / / && mount -o remount,bind,ro / || exit 3
