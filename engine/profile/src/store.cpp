@@ -182,7 +182,12 @@ fs::path data_directory() {
 }
 
 fs::path builtin_directory() {
-  return data_directory() / "stylesheets";
+  // Canonical, because the build tree's data folder links to the source tree's stylesheets and
+  // the store names files by their real path: a server hides this prefix from its diagnostics.
+  std::error_code error;
+  fs::path directory = data_directory() / "stylesheets";
+  fs::path real = fs::weakly_canonical(directory, error);
+  return error ? directory : real;
 }
 
 ProfileStore::ProfileStore(fs::path directory, StoreOptions options)
