@@ -19,6 +19,7 @@ test_packages=(
   python3 xsltproc clang-format
   python3-jsonschema                          # the profile schema checks (profile, cls checks)
   chromium                                    # tests/web: the browser test, through playwright-core
+  nginx                                       # the load balancer of tests/deploy (scale-out)
 )
 # rs274 (LinuxCNC's stand-alone interpreter) is used by tests/interop; recommends would pull in X11.
 interop_packages=(linuxcnc-uspace)

@@ -28,8 +28,8 @@ constexpr std::string_view kUsage = R"(usage: ncpostd --listen HOST:PORT [option
   --idle-timeout SECONDS    keep-alive idle limit (default 30)
   --write-timeout SECONDS   a client that reads nothing for this long is dropped (default 60)
   --shutdown-timeout SECONDS  SIGTERM: time given to in-flight requests (default 30)
-  --web-root DIR            the front end served at / (default: the source tree's web/)
-  --openapi FILE            the file served at /openapi.yaml (default: openapi/openapi.yaml)
+  --web-root DIR            the front end served at / (default: DATA/web; DATA: docs/deploy.md)
+  --openapi FILE            the file served at /openapi.yaml (default: DATA/openapi.yaml)
   --access-log on|off       one JSON line per request on stderr (default on)
   --max-inflight BYTES      memory budget: bytes that admitted requests may hold (uploads, and
                             2.3x the upload for a model); 503 beyond (default: half the memory)

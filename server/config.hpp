@@ -18,8 +18,8 @@ struct Config {
   std::uint16_t port = 8080;
   std::optional<std::filesystem::path> profiles;  // none: the built-in profiles (read-only)
   std::optional<std::filesystem::path> admin_token_file;
-  std::optional<std::filesystem::path> web_root;      // none: the source tree's web/
-  std::optional<std::filesystem::path> openapi_file;  // none: the source tree's openapi/
+  std::optional<std::filesystem::path> web_root;      // none: data_directory()/web
+  std::optional<std::filesystem::path> openapi_file;  // none: data_directory()/openapi.yaml
   std::uint64_t max_body = std::uint64_t{256} << 20;
   std::uint32_t max_header = 16 * 1024;
   // Raw uploads at least this large to a route that reads a model are read while they arrive

@@ -57,9 +57,8 @@ Server::Server(Config config, pipeline::Profiles& profiles, std::optional<std::s
   };
   services_.helpers.threads = services_.config.workers > 1 ? services_.config.workers - 1 : 0;
   const Config& c = services_.config;
-  services_.web_root = c.web_root.value_or(std::filesystem::path(NCPOST_SOURCE_DIR) / "web");
-  services_.openapi_file =
-      c.openapi_file.value_or(std::filesystem::path(NCPOST_SOURCE_DIR) / "openapi/openapi.yaml");
+  services_.web_root = c.web_root.value_or(pipeline::data_directory() / "web");
+  services_.openapi_file = c.openapi_file.value_or(pipeline::data_directory() / "openapi.yaml");
   request_prefix_ = std::random_device{}();
   for (unsigned i = 1; i < c.io_threads; ++i)
     more_contexts_.push_back(std::make_unique<net::io_context>(1));

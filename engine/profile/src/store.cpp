@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -17,8 +18,9 @@
 #include "ncpost/profile/profile.hpp"
 #include "sha256.hpp"
 
-#ifndef NCPOST_BUILTIN_PROFILES
-#define NCPOST_BUILTIN_PROFILES "stylesheets"
+// The data folder seen from the folder of the executable (GNUInstallDirs: ../share/ncpost).
+#ifndef NCPOST_DATA_FROM_BIN
+#define NCPOST_DATA_FROM_BIN "../share/ncpost"
 #endif
 
 namespace ncpost::profile {
@@ -169,8 +171,23 @@ std::string temp_prefix(std::string_view id) {
 
 }  // namespace
 
+fs::path data_directory() {
+  if (const char* chosen = std::getenv("NCPOST_DATA_DIR"); chosen != nullptr && *chosen != '\0')
+    return chosen;
+  std::error_code error;
+  const fs::path executable = fs::read_symlink("/proc/self/exe", error);
+  // Without /proc the executable's folder is unknown; the current folder is the only guess left.
+  const fs::path bin = error ? fs::current_path(error) : executable.parent_path();
+  return (bin / NCPOST_DATA_FROM_BIN).lexically_normal();
+}
+
 fs::path builtin_directory() {
-  return NCPOST_BUILTIN_PROFILES;
+  // Canonical, because the build tree's data folder links to the source tree's stylesheets and
+  // the store names files by their real path: a server hides this prefix from its diagnostics.
+  std::error_code error;
+  fs::path directory = data_directory() / "stylesheets";
+  fs::path real = fs::weakly_canonical(directory, error);
+  return error ? directory : real;
 }
 
 ProfileStore::ProfileStore(fs::path directory, StoreOptions options)

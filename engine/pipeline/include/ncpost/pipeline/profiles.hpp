@@ -16,6 +16,9 @@
 
 namespace ncpost::pipeline {
 
+// Where the installed read-only data is (built-in profiles, web front end, openapi.yaml).
+using profile::data_directory;
+
 struct ProfileList {
   std::vector<profile::ProfileSummary> profiles;  // sorted by id
   std::vector<diag::FileDiagnostic> diagnostics;  // folders whose profile.json does not parse

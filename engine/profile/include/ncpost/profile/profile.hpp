@@ -118,7 +118,13 @@ struct ProfileSummary {
       false;  // from the read-only layer (the built-ins): PUT overrides, DELETE refuses
 };
 
-// The built-in profile directory (${PROJECT_SOURCE_DIR}/stylesheets, compiled in).
+// The read-only data ncpost is installed with (docs/deploy.md): built-in profiles, schemas,
+// the web front end and openapi.yaml. $NCPOST_DATA_DIR when set, else ../share/ncpost beside
+// the running executable's folder (GNUInstallDirs). A build tree has the same layout:
+// build/share/ncpost links to the source tree's folders (CMakeLists.txt).
+[[nodiscard]] std::filesystem::path data_directory();
+
+// The built-in profile directory: data_directory()/stylesheets.
 [[nodiscard]] std::filesystem::path builtin_directory();
 
 struct StoreOptions {
