@@ -109,10 +109,14 @@ void expect_chunked_equals_whole(const profile::LoadedProfile& p,
 
 TEST_F(RenderTest, ChunkedEqualsWholeProgram) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
-  for (const char* id : {"linuxcnc", "fanuc-0i"}) {
+  // The five-axis profiles too: their kinematics state (previous angles, tool length) lives
+  // in the renderer, not in the chunks.
+  for (const char* id :
+       {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
     auto p = builtin(id);
     ASSERT_TRUE(p);
-    for (const char* c : {"curves.stp", "placement-rotated-setup.stp", "executables.stp"}) {
+    for (const char* c :
+         {"curves.stp", "placement-rotated-setup.stp", "executables.stp", "five-axis.stp"}) {
       SCOPED_TRACE(std::string(id) + " " + c);
       expect_chunked_equals_whole(*p, program(cases / c));
     }
@@ -381,11 +385,12 @@ void expect_runs_change_nothing(const profile::LoadedProfile& with_runs,
 
 TEST_F(RenderTest, MotionRunsWriteWhatTheElementTemplatesWrite) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
-  for (const char* id :
-       {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "okuma-osp", "siemens-840d"}) {
+  for (const char* id : {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "okuma-osp",
+                         "siemens-840d", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
     auto p = builtin(id);
     ASSERT_TRUE(p);
-    for (const char* c : {"curves.stp", "placement-rotated-setup.stp", "executables.stp"}) {
+    for (const char* c :
+         {"curves.stp", "placement-rotated-setup.stp", "executables.stp", "five-axis.stp"}) {
       SCOPED_TRACE(std::string(id) + " " + c);
       expect_runs_change_nothing(*p, program(cases / c));
     }
