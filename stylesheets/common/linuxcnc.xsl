@@ -1,9 +1,10 @@
 <?xml version="1.0" encoding="UTF-8"?>
-<!-- LinuxCNC (rs274ngc). Incremental arc centres (G91.1, the default), comments in
-     parentheses, M2 at the end. Checked against /usr/bin/rs274 by tests/interop. -->
+<!-- LinuxCNC (rs274ngc), shared by linuxcnc and linuxcnc-5ax. Incremental arc centres (G91.1,
+     the default), comments in parentheses, M2 at the end. Checked against /usr/bin/rs274 by
+     tests/interop. -->
 <xsl:stylesheet version="1.0" xmlns:xsl="http://www.w3.org/1999/XSL/Transform"
     xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
-  <xsl:import href="../common/ncpost-common.xsl"/>
+  <xsl:import href="ncpost-common.xsl"/>
   <xsl:output method="text" encoding="UTF-8"/>
 
   <xsl:template match="PROJECT_BEGIN">

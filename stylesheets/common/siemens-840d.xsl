@@ -1,6 +1,6 @@
 <?xml version="1.0" encoding="UTF-8"?>
 <!-- Siemens Sinumerik 840D sl (docs/profiles.md, siemens-840d): the common templates with the
-     Sinumerik dialect:
+     Sinumerik dialect, shared by siemens-840d and siemens-840d-5ax:
        %_N_<NAME>_MPF / ;$PATH=/_N_MPF_DIR   the archive header of a main program
        N10, N20, ...                         block numbers (ext:block)
        ; text                                comments, MSG("...") for messages
@@ -13,7 +13,7 @@
        M30                                   end of program -->
 <xsl:stylesheet version="1.0" xmlns:xsl="http://www.w3.org/1999/XSL/Transform"
     xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
-  <xsl:import href="../common/ncpost-common.xsl"/>
+  <xsl:import href="ncpost-common.xsl"/>
   <xsl:output method="text" encoding="UTF-8"/>
 
   <!-- Sinumerik program names: letters, digits and underscores, the first two characters

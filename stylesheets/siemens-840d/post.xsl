@@ -1,0 +1,8 @@
+<?xml version="1.0" encoding="UTF-8"?>
+<!-- Siemens Sinumerik 840D sl, three axes: the Sinumerik templates (common/siemens-840d.xsl) as
+     they are. -->
+<xsl:stylesheet version="1.0" xmlns:xsl="http://www.w3.org/1999/XSL/Transform"
+    xmlns:ext="urn:ncpost:ext" exclude-result-prefixes="ext">
+  <xsl:import href="../common/siemens-840d.xsl"/>
+  <xsl:output method="text" encoding="UTF-8"/>
+</xsl:stylesheet>
