@@ -18,6 +18,9 @@ namespace ncpost::interop {
 
 // Largest difference allowed between a motion read back and ours (program units, mm/min).
 inline constexpr double kTolerance = 0.001;
+// Largest difference allowed between the tool axes (unit vectors, per component) of a
+// five-axis post read back through the forward kinematics and ours (docs/kinematics.md).
+inline constexpr double kAxisTolerance = 1e-6;
 
 // One motion: "STRAIGHT_TRAVERSE" or "STRAIGHT_FEED" with x y z, or "ARC_FEED" with rs274's
 // first_end second_end first_axis second_axis rotation axis_end_point; and the feed rate in
@@ -26,6 +29,9 @@ struct Motion {
   std::string kind;
   std::vector<double> values;
   double feed = 0;
+  // Five-axis profiles: the tool axis in force at the motion's end (unit, program
+  // coordinates); empty otherwise.
+  std::vector<double> axis{};
 };
 
 [[nodiscard]] std::string describe(const Motion& m);
@@ -45,6 +51,16 @@ struct MotionOptions {
   // the spline itself: the posted spline, read back, is sampled the same way, which is
   // independent of how its knots are shifted or its weights scaled.
   int nurbs_samples = 0;
+  // A five-axis profile's kinematics: every motion carries the tool axis in force (+Z at the
+  // start). Ours (`posted` false): from the calls' tool axes. Posted (`posted` true): the
+  // calls carry the machine's rotary positions and, without tool-centre-point control, its
+  // linear positions; the tests' forward kinematics (tests/common/forward_kinematics.hpp)
+  // turns them back into the tool tip and axis, with the tool length of the last
+  // USE_TOOL_LENGTH_OFFSET.
+  const profile::Kinematics* kinematics = nullptr;
+  bool posted = false;
+  // The profile's length unit in program units (pivots are in the profile's unit).
+  double pivot_scale = 1.0;
 };
 
 // Our canonical program as motions: cycles expanded (canon::expand_cycle), NURBS linearised
@@ -58,9 +74,17 @@ class Motions final : public canon::Sink {
  private:
   [[nodiscard]] canon::Point map(canon::Point p) const;
   void add_arc(const canon::ArcFeed& arc);
+  // Five-axis: the pose's tool axis (ours) or rotary positions (posted) taken into force, and
+  // a posted point turned back into program coordinates.
+  void follow_orientation(const canon::Pose& pose);
+  [[nodiscard]] canon::Point program_point(const canon::Point& p) const;
+  void push(Motion m);
   MotionOptions options_;
   canon::Point position_{};
   double feed_ = 0;
+  std::vector<double> axis_{0, 0, 1};
+  canon::Rotary rotary_{};
+  double tool_length_ = 0;
 };
 
 // The default options for a profile: its chord tolerance, no set-up, no arc split.
@@ -82,13 +106,15 @@ class Motions final : public canon::Sink {
 struct Outcome {
   std::size_t compared = 0;
   double max_deviation = 0;
+  double max_axis_deviation = 0;  // five-axis: tool axes, per component
 };
 
-// Compares motion by motion (kind, count, every number, the feed of feed motions) and adds a
-// gtest failure for each difference above kTolerance (and for a different count or kind; the
-// comparison stops at the first different kind). `who` names the other side in messages.
+// Compares motion by motion (kind, count, every number, the feed of feed motions, the tool
+// axis) and adds a gtest failure for each difference above kTolerance (axes: `axis_tolerance`)
+// and for a different count or kind (the comparison stops at the first different kind). `who`
+// names the other side in messages.
 Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
-                            const std::string& who);
+                            const std::string& who, double axis_tolerance = kAxisTolerance);
 
 // An input file posted with one profile: the canonical program and the text.
 struct Posted {
@@ -105,5 +131,10 @@ struct Posted {
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
                                              const MotionOptions& options);
+
+// A five-axis program by hand (for the five-axis profiles): tilts in every direction, the
+// rotating axis twice past +-180 degrees, an arc and a NURBS with the tool tilted, back to the
+// pole.
+[[nodiscard]] std::vector<canon::Call> five_axis_program();
 
 }  // namespace ncpost::interop
