@@ -1,29 +1,47 @@
 #pragma once
-// Small helpers shared by the verbs: option parsing, reading FILE or stdin, printing diagnostics.
+// What the verbs share: each verb's declared options (an option a verb does not declare is a
+// usage error that names it), `--help`, reading FILE or stdin, printing diagnostics, and the
+// set-up of a job (schemas, tool table, threads) that every program-reading verb needs.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "ncpost/diag/diagnostic.hpp"
-#include "ncpost/express/registry.hpp"
-#include "ncpost/pipeline/load.hpp"
-#include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/pipeline/job.hpp"
 #include "verbs.hpp"
 
 namespace ncpost::cli {
 
-// Options of the form `--name value` or `--name=value`, flags `--name`, and positionals.
+struct OptionSpec {
+  std::string_view name;        // without the leading "--"
+  std::string_view value_name;  // empty: a flag
+};
+
+// A verb's command line: its usage (printed by --help and after a usage error) and the options
+// it accepts. FILE positionals are counted by the verb itself.
+struct VerbSpec {
+  std::string_view name;
+  std::string_view usage;  // the lines after "usage: ncpost "
+  std::vector<OptionSpec> options;
+};
+
+// The options every verb that reads a program takes.
+inline constexpr OptionSpec kSchemasOption{"schemas", "DIR"};
+inline constexpr OptionSpec kStrictOption{"strict", ""};
+inline constexpr OptionSpec kToolsOption{"tools", "TABLE"};
+
+// `--name value`, `--name=value`, flags `--name`, and positionals; `-` alone is a positional.
 class Options {
  public:
-  // `value_options` are the options that take a value; anything else starting with `--` is a flag.
-  Options(Args args, std::vector<std::string_view> value_options);
+  Options(Args args, const VerbSpec& spec);
 
   [[nodiscard]] std::optional<std::string> value(std::string_view name) const;
   [[nodiscard]] bool flag(std::string_view name) const;
   [[nodiscard]] const std::vector<std::string>& positionals() const { return positionals_; }
-  // Non-empty when the command line could not be parsed; a usage error.
+  [[nodiscard]] bool help() const { return help_; }
+  // Non-empty when the command line could not be parsed: a usage error.
   [[nodiscard]] const std::string& error() const { return error_; }
 
  private:
@@ -31,7 +49,18 @@ class Options {
   std::vector<std::string> flags_;
   std::vector<std::string> positionals_;
   std::string error_;
+  bool help_ = false;
 };
+
+// The verb's usage on stdout, exit 0.
+int print_help(const VerbSpec& spec);
+// "ncpost VERB: message" and the verb's usage on stderr, exit 2.
+int usage_error(const VerbSpec& spec, std::string_view message);
+
+// Parses the verb's command line. Returns the exit status to end with (after --help, or a usage
+// error, or when `files` positionals were not given), nullopt to go on.
+[[nodiscard]] std::optional<int> parse_or_exit(const Options& options, const VerbSpec& spec,
+                                               std::size_t files = 1);
 
 struct Input {
   std::string name;  // for diagnostics: the path, or "<stdin>"
@@ -41,40 +70,19 @@ struct Input {
 // Reads a path, or stdin for "-". On failure returns nullopt and prints an IO-001 diagnostic.
 [[nodiscard]] std::optional<Input> read_input(const std::string& path);
 
-void print_diagnostics(const std::vector<diag::Diagnostic>& diagnostics, std::string_view file);
-[[nodiscard]] bool has_errors(const std::vector<diag::Diagnostic>& diagnostics);
+void print_diagnostics(const std::vector<diag::FileDiagnostic>& diagnostics);
+// Standard output, piece by piece (unsynchronised with C stdio; flushed by the caller).
+void write_stdout(std::string_view piece);
 
-int usage_error(std::string_view verb, std::string_view message);
-
-// The schemas a verb reads models with: the built-in ISO 14649 schema and, with `--schemas DIR`,
-// every .exp file of DIR (parsed once each). `reports` holds the schema files' diagnostics, each
-// with its file: a file with errors is left out and the others are still used, but the errors
-// are printed and make the exit status 1, so that a typo in --schemas does not go unnoticed.
-struct LoadedSchemas {
-  express::SchemaRegistry registry;
-  std::vector<express::SchemaFileReport> reports;
+// What a program-reading job needs from the command line: the schemas (--schemas DIR), the
+// tool table (--tools TABLE), --strict, this machine's spare cores, and the one FILE.
+struct CliJob {
+  pipeline::Schemas schemas;
+  std::unique_ptr<pipeline::ThreadGroup> threads;
+  pipeline::JobContext context;
+  pipeline::Input input;
 };
-[[nodiscard]] LoadedSchemas load_schemas(const std::optional<std::string>& directory);
-// When the model's schema is the built-in, its own problems (EXP-054: a build problem) are added
-// to the reports.
-void add_builtin_report(LoadedSchemas& schemas, const pipeline::LoadedModel& loaded);
-// pipeline::load, reading and checking a large file on every core (the result is the same).
-[[nodiscard]] pipeline::LoadedModel load_on_all_cores(std::string bytes,
-                                                      const express::SchemaRegistry& schemas,
-                                                      bool validate = true);
-// Prints each report's diagnostics with its file name.
-void print_schema_reports(const std::vector<express::SchemaFileReport>& reports);
-[[nodiscard]] bool has_errors(const std::vector<express::SchemaFileReport>& reports);
-
-// What `trace` and `post` interpret: the schemas (--schemas DIR), the tool table (--tools
-// TABLE) and the program (the one positional FILE), loaded and checked. Every diagnostic of these
-// steps is printed here; nullopt means the job cannot go on (exit status 1).
-struct ProgramJob {
-  std::string name;  // for diagnostics
-  LoadedSchemas schemas;
-  pipeline::LoadedModel loaded;
-  stepnc::InterpretOptions interpret;
-};
-[[nodiscard]] std::optional<ProgramJob> load_program_job(const Options& options);
+// Null after printing why the job cannot start (a tool table or FILE that cannot be read).
+[[nodiscard]] std::unique_ptr<CliJob> prepare_job(const Options& options);
 
 }  // namespace ncpost::cli

@@ -5,8 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ncpost/p28/p28.hpp"
-#include "ncpost/xslt/xslt.hpp"
+#include "ncpost/pipeline/process.hpp"
 #include "verbs.hpp"
 
 namespace {
@@ -16,22 +15,21 @@ using ncpost::cli::Args;
 constexpr std::string_view kUsage = R"(usage: ncpost <verb> [options] FILE|-
 
 verbs:
-  inspect [--format json|text] [--schemas DIR] FILE
-                                          program information of a STEP-NC file (JSON by default)
-  convert --to p21|p28 [--binding late|early] [--schemas DIR] FILE
+  inspect [--format json|text] FILE       program information of a STEP-NC file (JSON by default)
+  convert --to p21|p28 [--binding late|early] FILE
                                           P21 or P28 in, P21 or P28 (late or early binding) out
   schema --to xml FILE.exp                EXPRESS schema as EXPRESS-X XML
-  trace [--format text|xml] [--tools TABLE] [--schemas DIR] FILE
-                                          canonical machining program (explicit toolpaths)
-  post --profile ID [--profiles DIR] [--tools TABLE] [--schemas DIR] FILE
-                                          controller code for one machine profile
+  trace [--format text|xml] FILE          canonical machining program
+  post --profile ID [--profiles DIR] FILE controller code for one machine profile
   profiles [--profiles DIR]               list machine profiles
-  verify [--format text|json] [--tolerance MM] [--grid MM] [--tools TABLE] [--schemas DIR] FILE
+  verify [--format text|json] [--tolerance MM] [--grid MM] FILE
                                           check the motions against the features they machine
   nc parse --dialect D FILE               read G-code (not implemented yet)
   nc translate --from D --to PROFILE FILE translate G-code (not implemented yet)
 
-FILE may be '-' for standard input. Exit status: 0 ok, 1 input rejected, 2 usage error.
+Every verb that reads a program also takes --schemas DIR, --strict and, where it interprets,
+--tools TABLE; `ncpost VERB --help` shows a verb's own usage. FILE may be '-' for standard
+input. Exit status: 0 ok, 1 input rejected, 2 usage error.
 )";
 
 struct Verb {
@@ -49,8 +47,7 @@ int not_implemented(std::string_view what, std::string_view issue) {
 
 int main(int argc, char** argv) {
   // Process-wide libxml2 / libxslt set-up, once, before anything parses XML.
-  ncpost::p28::initialise_xml();
-  ncpost::xslt::initialise();
+  ncpost::pipeline::initialise_process();
   std::vector<std::string_view> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     (args.empty() ? std::cerr : std::cout) << kUsage;

@@ -1,25 +1,27 @@
-// `ncpost profiles [--profiles DIR]`: the machine profiles, one a line: id, name, controller
-// (tab-separated).
+// `ncpost profiles`: the machine profiles, one a line: id, name, controller (tab-separated).
 
 #include <iostream>
 
 #include "cli_support.hpp"
-#include "ncpost/profile/profile.hpp"
+#include "ncpost/pipeline/profiles.hpp"
 
 namespace ncpost::cli {
 
 int run_profiles(Args args) {
-  const Options options(args, {"profiles"});
-  if (!options.error().empty()) return usage_error("profiles", options.error());
-  if (!options.positionals().empty()) return usage_error("profiles", "takes no FILE");
-  const profile::ProfileStore store(
-      options.value("profiles").value_or(profile::builtin_directory().string()));
-  std::vector<diag::FileDiagnostic> diagnostics;
-  const auto profiles = store.list(diagnostics);
-  for (const auto& p : profiles)
+  static const VerbSpec spec{"profiles",
+                             "profiles [--profiles DIR]\n"
+                             "  The machine profiles: id, name, controller.\n",
+                             {{"profiles", "DIR"}}};
+  const Options options(args, spec);
+  if (const auto exit = parse_or_exit(options, spec, 0)) return *exit;
+  const auto directory = options.value("profiles");
+  const auto profiles = directory ? pipeline::Profiles::read_only(*directory)
+                                  : std::make_unique<pipeline::Profiles>();
+  const pipeline::ProfileList list = profiles->list();
+  for (const auto& p : list.profiles)
     std::cout << p.id << '\t' << p.name << '\t' << p.controller << '\n';
-  for (const auto& d : diagnostics) std::cerr << diag::format(d) << '\n';
-  return diag::has_errors(diagnostics) ? kExitRejected : kExitOk;
+  print_diagnostics(list.diagnostics);
+  return diag::has_errors(list.diagnostics) ? kExitRejected : kExitOk;
 }
 
 }  // namespace ncpost::cli

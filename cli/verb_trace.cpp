@@ -1,58 +1,34 @@
-// `ncpost trace [--format text|xml] [--schemas DIR] [--tools TABLE] FILE|-`
-// The canonical machining program of a STEP-NC file: one call per line (RS274 style), or the
-// XML form that profiles' stylesheets read. Chunks are written as the interpreter finishes
-// them, so a long program streams.
+// `ncpost trace`: the canonical machining program of an input, one call per line (rs274 style)
+// or the XML form that profiles' stylesheets read, written as the interpreter finishes each
+// chunk so that a long program streams.
 
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "cli_support.hpp"
-#include "ncpost/canon/trace.hpp"
-#include "ncpost/canon/xml.hpp"
-#include "ncpost/pipeline/load.hpp"
-#include "ncpost/stepnc/interpreter.hpp"
-#include "ncpost/stepnc/program_info.hpp"
+#include "ncpost/pipeline/jobs.hpp"
 
 namespace ncpost::cli {
-namespace {
-
-void write_stdout(std::string_view piece) {
-  std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
-}
-
-}  // namespace
 
 int run_trace(Args args) {
-  const Options options(args, {"format", "schemas", "tools"});
-  if (!options.error().empty()) return usage_error("trace", options.error());
-  if (options.positionals().size() != 1) return usage_error("trace", "expects one FILE or -");
+  static const VerbSpec spec{
+      "trace",
+      "trace [--format text|xml] [--tools TABLE] [--schemas DIR] [--strict] FILE|-\n"
+      "  The canonical machining program: one call per line (text), or the XML form that\n"
+      "  stylesheets read (xml).\n",
+      {{"format", "text|xml"}, kToolsOption, kSchemasOption, kStrictOption}};
+  const Options options(args, spec);
+  if (const auto exit = parse_or_exit(options, spec)) return *exit;
   const std::string format = options.value("format").value_or("text");
-  if (format != "text" && format != "xml")
-    return usage_error("trace", "--format must be text or xml");
+  if (format != "text" && format != "xml") return usage_error(spec, "--format must be text or xml");
 
-  auto job = load_program_job(options);
+  auto job = prepare_job(options);
   if (!job) return kExitRejected;
-  const pipeline::LoadedModel& loaded = job->loaded;
-  const stepnc::InterpretOptions& interpret_options = job->interpret;
-  const std::string& name = job->name;
-  std::ios::sync_with_stdio(false);
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
-  stepnc::InterpretResult result;
-  if (format == "text") {
-    canon::TraceWriter trace(write_stdout);
-    result = stepnc::interpret(loaded.model, attributes, trace, interpret_options);
-  } else {
-    canon::XmlDocumentWriter xml(write_stdout);
-    canon::Chunker chunker(xml);
-    result = stepnc::interpret(loaded.model, attributes, chunker, interpret_options);
-    chunker.finish();
-    xml.finish();
-  }
+  const pipeline::JobResult result = pipeline::trace(
+      std::move(job->input), job->context,
+      format == "text" ? pipeline::TraceFormat::Text : pipeline::TraceFormat::Xml, write_stdout);
   std::cout.flush();
-  print_diagnostics(loaded.diagnostics, name);
-  print_diagnostics(result.diagnostics, name);
-  return result.ok() ? kExitOk : kExitRejected;
+  print_diagnostics(result.diagnostics);
+  return result.ok ? kExitOk : kExitRejected;
 }
 
 }  // namespace ncpost::cli

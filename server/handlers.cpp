@@ -3,24 +3,16 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
-#include <unordered_map>
 
 #include "auth.hpp"
 #include "body_hash.hpp"
 #include "multipart.hpp"
-#include "ncpost/canon/trace.hpp"
-#include "ncpost/canon/xml.hpp"
-#include "ncpost/express/express_x.hpp"
-#include "ncpost/express/parse.hpp"
-#include "ncpost/p21/writer.hpp"
-#include "ncpost/p28/p28.hpp"
-#include "ncpost/pipeline/load.hpp"
+#include "ncpost/pipeline/diagnostics.hpp"
+#include "ncpost/pipeline/jobs.hpp"
 #include "ncpost/pipeline/post.hpp"
-#include "ncpost/render/render.hpp"
-#include "ncpost/stepnc/interpreter.hpp"
-#include "ncpost/stepnc/program_info.hpp"
 
 namespace ncpost::server {
 namespace {
@@ -28,24 +20,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using json = nlohmann::ordered_json;
 
-// ---- problem details -----------------------------------------------------------------------
-
-json diagnostic_json(const diag::FileDiagnostic& d) {
-  json j;
-  j["file"] = d.file;
-  j["line"] = d.diagnostic.line;
-  j["column"] = d.diagnostic.column;
-  j["severity"] = std::string(diag::to_string(d.diagnostic.severity));
-  j["code"] = std::string(d.diagnostic.code_id());
-  j["message"] = d.diagnostic.message;
-  return j;
-}
-
-json diagnostics_json(const std::vector<diag::FileDiagnostic>& diagnostics) {
-  json all = json::array();
-  for (const auto& d : diagnostics) all.push_back(diagnostic_json(d));
-  return all;
-}
+// ---- problem details and small responses ---------------------------------------------------
 
 // A problem whose cause is the request itself, not its content: one diagnostic with the code.
 Response http_problem(unsigned status, diag::Code code, std::string_view title,
@@ -166,36 +141,6 @@ bool stop_if_cancelled(Exchange& exchange) {
   return true;
 }
 
-// The upload read and checked, whether it came whole or was read as it arrived (upload.hpp).
-pipeline::LoadedModel load_model(Upload& upload, Services& services, Exchange& exchange,
-                                 bool validate) {
-  pipeline::LoadOptions options;
-  options.validate = validate;
-  options.cancel = exchange.cancel_flag();
-  options.helpers = &services.helpers;
-  pipeline::LoadedModel loaded =
-      upload.streamed ? pipeline::load(upload.streamed->reader(), *services.schemas, options)
-                      : pipeline::load(std::move(upload.bytes), *services.schemas, options);
-  services.metrics->stage("read", loaded.read_time + loaded.check_time);
-  return loaded;
-}
-
-// The upload read and checked, or nullopt after answering.
-std::optional<pipeline::LoadedModel> load_upload(Services& services, Exchange& exchange,
-                                                 Upload& upload, bool validate) {
-  pipeline::LoadedModel loaded = load_model(upload, services, exchange, validate);
-  if (stop_if_cancelled(exchange)) return std::nullopt;
-  if (!loaded.ok()) {
-    if (loaded.model.instances_of("PROJECT").empty() && validate)
-      loaded.diagnostics.push_back(stepnc::no_program_diagnostic(loaded.model));
-    exchange.respond(problem(422, "input-rejected", "The upload was rejected",
-                             "the input could not be read; see diagnostics",
-                             diag::with_file(loaded.diagnostics, upload.name)));
-    return std::nullopt;
-  }
-  return loaded;
-}
-
 // For Server-Timing: milliseconds with one decimal.
 std::string timing_ms(std::chrono::nanoseconds d) {
   char buffer[32];
@@ -204,36 +149,41 @@ std::string timing_ms(std::chrono::nanoseconds d) {
   return buffer;
 }
 
-// ---- block → workingstep map ---------------------------------------------------------------
+// ---- what every job route shares -----------------------------------------------------------
 
-// Passes calls to the renderer and notes, at each workingstep's Begin, how much program text
-// exists. The renderer emits a chunk's text when the chunker closes it, so with one transform
-// per chunk (RenderOptions::batch_bytes = 0) the text of workingstep k starts at the mark taken
-// right after its Begin was passed on. The renderer does not expose per-block origins, so this
-// is the boundary granularity: blocks between workingsteps belong to the one before.
-class WorkingstepTracker final : public canon::Sink {
- public:
-  WorkingstepTracker(canon::Sink& next, const std::string& text,
-                     std::vector<WorkingstepMark>& marks, const std::atomic<bool>* cancel)
-      : next_(next), text_(text), marks_(marks), cancel_(cancel) {}
-  void call(const canon::Call& call) override {
-    if (cancelled()) return;
-    next_.call(call);
-    if (const auto* begin = std::get_if<canon::Begin>(&call);
-        begin != nullptr && begin->scope == canon::Scope::Workingstep)
-      marks_.push_back({text_.size(), begin->entity.id, begin->entity.name});
-    else if (const auto* end = std::get_if<canon::End>(&call);
-             end != nullptr && end->scope == canon::Scope::Workingstep)
-      marks_.push_back({text_.size(), 0, {}});
+// The context of a job route's pipeline call: the server's schemas and worker pool, the
+// request's cancel flag, and `strict=true`. Nullopt after a 400 for a malformed `strict`.
+std::optional<pipeline::JobContext> job_context(const Request& request, Services& services,
+                                                Exchange& exchange) {
+  pipeline::JobContext context;
+  context.schemas = services.schemas;
+  context.cancel = exchange.cancel_flag();
+  context.helpers = &services.helpers;
+  const auto strict = query_param(request.target(), "strict");
+  if (strict && *strict != "true" && *strict != "false") {
+    exchange.respond(bad_request("the query parameter 'strict' must be true or false"));
+    return std::nullopt;
   }
-  [[nodiscard]] bool cancelled() const { return cancel_ != nullptr && cancel_->load(); }
+  context.strict = strict == "true";
+  return context;
+}
 
- private:
-  canon::Sink& next_;
-  const std::string& text_;
-  std::vector<WorkingstepMark>& marks_;
-  const std::atomic<bool>* cancel_;
-};
+pipeline::Input job_input(Upload& upload) {
+  pipeline::Input input;
+  input.name = upload.name;
+  input.bytes = std::move(upload.bytes);
+  if (upload.streamed) input.arriving = &upload.streamed->reader();
+  return input;
+}
+
+void record_read(Metrics& metrics, const pipeline::JobResult& job) {
+  metrics.stage("read", job.read_time + job.check_time);
+}
+
+Response input_rejected(const std::vector<diag::FileDiagnostic>& diagnostics) {
+  return problem(422, "input-rejected", "The upload was rejected",
+                 "the input could not be read; see diagnostics", diagnostics);
+}
 
 // ---- handlers ------------------------------------------------------------------------------
 
@@ -244,8 +194,7 @@ void handle_healthz(Request&, Services&, Exchange& exchange) {
 }
 
 void handle_readyz(Request&, Services& services, Exchange& exchange) {
-  std::vector<diag::FileDiagnostic> diagnostics;
-  const auto profiles = services.profiles->list(diagnostics);
+  const auto profiles = services.profiles->list().profiles;
   const bool saturated = services.saturated && services.saturated();
   json body;
   body["status"] = (!profiles.empty() && !saturated) ? "ready" : "not ready";
@@ -300,59 +249,44 @@ void handle_not_implemented(Request& request, Services&, Exchange& exchange) {
 }
 
 void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
-  std::vector<diag::FileDiagnostic> diagnostics;
-  const auto list = services.profiles->list(diagnostics);
+  const pipeline::ProfileList list = services.profiles->list();
   json body;
   body["profiles"] = json::array();
-  for (const auto& p : list)
+  for (const auto& p : list.profiles)
     body["profiles"].push_back(
         {{"id", p.id}, {"name", p.name}, {"controller", p.controller}, {"read_only", p.read_only}});
   body["writable"] = services.profiles->writable();
-  body["diagnostics"] = diagnostics_json(diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(list.diagnostics);
   exchange.respond(json_response(200, body));
 }
 
-// The store's diagnostics name files on the server; a client learns the profile-relative path
-// (e.g. "profiles/fanuc-0i/post.xsl"), not where the service is installed.
-std::vector<diag::FileDiagnostic> without_server_paths(
-    std::vector<diag::FileDiagnostic> diagnostics, const profile::ProfileStore& store) {
-  // Absolute roots only: a relative --profiles DIR reveals nothing, and a short relative name
-  // would match inside ordinary words.
-  std::error_code ec;
-  const std::string roots[] = {std::filesystem::absolute(store.directory(), ec).string(),
-                               profile::builtin_directory().string()};
-  for (auto& d : diagnostics)
-    for (const std::string& root : roots) {
-      if (root.size() < 2 || root.front() != '/') continue;
-      for (std::string* text : {&d.file, &d.diagnostic.message})
-        for (auto at = text->find(root); at != std::string::npos; at = text->find(root, at))
-          text->replace(at, root.size(), "profiles");
-    }
-  return diagnostics;
-}
-
-Response profile_load_problem(const std::vector<diag::FileDiagnostic>& store_diagnostics,
-                              std::string_view id, const profile::ProfileStore& store) {
-  const auto diagnostics = without_server_paths(store_diagnostics, store);
-  const bool unknown = std::any_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
-    return d.diagnostic.code == diag::Code::ProfileUnknown ||
-           d.diagnostic.code == diag::Code::ProfileBadId;
-  });
-  if (unknown)
-    return problem(404, "PROFILE-003", "Unknown profile",
-                   "no profile '" + std::string(id) + "' (see GET /v1/profiles)", diagnostics);
-  return problem(500, "PROFILE-004", "Broken profile",
-                 "profile '" + std::string(id) + "' does not load", diagnostics);
+// The profile a request names; after its 404 (unknown) or 500 (broken), a lookup without one.
+pipeline::ProfileLookup find_profile_or_respond(Services& services, Exchange& exchange,
+                                                std::string_view id) {
+  pipeline::ProfileLookup lookup = services.profiles->find(id);
+  switch (lookup.outcome) {
+    case pipeline::LookupOutcome::Found:
+      break;
+    case pipeline::LookupOutcome::Unknown:
+      exchange.respond(problem(404, "PROFILE-003", "Unknown profile",
+                               "no profile '" + std::string(id) + "' (see GET /v1/profiles)",
+                               lookup.diagnostics));
+      break;
+    case pipeline::LookupOutcome::Broken:
+      exchange.respond(problem(500, "PROFILE-004", "Broken profile",
+                               "profile '" + std::string(id) + "' does not load",
+                               lookup.diagnostics));
+      break;
+  }
+  return lookup;
 }
 
 void handle_profile_get(Request& request, Services& services, Exchange& exchange) {
   exchange.profile = exchange.path_id;
-  std::vector<diag::FileDiagnostic> diagnostics;
-  const auto loaded = services.profiles->load(exchange.path_id, diagnostics);
-  if (!loaded) {
-    exchange.respond(profile_load_problem(diagnostics, exchange.path_id, *services.profiles));
-    return;
-  }
+  const pipeline::ProfileLookup lookup =
+      find_profile_or_respond(services, exchange, exchange.path_id);
+  const auto& loaded = lookup.profile;
+  if (!loaded) return;
   const std::string etag = "\"" + loaded->version + "\"";
   if (request[http::field::if_none_match] == etag) {
     Response r{http::status::not_modified, 11};
@@ -369,7 +303,7 @@ void handle_profile_get(Request& request, Services& services, Exchange& exchange
   body["version"] = loaded->version;
   body["read_only"] = loaded->read_only;
   body["profile"] = json::parse(loaded->json, nullptr, false);
-  body["diagnostics"] = diagnostics_json(diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(lookup.diagnostics);
   Response r = json_response(200, body);
   r.set(http::field::etag, etag);
   exchange.respond(std::move(r));
@@ -389,6 +323,26 @@ std::optional<Response> refuse_admin(const Request& request, const Services& ser
     return http_problem(403, diag::Code::HttpForbidden, "Forbidden",
                         "the bearer token does not match the admin token");
   return std::nullopt;
+}
+
+Response profile_put_problem(const pipeline::ProfilePut& put) {
+  switch (put.outcome) {
+    case pipeline::PutOutcome::ReadOnlyStore:
+      return problem(409, "PROFILE-006", "Read-only profile store",
+                     "this server has no writable profile directory", put.diagnostics);
+    case pipeline::PutOutcome::WriteFailed:
+      return problem(500, "PROFILE-007", "The profile was rejected",
+                     "the previous version (if any) stays active; see diagnostics",
+                     put.diagnostics);
+    case pipeline::PutOutcome::BadId:
+      return problem(400, "profile-rejected", "The profile was rejected",
+                     "the previous version (if any) stays active; see diagnostics",
+                     put.diagnostics);
+    default:
+      return problem(422, "profile-rejected", "The profile was rejected",
+                     "the previous version (if any) stays active; see diagnostics",
+                     put.diagnostics);
+  }
 }
 
 void handle_profile_put(Request& request, Services& services, Exchange& exchange) {
@@ -415,38 +369,21 @@ void handle_profile_put(Request& request, Services& services, Exchange& exchange
     exchange.respond(bad_request("the parts 'profile' and 'stylesheet' are both required"));
     return;
   }
-  if (!services.profiles->writable()) {
-    const std::vector<diag::FileDiagnostic> one = {
-        {"request", diag::make(diag::Code::ProfileReadOnly, 0, 0,
-                               "the built-in profiles are read-only; start ncpostd with "
-                               "--profiles DIR")}};
-    exchange.respond(problem(409, "PROFILE-006", "Read-only profile store",
-                             "this server has no writable profile directory", one));
-    return;
-  }
-  profile::PutResult result =
+  const pipeline::ProfilePut put =
       services.profiles->put(exchange.path_id, profile_part->body, stylesheet_part->body);
-  if (!result.profile) {
-    const bool bad_id =
-        std::any_of(result.diagnostics.begin(), result.diagnostics.end(),
-                    [](const auto& d) { return d.diagnostic.code == diag::Code::ProfileBadId; });
-    const bool write_failed =
-        std::any_of(result.diagnostics.begin(), result.diagnostics.end(),
-                    [](const auto& d) { return d.diagnostic.code == diag::Code::ProfileWrite; });
-    exchange.respond(
-        problem(write_failed ? 500 : (bad_id ? 400 : 422),
-                write_failed ? "PROFILE-007" : "profile-rejected", "The profile was rejected",
-                "the previous version (if any) stays active; see diagnostics", result.diagnostics));
+  if (!put.profile) {
+    exchange.respond(profile_put_problem(put));
     return;
   }
+  const bool created = put.outcome == pipeline::PutOutcome::Created;
   json body;
-  body["id"] = result.profile->profile.id;
-  body["version"] = result.profile->version;
-  body["created"] = result.created;
-  body["diagnostics"] = diagnostics_json(result.diagnostics);
-  Response r = json_response(result.created ? 201 : 200, body);
-  r.set(http::field::etag, "\"" + result.profile->version + "\"");
-  if (result.created) r.set(http::field::location, "/v1/profiles/" + exchange.path_id);
+  body["id"] = put.profile->profile.id;
+  body["version"] = put.profile->version;
+  body["created"] = created;
+  body["diagnostics"] = pipeline::diagnostics_json(put.diagnostics);
+  Response r = json_response(created ? 201 : 200, body);
+  r.set(http::field::etag, "\"" + put.profile->version + "\"");
+  if (created) r.set(http::field::location, "/v1/profiles/" + exchange.path_id);
   exchange.respond(std::move(r));
 }
 
@@ -477,51 +414,42 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
   }
 }
 
-void post_json(Services& services, Exchange& exchange, const pipeline::LoadedModel& loaded,
-               const profile::LoadedProfile& profile, const std::string& name,
+// Accept: application/json: the whole program in one JSON document, with the map from its
+// blocks to the workingsteps they came from (the browser front end's view).
+void post_json(Services& services, Exchange& exchange, pipeline::Input input,
+               const pipeline::JobContext& context, const profile::LoadedProfile& profile,
                const std::string& filename) {
   std::string text;
-  std::vector<WorkingstepMark> marks;
-  render::RenderOptions render_options;
-  render_options.batch_bytes = 0;  // one transform per chunk: see WorkingstepTracker
-  const auto started = Clock::now();
-  render::Renderer renderer(
-      profile, [&text](std::string_view piece) { text.append(piece); }, render_options, name);
-  WorkingstepTracker tracker(renderer, text, marks, exchange.cancel_flag());
-  stepnc::InterpretOptions interpret_options;
-  interpret_options.stop_at_first_error = true;
-  interpret_options.cancel = exchange.cancel_flag();
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
-  const stepnc::InterpretResult interpreted =
-      stepnc::interpret(loaded.model, attributes, tracker, interpret_options);
-  if (!tracker.cancelled()) renderer.finish();
-  const auto both = Clock::now() - started;
-  record_post_stages(*services.metrics,
-                     std::max(std::chrono::nanoseconds{0}, both - renderer.transform_time()),
-                     renderer.transform_time(), both);
+  std::vector<pipeline::WorkingstepMark> marks;
+  pipeline::PostOptions options;
+  options.workingstep_marks = &marks;
+  const pipeline::PostJobResult result = pipeline::post(
+      std::move(input), context, profile, [&text](std::string_view piece) { text.append(piece); },
+      options);
+  record_read(*services.metrics, result.read);
+  record_post_stages(*services.metrics, result.post.interpret, result.post.render,
+                     result.post.interpret_and_render);
   if (stop_if_cancelled(exchange)) return;
-
-  std::vector<diag::FileDiagnostic> diagnostics = diag::with_file(loaded.diagnostics, name);
-  for (const auto& d : interpreted.diagnostics) diagnostics.push_back({name, d});
-  diagnostics.insert(diagnostics.end(), renderer.diagnostics().begin(),
-                     renderer.diagnostics().end());
-  diagnostics = without_server_paths(std::move(diagnostics), *services.profiles);
-  const bool ok = interpreted.ok() && !renderer.failed();
-  if (!ok) {
+  const auto diagnostics = services.profiles->without_server_paths(result.diagnostics());
+  if (!result.read.ok) {
+    exchange.respond(input_rejected(diagnostics));
+    return;
+  }
+  if (!result.ok()) {
     exchange.respond(problem(422, "post-failed", "The program could not be posted",
                              "the post stopped at the first error; see diagnostics", diagnostics));
     return;
   }
+  json map = pipeline::block_map(text, marks, exchange.cancel_flag());
+  if (stop_if_cancelled(exchange)) return;
   json body;
   body["profile"] = profile.profile.id;
   body["profile_version"] = profile.version;
   body["filename"] = filename;
-  body["program"] = text;
-  body["diagnostics"] = diagnostics_json(diagnostics);
-  json blocks = block_map(text, marks, exchange.cancel_flag());
-  if (stop_if_cancelled(exchange)) return;
-  body["blocks"] = std::move(blocks["blocks"]);
-  body["workingsteps"] = std::move(blocks["workingsteps"]);
+  body["program"] = std::move(text);
+  body["diagnostics"] = pipeline::diagnostics_json(diagnostics);
+  body["blocks"] = std::move(map["blocks"]);
+  body["workingsteps"] = std::move(map["workingsteps"]);
   exchange.respond(json_response(200, body));
 }
 
@@ -535,21 +463,19 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
     return;
   }
   exchange.profile = *id;
-  std::vector<diag::FileDiagnostic> profile_diagnostics;
   // The job keeps this version even if the profile is replaced while it runs.
-  const auto loaded_profile = services.profiles->load(*id, profile_diagnostics);
-  if (!loaded_profile) {
-    exchange.respond(profile_load_problem(profile_diagnostics, *id, *services.profiles));
-    return;
-  }
+  const auto loaded_profile = find_profile_or_respond(services, exchange, *id).profile;
+  if (!loaded_profile) return;
+  const auto context = job_context(request, services, exchange);
+  if (!context) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   // The same input, profile version and engine give the same program. A large upload was
   // hashed as it arrived.
   const std::uint64_t input_hash =
       upload->streamed ? upload->streamed->hash() : body_hash(upload->bytes);
-  const std::uint64_t context_hash =
-      body_hash(loaded_profile->version + "/" + services.engine_version);
+  const std::uint64_t context_hash = body_hash(
+      loaded_profile->version + "/" + services.engine_version + (context->strict ? "/strict" : ""));
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
   if (request[http::field::if_none_match] == etag && !as_json) {
@@ -558,12 +484,9 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
     exchange.respond(std::move(r));
     return;
   }
-  const std::string name = upload->name;
-  const std::string filename = file_stem(name) + loaded_profile->profile.extension;
-  auto loaded = load_upload(services, exchange, *upload, true);
-  if (!loaded) return;
+  const std::string filename = file_stem(upload->name) + loaded_profile->profile.extension;
   if (as_json) {
-    post_json(services, exchange, *loaded, *loaded_profile, name, filename);
+    post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename);
     return;
   }
 
@@ -579,30 +502,33 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   bool begun = false;
   bool alive = true;
   pipeline::PostOptions options;
-  options.input_name = name;
-  options.cancel = exchange.cancel_flag();
   // One thread per job: --workers bounds the threads doing CPU work, which a render thread of
   // the job's own would not respect (docs/architecture.md, "Two threads in a post").
   options.render_thread_min_instances = 0;
-  const auto render_started = Clock::now();
+  const StreamedUpload* streamed = upload->streamed.get();
+  std::string read_timing;
+  auto render_started = Clock::now();
+  const auto on_read = [&](const pipeline::JobResult& read) {
+    read_timing =
+        "read;dur=" + timing_ms(read.read_time) + ", check;dur=" + timing_ms(read.check_time);
+    render_started = Clock::now();
+  };
   const auto begin = [&] {
     std::string timing;
     if (exchange.received != Clock::time_point{})
       timing = "queue;dur=" + timing_ms(job_started - exchange.received) + ", ";
     // How much of a large upload had been read before its last byte came.
-    if (upload->streamed)
+    if (streamed != nullptr)
       timing += "arrival;desc=\"read " +
-                std::to_string(upload->streamed->read_while_arriving() * 100 /
-                               std::max<std::size_t>(1, upload->streamed->size())) +
+                std::to_string(streamed->read_while_arriving() * 100 /
+                               std::max<std::size_t>(1, streamed->size())) +
                 "% while arriving\", ";
-    timing += "read;dur=" + timing_ms(loaded->read_time) +
-              ", check;dur=" + timing_ms(loaded->check_time) +
-              ", first-text;dur=" + timing_ms(Clock::now() - render_started);
+    timing += read_timing + ", first-text;dur=" + timing_ms(Clock::now() - render_started);
     head.set("Server-Timing", timing);
     return exchange.begin_stream(head);
   };
-  const pipeline::PostResult result = pipeline::post(
-      *loaded, *loaded_profile,
+  const pipeline::PostJobResult result = pipeline::post(
+      job_input(*upload), *context, *loaded_profile,
       [&](std::string_view piece) {
         if (!alive) return;
         if (!begun) {
@@ -612,21 +538,24 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
         }
         alive = exchange.write(piece);
       },
-      options);
-  record_post_stages(*services.metrics, result.interpret, result.render,
-                     result.interpret_and_render);
-  std::vector<diag::FileDiagnostic> diagnostics = diag::with_file(loaded->diagnostics, name);
-  diagnostics.insert(diagnostics.end(), result.diagnostics.begin(), result.diagnostics.end());
-  diagnostics = without_server_paths(std::move(diagnostics), *services.profiles);
+      options, on_read);
+  record_read(*services.metrics, result.read);
+  record_post_stages(*services.metrics, result.post.interpret, result.post.render,
+                     result.post.interpret_and_render);
+  const auto diagnostics = services.profiles->without_server_paths(result.diagnostics());
   if (begun) {
-    if (result.ok)
+    if (result.ok())
       exchange.end_stream(true, diagnostics_trailer(diagnostics));
     else
       exchange.end_stream(false);
     return;
   }
   if (stop_if_cancelled(exchange)) return;
-  if (!result.ok) {
+  if (!result.read.ok) {
+    exchange.respond(input_rejected(diagnostics));
+    return;
+  }
+  if (!result.ok()) {
     exchange.respond(problem(422, "post-failed", "The program could not be posted",
                              "the post stopped before any output; see diagnostics", diagnostics));
     return;
@@ -646,68 +575,64 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
     exchange.respond(bad_request("'binding' is late or early, and only with to=p28"));
     return;
   }
+  const auto context = job_context(request, services, exchange);
+  if (!context) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
-  // Conversion is lossless whatever the schema says of the data: not validated (as the CLI).
-  auto loaded = load_upload(services, exchange, *upload, false);
-  if (!loaded) return;
   StreamHead head{http::status::ok, 11};
   head.set(http::field::content_type, *to == "p21" ? "application/p21" : "application/xml");
   head.set(http::field::content_disposition, "attachment; filename=\"" + file_stem(upload->name) +
                                                  (*to == "p21" ? ".stp\"" : ".stpx\""));
   head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
-  if (!exchange.begin_stream(head)) return;
+  const pipeline::ConvertTo target = *to == "p21" ? pipeline::ConvertTo::P21
+                                     : binding.value_or("late") == "early"
+                                         ? pipeline::ConvertTo::P28Early
+                                         : pipeline::ConvertTo::P28Late;
+  // The head goes out with the first piece, so that an input with errors is still a 422.
   Coalescer out(exchange);
-  const auto started = Clock::now();
-  const auto sink = [&out](std::string_view piece) { out(piece); };
-  if (*to == "p21") {
-    p21::write(loaded->model, sink);
-  } else {
-    (void)p28::write(loaded->model, loaded->schema,
-                     binding.value_or("late") == "early" ? p28::Binding::Early : p28::Binding::Late,
-                     sink);
+  bool begun = false;
+  const pipeline::JobResult result =
+      pipeline::convert(job_input(*upload), *context, target, [&](std::string_view piece) {
+        if (!begun) {
+          begun = true;
+          if (!exchange.begin_stream(head)) return;
+        }
+        out(piece);
+      });
+  record_read(*services.metrics, result);
+  services.metrics->stage("convert", result.work_time);
+  if (!begun) {
+    if (stop_if_cancelled(exchange)) return;
+    exchange.respond(input_rejected(result.diagnostics));
+    return;
   }
   out.flush();
-  services.metrics->stage("convert", Clock::now() - started);
   if (out.alive())
-    exchange.end_stream(true,
-                        diagnostics_trailer(diag::with_file(loaded->diagnostics, upload->name)));
+    exchange.end_stream(true, diagnostics_trailer(result.diagnostics));
   else
     exchange.end_stream(false);
 }
 
 void handle_inspection(Request& request, Services& services, Exchange& exchange) {
+  const auto context = job_context(request, services, exchange);
+  if (!context) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
-  const std::string name = upload->name;
-  pipeline::LoadedModel loaded = load_model(*upload, services, exchange, true);
+  const pipeline::Inspection inspection = pipeline::inspect(job_input(*upload), *context);
+  record_read(*services.metrics, inspection.job);
   if (stop_if_cancelled(exchange)) return;
-  // The same assembly as `ncpost inspect`: reading, schema choice and check, then the
-  // program-structure diagnostics of stepnc::inspect.
-  std::vector<diag::Diagnostic> diagnostics = std::move(loaded.diagnostics);
-  stepnc::ProgramInfo info = stepnc::inspect(loaded.model, *loaded.schema);
-  diagnostics.insert(diagnostics.end(), info.diagnostics.begin(), info.diagnostics.end());
-  json all = json::array();
-  if (loaded.schema == &services.schemas->builtin().set())
-    for (auto& d : stepnc::diagnostics_json(services.schemas->builtin_diagnostics(),
-                                            services.schemas->builtin().origin))
-      all.push_back(std::move(d));
-  for (auto& d : stepnc::diagnostics_json(diagnostics, name)) all.push_back(std::move(d));
-  info.json["diagnostics"] = std::move(all);
-  const bool errors = std::any_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
-    return d.severity == diag::Severity::Error;
-  });
-  if (errors) {
+  json info = pipeline::inspection_json(inspection);
+  if (!inspection.job.ok) {
     Response r = problem(422, "input-rejected", "The upload has errors",
                          "see diagnostics; the inspection member holds what could be read",
-                         diag::with_file(diagnostics, name));
+                         inspection.job.diagnostics);
     auto body = json::parse(r.body());
-    body["inspection"] = std::move(info.json);
+    body["inspection"] = std::move(info);
     r.body() = to_text(body) + "\n";
     exchange.respond(std::move(r));
     return;
   }
-  exchange.respond(json_response(200, info.json));
+  exchange.respond(json_response(200, info));
 }
 
 void handle_trace(Request& request, Services& services, Exchange& exchange) {
@@ -716,53 +641,75 @@ void handle_trace(Request& request, Services& services, Exchange& exchange) {
     exchange.respond(bad_request("the query parameter 'format' must be text or xml"));
     return;
   }
+  const auto context = job_context(request, services, exchange);
+  if (!context) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
-  const std::string name = upload->name;
-  auto loaded = load_upload(services, exchange, *upload, true);
-  if (!loaded) return;
   std::string text;
-  const auto out = [&text](std::string_view piece) { text.append(piece); };
-  stepnc::InterpretOptions options;
-  options.cancel = exchange.cancel_flag();
-  const stepnc::AttributeReader attributes(loaded->model, *loaded->schema);
-  stepnc::InterpretResult result;
-  const auto started = Clock::now();
-  if (format == "text") {
-    canon::TraceWriter trace(out);
-    result = stepnc::interpret(loaded->model, attributes, trace, options);
-  } else {
-    canon::XmlDocumentWriter xml(out);
-    canon::Chunker chunker(xml);
-    result = stepnc::interpret(loaded->model, attributes, chunker, options);
-    chunker.finish();
-    xml.finish();
-  }
-  services.metrics->stage("interpret", Clock::now() - started);
+  const pipeline::JobResult result =
+      pipeline::trace(job_input(*upload), *context,
+                      format == "text" ? pipeline::TraceFormat::Text : pipeline::TraceFormat::Xml,
+                      [&text](std::string_view piece) { text.append(piece); });
+  record_read(*services.metrics, result);
+  services.metrics->stage("interpret", result.work_time);
   if (stop_if_cancelled(exchange)) return;
-  std::vector<diag::FileDiagnostic> diagnostics = diag::with_file(loaded->diagnostics, name);
-  for (const auto& d : result.diagnostics) diagnostics.push_back({name, d});
-  if (!result.ok()) {
+  if (!result.input_ok) {
+    exchange.respond(input_rejected(result.diagnostics));
+    return;
+  }
+  if (!result.ok) {
     exchange.respond(problem(422, "input-rejected", "The program could not be interpreted",
-                             "see diagnostics", diagnostics));
+                             "see diagnostics", result.diagnostics));
     return;
   }
   exchange.respond(
       text_response(format == "text" ? "text/plain; charset=utf-8" : "application/xml", text));
 }
 
+void handle_verification(Request& request, Services& services, Exchange& exchange) {
+  pipeline::VerifySettings settings;
+  for (const auto& [name, target] : {std::pair{"tolerance", &settings.tolerance}}) {
+    const auto value = query_param(request.target(), name);
+    if (!value) continue;
+    char* end = nullptr;
+    const double v = std::strtod(value->c_str(), &end);
+    if (end != value->c_str() + value->size() || !(v > 0) || v > 1000) {
+      exchange.respond(
+          bad_request("'" + std::string(name) + "' must be a length in mm, > 0 and <= 1000"));
+      return;
+    }
+    *target = v;
+  }
+  const auto context = job_context(request, services, exchange);
+  if (!context) return;
+  auto upload = take_upload_or_respond(request, exchange);
+  if (!upload) return;
+  const std::string name = upload->name;
+  const pipeline::VerifyOutcome outcome = pipeline::verify(job_input(*upload), *context, settings);
+  record_read(*services.metrics, outcome.job);
+  services.metrics->stage("verify", outcome.job.work_time);
+  if (stop_if_cancelled(exchange)) return;
+  if (!outcome.result) {
+    exchange.respond(input_rejected(outcome.job.diagnostics));
+    return;
+  }
+  // The report, whatever the checks found: a failed check is a finding, not a failed request.
+  Response r = text_response("application/json", pipeline::verify_report_json(outcome, name));
+  exchange.respond(std::move(r));
+}
+
 void handle_schema(Request& request, Services& services, Exchange& exchange) {
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
-  const auto started = Clock::now();
-  const express::ParseResult result = express::parse_express(upload->bytes);
-  if (!result.ok()) {
+  std::string xml;
+  const pipeline::JobResult result = pipeline::schema_to_xml(
+      upload->bytes, upload->name, [&xml](std::string_view piece) { xml.append(piece); });
+  if (!result.ok) {
     exchange.respond(problem(422, "input-rejected", "The schema has errors", "see diagnostics",
-                             diag::with_file(result.diagnostics, upload->name)));
+                             result.diagnostics));
     return;
   }
-  std::string xml = express::to_express_x(result.schemas);
-  services.metrics->stage("schema", Clock::now() - started);
+  services.metrics->stage("schema", result.work_time);
   exchange.respond(text_response("application/xml", std::move(xml)));
 }
 
@@ -799,7 +746,7 @@ std::string problem_body(unsigned status, std::string_view type, std::string_vie
   body["title"] = title;
   body["status"] = status;
   body["detail"] = detail;
-  body["diagnostics"] = diagnostics_json(diagnostics);
+  body["diagnostics"] = pipeline::diagnostics_json(diagnostics);
   return to_text(body) + "\n";
 }
 
@@ -815,7 +762,8 @@ http::fields diagnostics_trailer(const std::vector<diag::FileDiagnostic>& diagno
   std::string listed = "[";
   for (const auto& d : diagnostics) {
     // ASCII only (\\u escapes), no line breaks: a valid field value whatever the messages say.
-    std::string one = diagnostic_json(d).dump(-1, ' ', true, json::error_handler_t::replace);
+    std::string one =
+        pipeline::diagnostic_json(d).dump(-1, ' ', true, json::error_handler_t::replace);
     if (listed.size() + one.size() + 2 > kMaxDiagnosticsTrailer) break;
     if (listed.size() > 1) listed += ',';
     listed += one;
@@ -891,66 +839,6 @@ std::optional<Upload> take_upload(Request& request, std::optional<Response>& err
   return upload;
 }
 
-nlohmann::ordered_json block_map(std::string_view text, const std::vector<WorkingstepMark>& marks,
-                                 const std::atomic<bool>* cancel) {
-  json blocks = json::object();
-  // Each key is made unique here, so it is appended to the object's list of pairs directly:
-  // ordered_json's own insertion looks the key up in that list first, which made the map
-  // quadratic in the length of the program.
-  auto& entries = blocks.get_ref<json::object_t&>();
-  std::unordered_map<std::string, std::size_t> occurrences;
-  json workingsteps = json::array();
-  std::size_t line_start = 0;
-  std::size_t line_number = 0;
-  std::size_t mark = 0;
-  const WorkingstepMark* current = nullptr;
-  json* current_ws = nullptr;
-  while (line_start < text.size()) {
-    ++line_number;
-    if (cancel != nullptr && line_number % 4096 == 0 && cancel->load()) return {};
-    // The marks at or before this line's start decide whose line it is.
-    while (mark < marks.size() && marks[mark].offset <= line_start) {
-      current = marks[mark].id != 0 ? &marks[mark] : nullptr;
-      if (current != nullptr) {
-        workingsteps.push_back({{"id", current->id},
-                                {"name", current->name},
-                                {"first_line", nullptr},
-                                {"last_line", nullptr}});
-        current_ws = &workingsteps.back();
-      } else {
-        current_ws = nullptr;
-      }
-      ++mark;
-    }
-    auto eol = text.find('\n', line_start);
-    if (eol == std::string_view::npos) eol = text.size();
-    std::string_view line = text.substr(line_start, eol - line_start);
-    if (current != nullptr) {
-      std::size_t i = 0;
-      while (i < line.size() && (line[i] == ' ' || line[i] == '/')) ++i;
-      std::string key;
-      if (i < line.size() && (line[i] == 'N' || line[i] == 'n')) {
-        std::size_t j = i + 1;
-        while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
-        if (j > i + 1) key = std::string(line.substr(i + 1, j - i - 1));
-      }
-      if (key.empty()) {
-        key = "L" + std::to_string(line_number);
-      } else if (const std::size_t seen = ++occurrences[key]; seen > 1) {
-        key += "#" + std::to_string(seen);  // the numbering wrapped: N1234, then N1234#2
-      }
-      entries.emplace_back(std::move(key), current->id);
-      if ((*current_ws)["first_line"].is_null()) (*current_ws)["first_line"] = line_number;
-      (*current_ws)["last_line"] = line_number;
-    }
-    line_start = eol + 1;
-  }
-  json out;
-  out["blocks"] = std::move(blocks);
-  out["workingsteps"] = std::move(workingsteps);
-  return out;
-}
-
 const std::vector<Route>& routes() {
   static const std::vector<Route> table = {
       {http::verb::post, "/v1/posts", "POST /v1/posts", Where::Worker, handle_post, true},
@@ -959,6 +847,8 @@ const std::vector<Route>& routes() {
       {http::verb::post, "/v1/inspections", "POST /v1/inspections", Where::Worker,
        handle_inspection, true},
       {http::verb::post, "/v1/traces", "POST /v1/traces", Where::Worker, handle_trace, true},
+      {http::verb::post, "/v1/verifications", "POST /v1/verifications", Where::Worker,
+       handle_verification, true},
       {http::verb::post, "/v1/schemas", "POST /v1/schemas", Where::Worker, handle_schema},
       {http::verb::post, "/v1/nc/parse", "POST /v1/nc/parse", Where::Inline,
        handle_not_implemented},

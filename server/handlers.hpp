@@ -19,9 +19,9 @@
 
 #include "config.hpp"
 #include "metrics.hpp"
-#include "ncpost/express/registry.hpp"
-#include "ncpost/profile/profile.hpp"
-#include "ncpost/xslt/xslt.hpp"
+#include "ncpost/pipeline/block_map.hpp"
+#include "ncpost/pipeline/job.hpp"
+#include "ncpost/pipeline/profiles.hpp"
 #include "upload.hpp"
 
 namespace ncpost::server {
@@ -34,8 +34,8 @@ using StreamHead = http::response<http::empty_body>;
 // What every handler may use. Shared by all threads; everything in it is thread-safe.
 struct Services {
   Config config;
-  profile::ProfileStore* profiles = nullptr;
-  const express::SchemaRegistry* schemas = nullptr;
+  pipeline::Profiles* profiles = nullptr;
+  const pipeline::Schemas* schemas = nullptr;
   Metrics* metrics = nullptr;
   std::optional<std::string> admin_token;  // none: PUT/DELETE answer 401 to everyone
   std::filesystem::path web_root;
@@ -44,7 +44,7 @@ struct Services {
   std::string engine_version;
   // The worker pool lent to a job for reading and checking a large upload in pieces: a piece
   // waits behind queued jobs, and the job does it itself if no worker is free first.
-  parallel::Helpers helpers;
+  pipeline::Helpers helpers;
 };
 
 // The handler's side of one request. A handler either calls respond() once, or
@@ -135,18 +135,5 @@ inline constexpr std::size_t kMaxDiagnosticsTrailer = 8 * 1024;
 // that streams to the end has no errors) and Ncpost-Diagnostics (them as compact ASCII JSON).
 [[nodiscard]] http::fields diagnostics_trailer(
     const std::vector<diag::FileDiagnostic>& diagnostics);
-
-// From the lines of a posted program and the offsets at which each workingstep's text begins:
-// {block number (or "L" + line) → workingstep id}; a block number seen again (the numbering
-// wrapped) is keyed "N#2", "N#3", ... Empty when `cancel` was set on the way. Exposed for unit
-// tests.
-struct WorkingstepMark {
-  std::size_t offset = 0;  // in the program text
-  std::uint64_t id = 0;
-  std::string name;
-};
-[[nodiscard]] nlohmann::ordered_json block_map(std::string_view text,
-                                               const std::vector<WorkingstepMark>& marks,
-                                               const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace ncpost::server

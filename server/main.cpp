@@ -12,8 +12,8 @@
 
 #include "auth.hpp"
 #include "config.hpp"
-#include "ncpost/p28/p28.hpp"
-#include "ncpost/xslt/xslt.hpp"
+#include "ncpost/pipeline/process.hpp"
+#include "ncpost/pipeline/profiles.hpp"
 #include "server.hpp"
 
 int main(int argc, char** argv) {
@@ -43,8 +43,7 @@ int main(int argc, char** argv) {
     return 1;
   };
 
-  p28::initialise_xml();
-  xslt::initialise();
+  pipeline::initialise_process();
 
   std::vector<std::string> token_errors;
   std::vector<std::string> token_warnings;
@@ -61,23 +60,17 @@ int main(int argc, char** argv) {
     log->warn(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
 
-  std::unique_ptr<profile::ProfileStore> store;
+  std::unique_ptr<pipeline::Profiles> profiles;
   try {
-    if (config.profiles) {
-      std::filesystem::create_directories(*config.profiles);
-      profile::StoreOptions options;
-      options.writable = true;
-      options.fallback = profile::builtin_directory();
-      store = std::make_unique<profile::ProfileStore>(*config.profiles, options);
-    } else {
-      store = std::make_unique<profile::ProfileStore>(profile::builtin_directory());
-    }
+    profiles = config.profiles ? pipeline::Profiles::writable_over_builtins(*config.profiles)
+                               : std::make_unique<pipeline::Profiles>();
   } catch (const std::exception& e) {
     return fail(std::string("cannot open the profile directory: ") + e.what());
   }
+  profiles->hide_server_paths();
 
   try {
-    server::Server server(config, *store, std::move(token), log);
+    server::Server server(config, *profiles, std::move(token), log);
     return server.run();
   } catch (const boost::system::system_error& e) {
     return fail("cannot listen on " + config.host + ":" + std::to_string(config.port) + ": " +

@@ -26,8 +26,8 @@ constexpr auto kReloadPoll = std::chrono::seconds(2);
 
 }  // namespace
 
-Server::Server(Config config, profile::ProfileStore& profiles,
-               std::optional<std::string> admin_token, std::shared_ptr<spdlog::logger> log)
+Server::Server(Config config, pipeline::Profiles& profiles, std::optional<std::string> admin_token,
+               std::shared_ptr<spdlog::logger> log)
     : log_(std::move(log)),
       pool_(config.workers),
       acceptor_(ioc_),
@@ -42,7 +42,7 @@ Server::Server(Config config, profile::ProfileStore& profiles,
   services_.admin_token = std::move(admin_token);
   services_.engine_version = NCPOST_VERSION;
   services_.saturated = [this] { return saturated(); };
-  services_.helpers.start = [pool = pool_.get_executor()](parallel::Task task) {
+  services_.helpers.start = [pool = pool_.get_executor()](pipeline::Task task) {
     net::post(pool, std::move(task));
   };
   services_.helpers.threads = services_.config.workers > 1 ? services_.config.workers - 1 : 0;

@@ -30,7 +30,7 @@ class Session;
 class Server {
  public:
   // Binds the listening socket (throws boost::system::system_error when it cannot).
-  Server(Config config, profile::ProfileStore& profiles, std::optional<std::string> admin_token,
+  Server(Config config, pipeline::Profiles& profiles, std::optional<std::string> admin_token,
          std::shared_ptr<spdlog::logger> log);
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;
@@ -67,7 +67,7 @@ class Server {
   void reload_profiles();
 
   Metrics metrics_;
-  express::SchemaRegistry schemas_;
+  pipeline::Schemas schemas_;
   Services services_;
   std::shared_ptr<spdlog::logger> log_;
   // Before ioc_: handlers that ioc_ destroys may still end sessions, which unregister here.

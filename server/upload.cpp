@@ -4,32 +4,21 @@
 #include <boost/asio/post.hpp>
 
 namespace ncpost::server {
-namespace {
-
-p21::ReadOptions read_options(const std::atomic<bool>* cancel, const parallel::Helpers* helpers) {
-  p21::ReadOptions options;
-  options.cancel = cancel;
-  options.helpers = helpers;
-  return options;
-}
-
-}  // namespace
-
 StreamedUpload::StreamedUpload(std::size_t size, std::size_t slice_step,
                                boost::asio::thread_pool::executor_type pool,
                                std::shared_ptr<const std::atomic<bool>> cancel,
-                               std::shared_ptr<void> slot, const parallel::Helpers* helpers)
+                               std::shared_ptr<void> slot, const pipeline::Helpers* helpers)
     : slice_step_(std::max<std::size_t>(1, slice_step)),
       pool_(std::move(pool)),
       cancel_(std::move(cancel)),
       slot_(std::move(slot)),
-      reader_(size, read_options(cancel_.get(), helpers)) {}
+      reader_(pipeline::arriving_text(size, cancel_.get(), helpers)) {}
 
 bool StreamedUpload::append(std::string_view bytes) {
-  if (!reader_.append(bytes)) return false;
+  if (!reader_->append(bytes)) return false;
   hash_.update(bytes);
   std::lock_guard lock(mutex_);
-  arrived_ = reader_.appended();
+  arrived_ = reader_->appended();
   if (slicing_ || complete_ || gave_up_ || cancelled() || arrived_ - read_to_ < slice_step_)
     return true;
   slicing_ = true;
@@ -48,7 +37,7 @@ void StreamedUpload::run_slices() {
     {
       std::lock_guard lock(mutex_);
       // Once the body is complete the job reads the rest itself: stop between slices.
-      gave_up_ = reader_.gave_up();
+      gave_up_ = reader_->gave_up();
       if (complete_ || cancelled() || gave_up_ || arrived_ <= read_to_) {
         slicing_ = false;
         idle_.notify_all();
@@ -57,16 +46,16 @@ void StreamedUpload::run_slices() {
       until = std::min(arrived_, read_to_ + kSliceMax);
       read_to_ = until;
     }
-    reader_.read_more(until);
+    reader_->read_more(until);
   }
 }
 
-p21::StreamReader& StreamedUpload::reader() {
+pipeline::ArrivingText& StreamedUpload::reader() {
   std::unique_lock lock(mutex_);
   complete_ = true;
   idle_.wait(lock, [&] { return !slicing_; });
-  read_while_arriving_ = reader_.read_through();
-  return reader_;
+  read_while_arriving_ = reader_->read_through();
+  return *reader_;
 }
 
 }  // namespace ncpost::server

@@ -2,7 +2,7 @@
 // A large raw upload to a route that reads a model, taken in as it arrives (docs/server.md,
 // "Large uploads"). The session appends each piece the socket gives (UploadBody below, on the
 // connection's IO thread); the piece is hashed for the ETag at once, and whenever enough new text
-// has come a slice of P21 reading (p21::StreamReader) runs on the worker pool. When the last
+// has come a slice of P21 reading (pipeline::ArrivingText) runs on the worker pool. When the last
 // byte arrives the job finds the hash done and most of the file read: only the last piece, the
 // reference resolution and the schema check are left.
 //
@@ -24,7 +24,7 @@
 #include <string_view>
 
 #include "body_hash.hpp"
-#include "ncpost/p21/stream_reader.hpp"
+#include "ncpost/pipeline/job.hpp"
 
 namespace ncpost::server {
 
@@ -40,9 +40,9 @@ class StreamedUpload : public std::enable_shared_from_this<StreamedUpload> {
   StreamedUpload(std::size_t size, std::size_t slice_step,
                  boost::asio::thread_pool::executor_type pool,
                  std::shared_ptr<const std::atomic<bool>> cancel, std::shared_ptr<void> slot,
-                 const parallel::Helpers* helpers);
+                 const pipeline::Helpers* helpers);
 
-  [[nodiscard]] std::size_t size() const { return reader_.size(); }
+  [[nodiscard]] std::size_t size() const { return reader_->size(); }
 
   // ---- the IO thread ----
   // False (nothing stored) beyond the announced size.
@@ -52,7 +52,7 @@ class StreamedUpload : public std::enable_shared_from_this<StreamedUpload> {
 
   // ---- the job, after complete() ----
   // The reader, once no slice runs any more.
-  [[nodiscard]] p21::StreamReader& reader();
+  [[nodiscard]] pipeline::ArrivingText& reader();
   [[nodiscard]] std::uint64_t hash() const { return hash_.digest(); }
   // How much of the text had been read when the job took over (after reader()).
   [[nodiscard]] std::size_t read_while_arriving() const { return read_while_arriving_; }
@@ -65,7 +65,7 @@ class StreamedUpload : public std::enable_shared_from_this<StreamedUpload> {
   boost::asio::thread_pool::executor_type pool_;
   std::shared_ptr<const std::atomic<bool>> cancel_;
   std::shared_ptr<void> slot_;
-  p21::StreamReader reader_;
+  std::unique_ptr<pipeline::ArrivingText> reader_;
   BodyHash hash_;  // IO thread only until complete()
   std::mutex mutex_;
   std::condition_variable idle_;

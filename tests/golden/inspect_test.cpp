@@ -9,6 +9,7 @@
 #include "ncpost/express/parse.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/p21/reader.hpp"
+#include "ncpost/pipeline/jobs.hpp"
 #include "ncpost/stepnc/program_info.hpp"
 
 namespace ncpost::stepnc {
@@ -23,10 +24,26 @@ const express::SchemaRegistry& registry() {
   return instance;
 }
 
-ProgramInfo inspect_text(std::string text) {
+// The typed result, its JSON form (as `ncpost inspect` writes it, without diagnostics) and the
+// structure diagnostics.
+struct Inspected {
+  ProgramInfo typed;
+  ordered_json json;
+  std::vector<diag::Diagnostic> diagnostics;
+};
+
+Inspected inspected(ProgramInfo info) {
+  Inspected out;
+  out.json = pipeline::program_info_json(info);
+  out.diagnostics = info.diagnostics;
+  out.typed = std::move(info);
+  return out;
+}
+
+Inspected inspect_text(std::string text) {
   p21::ReadResult r = p21::read(std::move(text));
   EXPECT_TRUE(r.ok());
-  return inspect(r.model, registry());
+  return inspected(inspect(r.model, registry()));
 }
 
 std::vector<std::string> codes(const std::vector<diag::Diagnostic>& diagnostics) {
@@ -57,7 +74,7 @@ std::vector<std::uint64_t> element_ids(const ordered_json& workplan) {
 
 TEST(InspectCorpus, NistExample1Tree) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
-  const ProgramInfo info = inspect_text(test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
+  const Inspected info = inspect_text(test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
   EXPECT_TRUE(info.diagnostics.empty());
   const auto& project = info.json["project"];
   EXPECT_EQ(project["name"], "EXECUTE EXAMPLE1");
@@ -78,7 +95,7 @@ TEST(InspectCorpus, NistExample1Tree) {
 
 TEST(InspectCorpus, NistExample1ExplicitToolpaths) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
-  const ProgramInfo info = inspect_text(test::read_file(corpus / "p21/nist_toolkit_ex1E.stp"));
+  const Inspected info = inspect_text(test::read_file(corpus / "p21/nist_toolkit_ex1E.stp"));
   EXPECT_TRUE(info.diagnostics.empty());
   expect_golden(info.json, "nist_toolkit_ex1E");
 }
@@ -86,7 +103,7 @@ TEST(InspectCorpus, NistExample1ExplicitToolpaths) {
 TEST(InspectCorpus, Ap238AimFileIsNamedAsSuch) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
   p21::ReadResult r = p21::read(test::read_file(corpus / "p21/efrainrodriguez_exp2.stpnc"));
-  const ProgramInfo info = inspect(r.model, registry());
+  const Inspected info = inspected(inspect(r.model, registry()));
   // No schema for INTEGRATED_CNC_SCHEMA among the built-in ones: the built-in is used instead.
   EXPECT_EQ(codes(info.diagnostics),
             (std::vector<std::string>{"EXP-050", "EXP-052", "STEPNC-006"}));
@@ -106,14 +123,13 @@ TEST(InspectCorpus, NistExample1WithTheCombinedSchema) {
       corpus / "express/michaloski_STEPNCpp_combined_schema_14649-10-11-12-111-121.exp"));
   ASSERT_TRUE(combined.ok());
   p21::ReadResult r = p21::read(test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
-  const ProgramInfo info = inspect(r.model, combined.schemas);
+  const Inspected info = inspected(inspect(r.model, combined.schemas));
   EXPECT_TRUE(info.diagnostics.empty());
   expect_golden(info.json, "nist_toolkit_ex1");
 }
 
 TEST(InspectOwn, BracketExample) {
-  const ProgramInfo info =
-      inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
+  const Inspected info = inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
   EXPECT_TRUE(info.diagnostics.empty());
   const auto& main = info.json["project"]["main_workplan"];
   EXPECT_EQ(element_ids(main), (std::vector<std::uint64_t>{20, 21, 22, 23, 24}));
@@ -129,7 +145,7 @@ std::string program(const std::string& data) {
 }
 
 TEST(InspectOwn, ControlStructures) {
-  const ProgramInfo info = inspect_text(
+  const Inspected info = inspect_text(
       program("#1=PROJECT('P',#2,(),$,$,$);"
               "#2=WORKPLAN('MAIN',(#3,#4,#5,#6,#7,#8),$,$,$);"
               "#3=IF_STATEMENT('IF',#20,#9,#10);"
@@ -154,7 +170,7 @@ TEST(InspectOwn, ControlStructures) {
 }
 
 TEST(InspectOwn, WorkplanThatContainsItself) {
-  const ProgramInfo info =
+  const Inspected info =
       inspect_text(program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
                            "#3=WORKPLAN('LOOP',(#2),$,$,$);"));
   ASSERT_EQ(info.diagnostics.size(), 1u);
@@ -168,13 +184,13 @@ TEST(InspectOwn, DeepNestingIsBounded) {
   for (int i = 2; i < depth; ++i)
     data += "#" + std::to_string(i) + "=WORKPLAN('W',(#" + std::to_string(i + 1) + "),$,$,$);";
   data += "#" + std::to_string(depth) + "=PROGRAM_STOP('S');";
-  const ProgramInfo info = inspect_text(program(data));
+  const Inspected info = inspect_text(program(data));
   ASSERT_EQ(info.diagnostics.size(), 1u);
   EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-008");
 }
 
 TEST(InspectOwn, MainWorkplanOfTheWrongType) {
-  const ProgramInfo info =
+  const Inspected info =
       inspect_text(program("#1=PROJECT('P',#2,(),$,$,$);#2=CARTESIAN_POINT('X',(0.,0.,0.));"));
   ASSERT_EQ(info.diagnostics.size(), 1u);
   EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-003");
@@ -182,7 +198,7 @@ TEST(InspectOwn, MainWorkplanOfTheWrongType) {
 }
 
 TEST(InspectOwn, UnknownExecutableIsReportedNotDropped) {
-  const ProgramInfo info = inspect_text(
+  const Inspected info = inspect_text(
       program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);#3=MYSTERY('M');"));
   ASSERT_EQ(info.diagnostics.size(), 1u);
   EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-007");
@@ -192,7 +208,7 @@ TEST(InspectOwn, UnknownExecutableIsReportedNotDropped) {
 // Executables are whatever the schema makes a subtype of EXECUTABLE, not a list in the code:
 // ISO 14649-10's touch probing and a schema of one's own.
 TEST(InspectOwn, ExecutablesComeFromTheSchema) {
-  const ProgramInfo builtin = inspect_text(
+  const Inspected builtin = inspect_text(
       program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(#3),$,$,$);"
               "#3=TOOL_LENGTH_PROBING('PROBE',$,$,$,#4,0.,1.,#5);#4=NC_VARIABLE('V',0.);"
               "#5=MILLING_CUTTING_TOOL('T1',$,(),$,$,$);"));
@@ -215,7 +231,7 @@ TEST(InspectOwn, ExecutablesComeFromTheSchema) {
       "#1=PROJECT('P',#2);#2=WORKPLAN('MAIN',(#3,#4));#3=COOLANT_CHECK('CHECK',5.);\n"
       "#4=NOTE('N');\nENDSEC;END-ISO-10303-21;");
   ASSERT_TRUE(r.ok());
-  const ProgramInfo info = inspect(r.model, own.schemas);
+  const Inspected info = inspected(inspect(r.model, own.schemas));
   const auto& elements = info.json["project"]["main_workplan"]["elements"];
   EXPECT_EQ(elements[0]["name"], "CHECK");
   EXPECT_EQ(elements[1]["name"], "N");
@@ -228,23 +244,22 @@ TEST(InspectOwn, ExecutablesComeFromTheSchema) {
 TEST(InspectOwn, UnknownSchemaFallsBackToTheBuiltin) {
   std::string text = program("#1=PROJECT('P',#2,(),$,$,$);#2=WORKPLAN('MAIN',(),$,$,$);");
   text.replace(text.find("'MACHINING_SCHEMA'"), 18, "'SOMETHING_ELSE { 1 2 3 }'");
-  const ProgramInfo info = inspect_text(text);
+  const Inspected info = inspect_text(text);
   EXPECT_EQ(codes(info.diagnostics), (std::vector<std::string>{"EXP-050", "EXP-052"}));
   EXPECT_EQ(info.diagnostics[0].line, 1u);
   EXPECT_EQ(info.json["project"]["main_workplan"]["name"], "MAIN");
 }
 
 TEST(InspectOwn, NotAStepNcFile) {
-  const ProgramInfo info = inspect_text(program("#1=CARTESIAN_POINT('X',(0.,0.,0.));"));
+  const Inspected info = inspect_text(program("#1=CARTESIAN_POINT('X',(0.,0.,0.));"));
   ASSERT_EQ(info.diagnostics.size(), 1u);
   EXPECT_EQ(info.diagnostics[0].code_id(), "STEPNC-001");
   EXPECT_EQ(info.json["statistics"]["instances"], 1);
 }
 
 TEST(InspectOwn, TextFormatShowsTheTree) {
-  const ProgramInfo info =
-      inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
-  const std::string text = format_text(info.json);
+  const Inspected info = inspect_text(test::read_file(test::source_dir() / "examples/bracket.stp"));
+  const std::string text = format_text(info.typed);
   EXPECT_NE(text.find("project:     #1 'BRACKET'"), std::string::npos) << text;
   EXPECT_NE(text.find("      #25 MACHINING_WORKINGSTEP 'DRILL HOLE'"), std::string::npos) << text;
   EXPECT_LT(text.find("'DRILL HOLE'"), text.find("'REAM HOLE'"));

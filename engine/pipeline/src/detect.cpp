@@ -18,7 +18,9 @@ InputFormat detect_format(std::string_view bytes) noexcept {
     }
     break;
   }
-  if (bytes.starts_with("ISO-10303-21")) return InputFormat::P21;
+  // A P21 file whose first line is missing still reads as P21, so that the reader can say
+  // precisely what is wrong (P21-020) instead of "not a format ncpost reads".
+  if (bytes.starts_with("ISO-10303-21") || bytes.starts_with("HEADER;")) return InputFormat::P21;
   if (bytes.starts_with("<")) return InputFormat::P28;
   return InputFormat::Unknown;
 }

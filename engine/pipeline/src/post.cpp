@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "ncpost/render/raw.hpp"
+#include "ncpost/stepnc/attributes.hpp"
 
 namespace ncpost::pipeline {
 namespace {
@@ -163,42 +164,62 @@ std::string error_marker(const profile::Profile& profile, std::string_view messa
   return marker + profile.line_ending;
 }
 
-PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile,
-                const render::TextSink& out, const PostOptions& options) {
+namespace {
+
+// Passes calls to the renderer and notes, at each workingstep's Begin and End, how much
+// program text exists. With one transform per chunk (RenderOptions::batch_bytes = 0) the
+// renderer emits a chunk's text when the chunker closes it, so the text of workingstep k starts
+// at the mark taken right after its Begin was passed on. The renderer does not expose per-block
+// origins: blocks between workingsteps belong to the one before.
+class WorkingstepTracker final : public canon::Sink {
+ public:
+  WorkingstepTracker(canon::Sink& next, const std::string& text,
+                     std::vector<WorkingstepMark>& marks)
+      : next_(next), text_(text), marks_(marks) {}
+  void call(const canon::Call& call) override {
+    next_.call(call);
+    if (const auto* begin = std::get_if<canon::Begin>(&call);
+        begin != nullptr && begin->scope == canon::Scope::Workingstep)
+      marks_.push_back({text_.size(), begin->entity.id, begin->entity.name});
+    else if (const auto* end = std::get_if<canon::End>(&call);
+             end != nullptr && end->scope == canon::Scope::Workingstep)
+      marks_.push_back({text_.size(), 0, {}});
+  }
+
+ private:
+  canon::Sink& next_;
+  const std::string& text_;
+  std::vector<WorkingstepMark>& marks_;
+};
+
+// Runs an interpreter into the sink it is given; the post does not care which one.
+using InterpretInto = std::function<Interpretation(canon::Sink& sink)>;
+
+PostResult post_calls(const InterpretInto& interpret_into, std::size_t instances,
+                      const profile::LoadedProfile& profile, const render::TextSink& out,
+                      const PostOptions& options) {
   const auto started_at = std::chrono::steady_clock::now();
   PostResult result;
-  if (profile.profile.mode == profile::Mode::Raw) {
-    // The stylesheet reads the model itself (the XSLT paper's post-processor): no
-    // interpretation, one transform, the text in one piece only when it succeeded.
-    if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) {
-      result.cancelled = true;
-      return result;
-    }
-    auto raw = render::render_raw(loaded.model, loaded.schema, profile, out, options.input_name);
-    result.diagnostics = std::move(raw.diagnostics);
-    result.ok = raw.ok;
-    result.started = raw.started;
-    result.interpret_and_render = std::chrono::steady_clock::now() - started_at;
-    result.render = result.interpret_and_render;
-    return result;
-  }
-  stepnc::InterpretOptions interpret_options;
-  interpret_options.tools = options.tools;
-  interpret_options.stop_at_first_error = true;
-  interpret_options.cancel = options.cancel;
-
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
-  render::Renderer renderer(profile, out, options.render, options.input_name);
-  const bool two_threads = options.render_thread_min_instances > 0 &&
-                           loaded.model.instances().size() >= options.render_thread_min_instances;
+  render::RenderOptions render_options = options.render;
+  // The marks need the text as it grows: it is gathered here and handed on at the end.
+  std::string marked_text;
+  const bool marking = options.workingstep_marks != nullptr;
+  if (marking) render_options.batch_bytes = 0;
+  const render::TextSink renderer_out =
+      marking ? render::TextSink([&marked_text](std::string_view piece) { marked_text += piece; })
+              : out;
+  render::Renderer renderer(profile, renderer_out, render_options, options.input_name);
+  const bool two_threads = !marking && options.render_thread_min_instances > 0 &&
+                           instances >= options.render_thread_min_instances;
   std::optional<RenderThread> render_thread;
   if (two_threads) render_thread.emplace(renderer, options.cancel, options.render_thread_batch);
-  CancellableSink sink(
-      two_threads ? static_cast<canon::Sink&>(*render_thread) : static_cast<canon::Sink&>(renderer),
-      options.cancel);
+  canon::Sink& rendering =
+      two_threads ? static_cast<canon::Sink&>(*render_thread) : static_cast<canon::Sink&>(renderer);
+  std::optional<WorkingstepTracker> tracker;
+  if (marking) tracker.emplace(renderer, marked_text, *options.workingstep_marks);
+  CancellableSink sink(marking ? static_cast<canon::Sink&>(*tracker) : rendering, options.cancel);
   const auto interpret_began = std::chrono::steady_clock::now();
-  const stepnc::InterpretResult interpreted =
-      stepnc::interpret(loaded.model, attributes, sink, interpret_options);
+  Interpretation interpreted = interpret_into(sink);
   const auto interpret_time = std::chrono::steady_clock::now() - interpret_began;
   result.cancelled = sink.cancelled();
   if (render_thread) {
@@ -208,13 +229,12 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
     renderer.finish();
   }
   result.calls = interpreted.calls;
-
-  for (const auto& d : interpreted.diagnostics)
-    result.diagnostics.push_back({options.input_name, d});
+  result.diagnostics = std::move(interpreted.diagnostics);
   result.diagnostics.insert(result.diagnostics.end(), renderer.diagnostics().begin(),
                             renderer.diagnostics().end());
-  result.ok = !result.cancelled && interpreted.ok() && !renderer.failed();
+  result.ok = !result.cancelled && interpreted.ok && !renderer.failed();
   result.started = renderer.started();
+  if (marking && !marked_text.empty()) out(marked_text);
   if (!result.ok && result.started) {
     const std::string why =
         result.cancelled ? "the job was cancelled" : first_error(result.diagnostics);
@@ -225,6 +245,78 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
   result.interpret = render_thread ? std::chrono::nanoseconds(interpret_time)
                                    : std::max(std::chrono::nanoseconds{0},
                                               result.interpret_and_render - result.render);
+  return result;
+}
+
+// Raw mode: the stylesheet reads the model itself (the XSLT paper's post-processor): no
+// interpretation, one transform, the text in one piece only when it succeeded.
+PostResult post_raw(const LoadedModel& loaded, const profile::LoadedProfile& profile,
+                    const render::TextSink& out, const PostOptions& options) {
+  const auto started_at = std::chrono::steady_clock::now();
+  PostResult result;
+  if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) {
+    result.cancelled = true;
+    return result;
+  }
+  auto raw = render::render_raw(loaded.model, loaded.schema, profile, out, options.input_name);
+  result.diagnostics = std::move(raw.diagnostics);
+  result.ok = raw.ok;
+  result.started = raw.started;
+  result.interpret_and_render = std::chrono::steady_clock::now() - started_at;
+  result.render = result.interpret_and_render;
+  return result;
+}
+
+}  // namespace
+
+PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile,
+                const render::TextSink& out, const PostOptions& options) {
+  if (profile.profile.mode == profile::Mode::Raw) return post_raw(loaded, profile, out, options);
+  stepnc::InterpretOptions interpret_options;
+  interpret_options.tools = options.tools;
+  interpret_options.stop_at_first_error = true;
+  interpret_options.cancel = options.cancel;
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  const auto interpret_into = [&](canon::Sink& sink) {
+    const stepnc::InterpretResult interpreted =
+        stepnc::interpret(loaded.model, attributes, sink, interpret_options);
+    return Interpretation{diag::with_file(interpreted.diagnostics, options.input_name),
+                          interpreted.calls, interpreted.ok()};
+  };
+  return post_calls(interpret_into, loaded.model.instances().size(), profile, out, options);
+}
+
+PostResult post(const Program& program, const JobContext& context,
+                const profile::LoadedProfile& profile, const render::TextSink& out,
+                const PostOptions& options) {
+  PostOptions with_context = options;
+  with_context.input_name = program.name;
+  with_context.cancel = context.cancel;
+  if (profile.profile.mode == profile::Mode::Raw)
+    return post_raw(program.loaded, profile, out, with_context);
+  InterpretSettings settings;
+  settings.stop_at_first_error = true;
+  const auto interpret_into = [&](canon::Sink& sink) {
+    return interpret(program, sink, context, settings);
+  };
+  return post_calls(interpret_into, program.loaded.model.instances().size(), profile, out,
+                    with_context);
+}
+
+std::vector<diag::FileDiagnostic> PostJobResult::diagnostics() const {
+  std::vector<diag::FileDiagnostic> all = read.diagnostics;
+  all.insert(all.end(), post.diagnostics.begin(), post.diagnostics.end());
+  return all;
+}
+
+PostJobResult post(Input input, const JobContext& context, const profile::LoadedProfile& profile,
+                   const render::TextSink& out, const PostOptions& options, const OnRead& on_read) {
+  PostJobResult result;
+  const Program program = read(std::move(input), context);
+  result.read = read_result(program);
+  if (!result.read.ok) return result;
+  if (on_read) on_read(result.read);
+  result.post = post(program, context, profile, out, options);
   return result;
 }
 

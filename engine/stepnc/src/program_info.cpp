@@ -1,6 +1,8 @@
 #include "ncpost/stepnc/program_info.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <map>
 #include <unordered_set>
 
@@ -10,22 +12,21 @@
 namespace ncpost::stepnc {
 namespace {
 
-using nlohmann::ordered_json;
 using p21::Instance;
 using p21::Model;
 using p21::Value;
 using p21::ValueKind;
 
-// JSON for a header or attribute value that is a string, a list of strings, or unset.
-ordered_json text_value(const Model& model, Value v) {
+// A header or attribute value that is a string, a list of strings, or unset.
+HeaderValue text_value(const Model& model, Value v) {
   if (v.kind() == ValueKind::String) return model.as_string(v);
   if (v.is_list()) {
-    ordered_json list = ordered_json::array();
+    std::vector<std::string> list;
     for (Value item : model.items(v))
       if (item.kind() == ValueKind::String) list.push_back(model.as_string(item));
     return list;
   }
-  return nullptr;
+  return std::monostate{};
 }
 
 class Inspector {
@@ -34,24 +35,21 @@ class Inspector {
       : model_(model), attributes_(model, schema), options_(options), lines_(model.text()) {}
 
   ProgramInfo run() {
-    ordered_json out;
-    out["header"] = header();
-    out["project"] = project();
-    out["workpieces"] = workpieces_;
-    out["tools"] = tools();
-    out["statistics"] = statistics();
-    return {std::move(out), std::move(diagnostics_)};
+    info_.header = header();
+    info_.project = project();
+    note_statistics();
+    return std::move(info_);
   }
 
  private:
   void report(diag::Code code, const Instance& at, std::string message) {
     const auto pos = lines_.at(at.offset);
-    diagnostics_.push_back(diag::make(code, pos.line, pos.column, std::move(message)));
+    info_.diagnostics.push_back(diag::make(code, pos.line, pos.column, std::move(message)));
   }
   static std::string name_of(const Instance& i) { return "#" + std::to_string(i.id); }
 
-  ordered_json header() const {
-    ordered_json h;
+  Header header() const {
+    Header h;
     static constexpr std::pair<std::string_view, std::array<std::string_view, 7>> kFields[] = {
         {"FILE_DESCRIPTION", {"description", "implementation_level"}},
         {"FILE_NAME",
@@ -61,15 +59,18 @@ class Inspector {
     for (const auto& [entity, fields] : kFields) {
       const Instance* inst = model_.header_entity(entity);
       for (std::size_t i = 0; i < fields.size() && !fields[i].empty(); ++i) {
-        ordered_json value = nullptr;
+        HeaderValue value;
         if (inst != nullptr && i < inst->count) value = text_value(model_, model_.params(*inst)[i]);
-        h[std::string(fields[i])] = value;
+        h.fields.emplace_back(std::string(fields[i]), std::move(value));
       }
     }
-    ordered_json schemas = ordered_json::array();
-    if (const Instance* fs = model_.header_entity("FILE_SCHEMA"); fs && fs->count > 0)
-      schemas = text_value(model_, model_.params(*fs)[0]);
-    h["schemas"] = schemas;
+    if (const Instance* fs = model_.header_entity("FILE_SCHEMA"); fs && fs->count > 0) {
+      HeaderValue schemas = text_value(model_, model_.params(*fs)[0]);
+      if (auto* list = std::get_if<std::vector<std::string>>(&schemas))
+        h.schemas = std::move(*list);
+      else if (auto* one = std::get_if<std::string>(&schemas))
+        h.schemas = {std::move(*one)};
+    }
     return h;
   }
 
@@ -87,54 +88,52 @@ class Inspector {
   }
   // id, entity and its_id: every ISO 14649 executable, feature, operation, tool and workpiece
   // has an its_id, wherever its entity's layout puts it.
-  ordered_json ref_summary(const Instance& inst) const {
-    ordered_json j;
-    j["id"] = inst.id;
-    j["type"] = std::string(model_.type_name(inst));
-    auto name = string_attribute(inst, "its_id");
-    j["name"] = name ? ordered_json(*name) : ordered_json(nullptr);
-    return j;
+  EntityRef ref(const Instance& inst) const {
+    return {inst.id, std::string(model_.type_name(inst)), string_attribute(inst, "its_id")};
   }
 
-  ordered_json project() {
+  std::optional<Project> project() {
     const auto projects = model_.instances_of("PROJECT");
     if (projects.empty()) {
-      diagnostics_.push_back(no_program_diagnostic(model_));
-      return nullptr;
+      info_.diagnostics.push_back(no_program_diagnostic(model_));
+      return std::nullopt;
     }
     if (projects.size() > 1)
       report(diag::Code::StepncManyProjects, *projects[1],
              std::to_string(projects.size()) + " PROJECT instances; " + name_of(*projects[0]) +
                  " is used");
     const Instance& p = *projects[0];
-    ordered_json j;
-    j["id"] = p.id;
-    j["name"] = string_attribute(p, "its_id").value_or("");
-    if (auto ws = attribute(p, "its_workpieces"); ws && ws->is_list()) {
-      for (Value w : model_.items(*ws)) {
-        const Instance* wp = model_.find(w.is_reference() ? w.id() : 0);
-        if (wp == nullptr) continue;
-        ordered_json wj = ref_summary(*wp);
-        if (const Instance* mat = deref(attribute(*wp, "its_material")))
-          wj["material"] = string_attribute(*mat, "material_identifier").value_or("");
-        if (auto cp = attribute(*wp, "clamping_positions"); cp && cp->is_list())
-          wj["clamping_positions"] = cp->count();
-        workpieces_.push_back(std::move(wj));
-      }
-    }
+    Project project;
+    project.id = p.id;
+    project.name = string_attribute(p, "its_id").value_or("");
+    note_workpieces(p);
     const Instance* main = deref(attribute(p, "main_workplan"));
-    if (main == nullptr || !attributes_.is_a(*main, "workplan")) {
+    if (main == nullptr || !attributes_.is_a(*main, "workplan"))
       report(diag::Code::StepncWrongType, p,
              "PROJECT " + name_of(p) + " attribute main_workplan does not refer to a WORKPLAN");
-      j["main_workplan"] = nullptr;
-    } else {
-      j["main_workplan"] = executable(*main, 0);
-    }
-    return j;
+    else
+      project.main_workplan = executable(*main, 0);
+    return project;
   }
 
-  ordered_json elements(const Instance& owner, std::optional<Value> list, unsigned depth) {
-    ordered_json out = ordered_json::array();
+  void note_workpieces(const Instance& project) {
+    auto list = attribute(project, "its_workpieces");
+    if (!list || !list->is_list()) return;
+    for (Value w : model_.items(*list)) {
+      const Instance* wp = model_.find(w.is_reference() ? w.id() : 0);
+      if (wp == nullptr) continue;
+      Workpiece workpiece{ref(*wp), std::nullopt, std::nullopt};
+      if (const Instance* mat = deref(attribute(*wp, "its_material")))
+        workpiece.material = string_attribute(*mat, "material_identifier").value_or("");
+      if (auto cp = attribute(*wp, "clamping_positions"); cp && cp->is_list())
+        workpiece.clamping_positions = cp->count();
+      info_.workpieces.push_back(std::move(workpiece));
+    }
+  }
+
+  std::vector<Executable> elements(const Instance& owner, std::optional<Value> list,
+                                   unsigned depth) {
+    std::vector<Executable> out;
     if (!list || !list->is_list()) {
       if (list && !list->is_omitted())
         report(diag::Code::StepncBadAttribute, owner,
@@ -153,33 +152,44 @@ class Inspector {
     return out;
   }
 
-  ordered_json executable(const Instance& e, unsigned depth) {
-    ordered_json j = ref_summary(e);
+  // An If branch or a While body: the executable, or a `missing` one when the file has none.
+  Executable branch(const Instance& owner, std::string_view attribute_name, unsigned depth) {
+    if (const Instance* b = deref(attribute(owner, attribute_name)))
+      return executable(*b, depth + 1);
+    Executable missing;
+    missing.missing = true;
+    return missing;
+  }
+
+  Executable executable(const Instance& e, unsigned depth) {
+    Executable x;
+    x.self = ref(e);
     if (!attributes_.is_executable(e)) {
       report(diag::Code::StepncUnknownExecutable, e,
              name_of(e) + " (" + std::string(model_.type_name(e)) +
                  ") is not an executable that this version understands");
-      return j;
+      return x;
     }
     if (depth > options_.max_nesting) {
       report(diag::Code::StepncTooDeep, e,
              name_of(e) + " is nested more than " + std::to_string(options_.max_nesting) +
                  " workplans deep");
-      return j;
+      return x;
     }
     if (!on_path_.insert(e.id).second) {
       report(diag::Code::StepncCycle, e, name_of(e) + " contains itself");
-      return j;
+      return x;
     }
     // Subtypes count: the schema decides what is a workplan, a workingstep, a tool change.
     const auto is = [&](std::string_view entity) { return attributes_.is_a(e, entity); };
     if (is("machining_workingstep")) {
-      ++workingsteps_;
-      if (const Instance* f = deref(attribute(e, "its_feature"))) j["feature"] = ref_summary(*f);
+      x.shape = Executable::Shape::Workingstep;
+      ++info_.statistics.workingsteps;
+      if (const Instance* f = deref(attribute(e, "its_feature"))) x.feature = ref(*f);
       if (const Instance* op = deref(attribute(e, "its_operation"))) {
-        j["operation"] = ref_summary(*op);
+        x.operation = ref(*op);
         if (const Instance* tool = deref(attribute(*op, "its_tool"))) {
-          j["tool"] = ref_summary(*tool);
+          x.tool = ref(*tool);
           note_tool(*tool, e);
         }
       } else {
@@ -187,55 +197,46 @@ class Inspector {
                name_of(e) + " attribute its_operation does not refer to an instance");
       }
     } else if (is("workplan") || is("non_sequential") || is("selective")) {
-      j["elements"] = elements(e, attribute(e, "its_elements"), depth);
+      x.shape = Executable::Shape::Sequence;
+      x.children = elements(e, attribute(e, "its_elements"), depth);
     } else if (is("parallel")) {
-      j["branches"] = elements(e, attribute(e, "branches"), depth);
+      x.shape = Executable::Shape::Parallel;
+      x.children = elements(e, attribute(e, "branches"), depth);
     } else if (is("if_statement")) {
-      for (std::string_view branch : {"true_branch", "false_branch"}) {
-        const Instance* b = deref(attribute(e, branch));
-        j[std::string(branch)] = b ? executable(*b, depth + 1) : ordered_json(nullptr);
-      }
+      x.shape = Executable::Shape::If;
+      x.children.push_back(branch(e, "true_branch", depth));
+      x.children.push_back(branch(e, "false_branch", depth));
     } else if (is("while_statement")) {
-      const Instance* body = deref(attribute(e, "body"));
-      j["body"] = body ? executable(*body, depth + 1) : ordered_json(nullptr);
+      x.shape = Executable::Shape::While;
+      x.children.push_back(branch(e, "body", depth));
     } else if (is("display_message")) {
-      if (auto text = string_attribute(e, "its_text")) j["text"] = *text;
+      x.shape = Executable::Shape::Message;
+      x.text = string_attribute(e, "its_text");
     } else if (is("load_tool") || is("unload_tool")) {
+      x.shape = Executable::Shape::ToolChange;
       if (const Instance* tool = deref(attribute(e, "its_tool"))) {
-        j["tool"] = ref_summary(*tool);
+        x.tool = ref(*tool);
         note_tool(*tool, e);
       }
     }
     on_path_.erase(e.id);
-    return j;
+    return x;
   }
 
   void note_tool(const Instance& tool, const Instance& user) {
-    auto it =
-        std::find_if(tools_.begin(), tools_.end(), [&](const auto& t) { return t.first == &tool; });
-    if (it == tools_.end()) {
-      tools_.emplace_back(&tool, std::vector<std::uint64_t>{});
-      it = tools_.end() - 1;
+    auto it = std::find_if(info_.tools.begin(), info_.tools.end(),
+                           [&](const ToolUse& t) { return t.self.id == tool.id; });
+    if (it == info_.tools.end()) {
+      info_.tools.push_back({ref(tool), {}});
+      it = info_.tools.end() - 1;
     }
-    it->second.push_back(user.id);
+    it->used_by.push_back(user.id);
   }
 
-  ordered_json tools() const {
-    ordered_json out = ordered_json::array();
-    for (const auto& [tool, users] : tools_) {
-      ordered_json j = ref_summary(*tool);
-      j["used_by"] = users;
-      out.push_back(std::move(j));
-    }
-    return out;
-  }
-
-  ordered_json statistics() const {
-    ordered_json s;
-    s["bytes"] = model_.text().size();
-    s["instances"] = model_.instances().size();
-    s["workingsteps"] = workingsteps_;
-    std::map<std::string, std::size_t> by_type;
+  void note_statistics() {
+    Statistics& s = info_.statistics;
+    s.bytes = model_.text().size();
+    s.instances = model_.instances().size();
     for (p21::KeywordId k = 0; k < model_.keyword_count(); ++k) {
       const auto n = model_.instance_indices_of(k).size();
       if (n == 0) continue;
@@ -246,28 +247,20 @@ class Inspector {
             if (!name.empty()) name += '+';
             name += model_.keyword(record.keyword_id());
           }
-          ++by_type["(" + name + ")"];
+          ++s.by_type["(" + name + ")"];
         }
         continue;
       }
-      by_type[std::string(model_.keyword(k))] += n;
+      s.by_type[std::string(model_.keyword(k))] += n;
     }
-    s["entity_types"] = by_type.size();
-    ordered_json counts = ordered_json::object();
-    for (const auto& [name, n] : by_type) counts[name] = n;
-    s["by_type"] = std::move(counts);
-    return s;
   }
 
   const Model& model_;
   AttributeReader attributes_;
   const InspectOptions& options_;
   p21::LineIndex lines_;
-  std::vector<diag::Diagnostic> diagnostics_;
-  ordered_json workpieces_ = ordered_json::array();
-  std::vector<std::pair<const Instance*, std::vector<std::uint64_t>>> tools_;
+  ProgramInfo info_;
   std::unordered_set<std::uint64_t> on_path_;
-  std::size_t workingsteps_ = 0;
 };
 
 }  // namespace
@@ -298,36 +291,57 @@ diag::Diagnostic no_program_diagnostic(const p21::Model& model) {
                     "no PROJECT instance: not an ISO 14649 program");
 }
 
-nlohmann::ordered_json diagnostics_json(const std::vector<diag::Diagnostic>& list,
-                                        std::string_view file) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (const auto& d : list) {
-    nlohmann::ordered_json j;
-    j["file"] = std::string(file);
-    j["line"] = d.line;
-    j["column"] = d.column;
-    j["severity"] = std::string(diag::to_string(d.severity));
-    j["code"] = std::string(d.code_id());
-    j["message"] = d.message;
-    out.push_back(std::move(j));
-  }
-  return out;
-}
-
 namespace {
 
-std::string display(const nlohmann::ordered_json& node) {
-  std::string s = "#" + std::to_string(node.value("id", std::uint64_t{0})) + " " +
-                  node.value("type", std::string{});
-  if (node.contains("name") && node["name"].is_string())
-    s += " '" + node["name"].get<std::string>() + "'";
+std::string display(const EntityRef& ref) {
+  std::string s = "#" + std::to_string(ref.id) + " " + ref.type;
+  if (ref.name) s += " '" + *ref.name + "'";
   return s;
 }
 
+// A string as JSON writes it (the text tree shows DISPLAY_MESSAGE texts quoted and escaped).
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\b':
+        out += "\\b";
+        break;
+      case '\f':
+        out += "\\f";
+        break;
+      default:
+        if (c < 0x20) {
+          char buffer[8];
+          std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+          out += buffer;
+        } else {
+          out += static_cast<char>(c);
+        }
+    }
+  }
+  return out + "\"";
+}
+
 // Explicit stack: the tree was bounded when it was built, but printing need not rely on that.
-void append_tree(const nlohmann::ordered_json& root, std::string& out) {
+void append_tree(const Executable& root, std::string& out) {
   struct Item {
-    const nlohmann::ordered_json* node;
+    const Executable* node;
     std::string indent;
     std::string label;
   };
@@ -335,58 +349,60 @@ void append_tree(const nlohmann::ordered_json& root, std::string& out) {
   while (!stack.empty()) {
     Item item = std::move(stack.back());
     stack.pop_back();
-    const auto& node = *item.node;
-    out += item.indent + item.label + display(node);
-    if (node.contains("feature") && node["feature"].is_object())
-      out += "\n" + item.indent + "    feature:   " + display(node["feature"]);
-    if (node.contains("operation") && node["operation"].is_object())
-      out += "\n" + item.indent + "    operation: " + display(node["operation"]);
-    if (node.contains("tool") && node["tool"].is_object())
-      out += "\n" + item.indent + "    tool:      " + display(node["tool"]);
-    if (node.contains("text")) out += "\n" + item.indent + "    text: " + node["text"].dump();
+    const Executable& node = *item.node;
+    out += item.indent + item.label + display(node.self);
+    if (node.feature) out += "\n" + item.indent + "    feature:   " + display(*node.feature);
+    if (node.operation) out += "\n" + item.indent + "    operation: " + display(*node.operation);
+    if (node.tool) out += "\n" + item.indent + "    tool:      " + display(*node.tool);
+    if (node.text) out += "\n" + item.indent + "    text: " + quoted(*node.text);
     out += '\n';
     std::vector<Item> children;
-    for (const char* key : {"elements", "branches"})
-      if (node.contains(key))
-        for (const auto& child : node[key]) children.push_back({&child, item.indent + "  ", ""});
-    for (const char* key : {"true_branch", "false_branch", "body"})
-      if (node.contains(key) && node[key].is_object())
-        children.push_back({&node[key], item.indent + "  ", std::string(key) + ": "});
+    static constexpr const char* kIfLabels[] = {"true_branch: ", "false_branch: "};
+    for (std::size_t i = 0; i < node.children.size(); ++i) {
+      const Executable& child = node.children[i];
+      if (child.missing) continue;
+      std::string label = node.shape == Executable::Shape::If      ? kIfLabels[i % 2]
+                          : node.shape == Executable::Shape::While ? "body: "
+                                                                   : "";
+      children.push_back({&child, item.indent + "  ", std::move(label)});
+    }
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(std::move(*it));
   }
 }
 
+std::string text_of(const HeaderValue& value) {
+  if (const auto* one = std::get_if<std::string>(&value)) return *one;
+  if (const auto* list = std::get_if<std::vector<std::string>>(&value)) {
+    std::string s;
+    for (const auto& x : *list) s += (s.empty() ? "" : ", ") + x;
+    return s;
+  }
+  return "-";
+}
+
 }  // namespace
 
-std::string format_text(const nlohmann::ordered_json& info) {
-  std::string out;
-  const auto& h = info["header"];
-  const auto str = [](const nlohmann::ordered_json& v) {
-    if (v.is_string()) return v.get<std::string>();
-    if (v.is_array()) {
-      std::string s;
-      for (const auto& x : v) s += (s.empty() ? "" : ", ") + x.get<std::string>();
-      return s;
-    }
+std::string format_text(const ProgramInfo& info) {
+  const auto field = [&](std::string_view name) {
+    for (const auto& [key, value] : info.header.fields)
+      if (key == name) return text_of(value);
     return std::string("-");
   };
-  out += "file:        " + str(h["name"]) + " (" + str(h["time_stamp"]) + ")\n";
-  out += "description: " + str(h["description"]) + "\n";
-  out += "author:      " + str(h["author"]) + " / " + str(h["organization"]) + "\n";
-  out += "schemas:     " + str(h["schemas"]) + "\n";
-  if (info["project"].is_object()) {
-    const auto& p = info["project"];
-    out += "project:     #" + std::to_string(p["id"].get<std::uint64_t>()) + " '" +
-           p["name"].get<std::string>() + "'\n";
-    if (p["main_workplan"].is_object()) append_tree(p["main_workplan"], out);
+  std::string out;
+  out += "file:        " + field("name") + " (" + field("time_stamp") + ")\n";
+  out += "description: " + field("description") + "\n";
+  out += "author:      " + field("author") + " / " + field("organization") + "\n";
+  out += "schemas:     " + text_of(info.header.schemas) + "\n";
+  if (info.project) {
+    out += "project:     #" + std::to_string(info.project->id) + " '" + info.project->name + "'\n";
+    if (info.project->main_workplan) append_tree(*info.project->main_workplan, out);
   } else {
     out += "project:     none\n";
   }
-  for (const auto& w : info["workpieces"]) out += "workpiece:   " + display(w) + "\n";
-  for (const auto& t : info["tools"]) out += "tool:        " + display(t) + "\n";
-  const auto& s = info["statistics"];
-  out += "instances:   " + std::to_string(s["instances"].get<std::size_t>()) + " of " +
-         std::to_string(s["entity_types"].get<std::size_t>()) + " entity types\n";
+  for (const auto& w : info.workpieces) out += "workpiece:   " + display(w.self) + "\n";
+  for (const auto& t : info.tools) out += "tool:        " + display(t.self) + "\n";
+  out += "instances:   " + std::to_string(info.statistics.instances) + " of " +
+         std::to_string(info.statistics.by_type.size()) + " entity types\n";
   return out;
 }
 

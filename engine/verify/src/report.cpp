@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "ncpost/diag/json.hpp"
 #include "ncpost/verify/verify.hpp"
 
 namespace ncpost::verify {
@@ -26,7 +27,7 @@ std::size_t errors(const VerifyResult& r) {
   return n;
 }
 
-nlohmann::json position_json(const Position& p) {
+nlohmann::ordered_json position_json(const Position& p) {
   return {{"x", p.x}, {"y", p.y}, {"z", p.z}};
 }
 
@@ -68,7 +69,7 @@ std::string format_text(const VerifyResult& r, std::string_view file) {
 }
 
 std::string format_json(const VerifyResult& r, std::string_view file) {
-  nlohmann::json doc;
+  nlohmann::ordered_json doc;
   doc["file"] = std::string(file);
   doc["ok"] = r.ok();
   doc["tolerance"] = r.tolerance;
@@ -76,13 +77,13 @@ std::string format_json(const VerifyResult& r, std::string_view file) {
   doc["motions"] = r.motions;
   doc["calls"] = r.calls;
   doc["rapids_below_secplane_in_air"] = r.rapids_below_secplane_in_air;
-  auto& features = doc["features"] = nlohmann::json::array();
+  auto& features = doc["features"] = nlohmann::ordered_json::array();
   for (const FeatureReport& f : r.features) {
-    nlohmann::json j{{"id", f.id},
-                     {"type", f.type},
-                     {"name", f.name},
-                     {"checked", f.checked},
-                     {"workingsteps", f.workingsteps}};
+    nlohmann::ordered_json j{{"id", f.id},
+                             {"type", f.type},
+                             {"name", f.name},
+                             {"checked", f.checked},
+                             {"workingsteps", f.workingsteps}};
     if (!f.checked) {
       j["reason"] = f.not_checked_reason;
     } else {
@@ -92,28 +93,22 @@ std::string format_json(const VerifyResult& r, std::string_view file) {
       j["depth_reached"] = f.depth_reached;
       if (f.deepest) j["deepest"] = position_json(*f.deepest);
       if (f.coverage_checked) {
-        nlohmann::json c{{"grid", f.grid},
-                         {"tool_radius", f.tool_radius},
-                         {"reachable_mm2", f.reachable_area},
-                         {"unreachable_mm2", f.unreachable_area},
-                         {"uncovered_fraction", f.uncovered_fraction}};
+        nlohmann::ordered_json c{{"grid", f.grid},
+                                 {"tool_radius", f.tool_radius},
+                                 {"reachable_mm2", f.reachable_area},
+                                 {"unreachable_mm2", f.unreachable_area},
+                                 {"uncovered_fraction", f.uncovered_fraction}};
         if (f.uncovered_sample) c["uncovered_sample"] = position_json(*f.uncovered_sample);
         j["coverage"] = std::move(c);
       }
     }
     features.push_back(std::move(j));
   }
-  auto& diagnostics = doc["diagnostics"] = nlohmann::json::array();
-  const auto diagnostic = [&](const diag::Diagnostic& d) {
-    return nlohmann::json{{"code", std::string(d.code_id())},
-                          {"severity", std::string(diag::to_string(d.severity))},
-                          {"line", d.line},
-                          {"column", d.column},
-                          {"message", d.message}};
-  };
+  auto& diagnostics = doc["diagnostics"] = nlohmann::ordered_json::array();
+  const auto diagnostic = [](const diag::Diagnostic& d) { return diag::to_json(d); };
   for (const auto& d : r.interpreter) diagnostics.push_back(diagnostic(d));
   for (const Finding& f : r.findings) {
-    nlohmann::json j = diagnostic(f.diagnostic);
+    nlohmann::ordered_json j = diagnostic(f.diagnostic);
     if (f.workingstep != 0)
       j["workingstep"] = {{"id", f.workingstep}, {"name", f.workingstep_name}};
     if (f.feature != 0) j["feature"] = f.feature;

@@ -1,176 +1,107 @@
-// Dispatch from a workingstep to the generator of its feature family, and the readers every
-// generator shares (tool, operation parameters, depth).
+// From a workingstep to its generated path: the feature kind's reader turns the model into a
+// typed spec (reading and checking everything), and its planner turns the spec into motions
+// (docs/features.md, "Read, then plan"). Both report through one ModelReport, so diagnostics
+// keep the order in which they were found.
 
-#include <cmath>
-
-#include "context.hpp"
+#include "draft.hpp"
+#include "face.hpp"
+#include "general.hpp"
+#include "holes.hpp"
+#include "outside.hpp"
+#include "pocket.hpp"
+#include "reader.hpp"
+#include "region.hpp"
+#include "slot.hpp"
+#include "step.hpp"
+#include "threads.hpp"
 
 namespace ncpost::stepnc::features {
+namespace {
 
-std::optional<double> Context::number(const Instance& owner, std::string_view attribute) {
-  auto v = g.get(owner, attribute);
-  if (!v || v->is_omitted()) return std::nullopt;
-  if (v->kind() == p21::ValueKind::Typed) v = m.typed_child(*v);
-  if (!v->is_number()) {
-    bad(owner, d(owner) + " attribute " + std::string(attribute) + " is not a number");
-    return std::nullopt;
-  }
-  const double x = m.as_real(*v);
-  if (!std::isfinite(x)) {
-    bad(owner, d(owner) + " attribute " + std::string(attribute) + " is not a finite number");
-    return std::nullopt;
-  }
-  return x;
+// A kind's reader fills its spec; only then does its planner draw the path.
+template <class Spec>
+bool read_then_plan(Reader& reader, Draft& draft, bool (*read)(Reader&, Spec&),
+                    bool (*plan)(const Spec&, Draft&)) {
+  Spec spec;
+  return read(reader, spec) && plan(spec, draft);
 }
 
-std::optional<Toleranced> Context::toleranced(const Instance& owner, std::string_view attribute) {
-  const auto v = g.get(owner, attribute);
-  if (!v || v->is_omitted()) return std::nullopt;
-  if (!v->is_reference()) {
-    if (auto n = number(owner, attribute)) return Toleranced{*n, 0, 0};
-    return std::nullopt;
-  }
-  const Instance* t = g.instance(v, "toleranced_length_measure", &owner, attribute);
-  if (t == nullptr) return std::nullopt;
-  const auto size = number(*t, "theoretical_size");
-  if (!size) {
-    bad(*t, d(*t) + " has no theoretical_size");
-    return std::nullopt;
-  }
-  Toleranced out{*size, 0, 0};
-  if (const Instance* tol = ref(*t, "implicit_tolerance", "");
-      tol != nullptr && g.is_a(*tol, "plus_minus_value")) {
-    out.upper = number(*tol, "upper_limit").value_or(0);
-    out.lower = number(*tol, "lower_limit").value_or(0);
-  }
-  return out;
+// The same for the readers that go on from what a family's shared reader found.
+template <class Spec, class Basics>
+bool read_then_plan(Reader& reader, const Basics& basics, Draft& draft,
+                    bool (*read)(Reader&, const Basics&, Spec&),
+                    bool (*plan)(const Spec&, Draft&)) {
+  Spec spec;
+  return read(reader, basics, spec) && plan(spec, draft);
 }
 
-std::optional<bool> Context::boolean(const Instance& owner, std::string_view attribute) {
-  const auto v = g.get(owner, attribute);
-  if (!v || v->is_omitted()) return std::nullopt;
-  const auto l = m.as_logical(*v);
-  if (!l || *l == p21::Logical::Unknown) return std::nullopt;
-  return *l == p21::Logical::True;
+// A closed pocket: a round one with a half-ball floor, a general profile, or a rectangle or
+// circle cleared as a region.
+bool closed_pocket(Reader& reader, Draft& draft) {
+  PocketBasics basics;
+  if (!read_pocket_basics(reader, PocketKind::Closed, basics)) return false;
+  if (basics.radiused)
+    return read_then_plan(reader, basics, draft, read_radiused_pocket, plan_radiused_pocket);
+  if (basics.general)
+    return read_then_plan(reader, basics, draft, read_general_pocket, plan_general_pocket);
+  return read_then_plan(reader, basics, draft, read_pocket_region, plan_region);
 }
 
-std::string_view Context::enumeration(const Instance& owner, std::string_view attribute) {
-  const auto v = g.get(owner, attribute);
-  if (!v || v->kind() != p21::ValueKind::Enumeration) return {};
-  return m.enumeration(*v);
+bool open_pocket(Reader& reader, Draft& draft) {
+  PocketBasics basics;
+  return read_pocket_basics(reader, PocketKind::Open, basics) &&
+         read_then_plan(reader, basics, draft, read_open_pocket, plan_general_pocket);
 }
 
-std::optional<Vec3> Context::direction(const Instance& owner, std::string_view attribute) {
-  if (!set(owner, attribute)) return std::nullopt;
-  return g.direction(g.get(owner, attribute));
+bool outside_profile(Reader& reader, Draft& draft) {
+  OutsideBoundary boundary;
+  if (!read_outside_boundary(reader, boundary)) return false;
+  if (boundary.general)
+    return read_then_plan(reader, boundary, draft, read_general_outside, plan_general_outside);
+  return read_then_plan(reader, boundary, draft, read_outside, plan_outside);
 }
 
-std::optional<double> Context::depth() {
-  const Instance* plane = ref(feature(), "depth", "elementary_surface");
-  if (plane == nullptr) {
-    bad(feature(), d(feature()) + " has no depth plane");
-    return std::nullopt;
-  }
-  const auto frame = g.placement(g.get(*plane, "position"));
-  if (!frame) return std::nullopt;
-  if (std::abs(frame->z.z - 1) > 1e-9) {
-    not_implemented(d(*plane) + ", a depth plane not normal to " + d(feature()) + "'s axis");
-    return std::nullopt;
-  }
-  const double depth = -frame->origin.z;
-  if (depth > opt.max_length) {
-    bad(*plane, d(*plane) + " lies " + fmt(depth) + " below the top of " + d(feature()) +
-                    ", beyond the generator's limit of " + fmt(opt.max_length) +
-                    " mm (FeatureOptions::max_length)");
-    return std::nullopt;
-  }
-  if (!(depth > 0)) {
-    bad(*plane, d(*plane) + " lies at or above the top of " + d(feature()) + " (depth " +
-                    std::to_string(depth) + ")");
-    return std::nullopt;
-  }
-  return depth;
+// A straight U slot is a region; every other slot the passes of a form tool.
+bool slot(Reader& reader, Draft& draft) {
+  SlotBasics basics;
+  if (!read_slot_basics(reader, basics)) return false;
+  if (basics.region()) return read_then_plan(reader, basics, draft, read_slot_region, plan_region);
+  return read_then_plan(reader, basics, draft, read_form_slot, plan_form_slot);
 }
 
-std::optional<Tool> Context::tool() {
-  Tool t;
-  t.instance = req.tool;
-  t.body = ref(*req.tool, "its_tool_body", "milling_machine_tool_body");
-  if (t.body == nullptr) {
-    bad(*req.tool, d(*req.tool) + " has no milling tool body, so its size is unknown");
-    return std::nullopt;
-  }
-  const Instance* dim = ref(*t.body, "dimension", "milling_tool_dimension");
-  const auto diameter = dim ? number(*dim, "diameter") : std::nullopt;
-  if (!diameter || !(*diameter > 0)) {
-    bad(*t.body, d(*t.body) + " (tool " + d(*req.tool) + ") has no positive diameter");
-    return std::nullopt;
-  }
-  t.radius = *diameter / 2;
-  t.edge_length = number(*dim, "cutting_edge_length");
-  t.tip_half_angle = number(*dim, "tool_tip_half_angle");
-  t.corner_radius = number(*dim, "edge_radius").value_or(0);
-  t.left_hand = enumeration(*t.body, "hand_of_cut") == "LEFT";
-  return t;
+// The generator of the workingstep's feature kind (thread drilling by its operation: its
+// feature is the THREAD, which names its hole).
+bool generate_kind(Reader& reader, Draft& draft) {
+  const Instance& feature = reader.feature();
+  if (reader.is(&reader.operation(), "thread_drilling"))
+    return read_then_plan(reader, draft, read_thread_drilling, plan_thread_drilling);
+  if (reader.is(&feature, "planar_face"))
+    return read_then_plan(reader, draft, read_face, plan_face);
+  if (reader.is(&feature, "closed_pocket")) return closed_pocket(reader, draft);
+  if (reader.is(&feature, "open_pocket")) return open_pocket(reader, draft);
+  if (reader.is(&feature, "general_outside_profile")) return outside_profile(reader, draft);
+  if (reader.is(&feature, "slot")) return slot(reader, draft);
+  if (reader.is(&feature, "step")) return read_then_plan(reader, draft, read_step, plan_step);
+  if (reader.is(&feature, "round_hole")) return read_then_plan(reader, draft, read_hole, plan_hole);
+  return reader.report().not_implemented(reader.name(reader.operation()) + " on " +
+                                         reader.name(feature) + " (this feature kind)");
 }
 
-OperationData Context::operation() {
-  OperationData o;
-  o.retract_plane = number(op(), "retract_plane");
-  o.axial = number(op(), "axial_cutting_depth");
-  o.radial = number(op(), "radial_cutting_depth");
-  o.allowance_side = number(op(), "allowance_side").value_or(0);
-  o.allowance_bottom = number(op(), "allowance_bottom").value_or(0);
-  o.strategy = ref(op(), "its_machining_strategy", "");
-  o.approach = ref(op(), "approach", "approach_retract_strategy");
-  o.retract = ref(op(), "retract", "approach_retract_strategy");
-  return o;
-}
-
-std::vector<double> levels(double depth, std::optional<double> step) {
-  std::size_t n = 1;
-  if (step && *step > 0) n = static_cast<std::size_t>(std::ceil(depth / *step - 1e-9));
-  n = std::max<std::size_t>(n, 1);
-  std::vector<double> out;
-  out.reserve(n);
-  // Each level from the top, not by accumulation: no drift, and the last is exactly -depth.
-  for (std::size_t k = 1; k <= n; ++k)
-    out.push_back(k == n ? -depth : -depth * static_cast<double>(k) / static_cast<double>(n));
-  return out;
-}
+}  // namespace
 
 Path generate(detail::GeometryReader& geometry, const Request& request,
               const FeatureOptions& options) {
-  Context ctx(geometry, request, options);
+  const Instance& ws = *request.workingstep;
+  ModelReport report(geometry, {&ws, geometry.model().type_name(ws)});
+  Reader reader(geometry, request, options, report);
+  Draft draft(options, report);
   if (request.feature == nullptr) {
-    ctx.not_implemented(ctx.d(request.operation) + " without a feature");
+    report.not_implemented(reader.name(request.operation) + " without a feature");
     return {};
   }
-  bool ok = false;
-  if (geometry.is_a(*request.operation, "thread_drilling")) {
-    ok = generate_thread_drilling(ctx);  // on a THREAD feature, which names its hole
-  } else if (geometry.is_a(*request.feature, "planar_face")) {
-    ok = generate_face(ctx);
-  } else if (geometry.is_a(*request.feature, "closed_pocket")) {
-    ok = generate_pocket(ctx);
-  } else if (geometry.is_a(*request.feature, "open_pocket")) {
-    ok = generate_open_pocket(ctx);
-  } else if (geometry.is_a(*request.feature, "general_outside_profile")) {
-    ok = generate_outside_profile(ctx);
-  } else if (geometry.is_a(*request.feature, "slot")) {
-    ok = generate_slot(ctx);
-  } else if (geometry.is_a(*request.feature, "step")) {
-    ok = generate_step(ctx);
-  } else if (geometry.is_a(*request.feature, "round_hole")) {
-    ok = generate_hole(ctx);
-  } else {
-    ctx.not_implemented(ctx.d(*request.operation) + " on " + ctx.d(*request.feature) +
-                        " (this feature kind)");
-  }
-  if (ok && ctx.too_many()) ok = ctx.limit_reached();
-  ctx.path.ok = ok;
-  if (!ok) ctx.path.moves.clear();
-  return std::move(ctx.path);
+  bool ok = generate_kind(reader, draft);
+  if (ok && draft.too_many()) ok = draft.limit_reached();
+  return std::move(draft).finish(ok);
 }
 
 }  // namespace ncpost::stepnc::features

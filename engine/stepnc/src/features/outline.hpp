@@ -8,17 +8,18 @@
 #include <string>
 #include <vector>
 
-#include "context.hpp"
+#include "generator.hpp"
 #include "polygons.hpp"
+#include "report.hpp"
 
 namespace ncpost::stepnc::features {
 
 struct Element {
-  poly::P a, b;       // from, to
-  bool arc = false;   // else a line
-  poly::P centre{};   // arcs
-  double radius = 0;  // arcs
-  double sweep = 0;   // arcs: signed angle from a to b about the centre (positive CCW)
+  poly::P start, end;  // where it starts and ends
+  bool arc = false;    // else a line
+  poly::P centre{};    // arcs
+  double radius = 0;   // arcs
+  double sweep = 0;    // arcs: signed angle from a to b about the centre (positive CCW)
   [[nodiscard]] poly::P tangent_at_start() const;
   [[nodiscard]] poly::P tangent_at_end() const;
 };
@@ -37,12 +38,16 @@ struct Corner {
   std::size_t before = 0, after = 0;  // the elements that meet there
 };
 
-// Reads a closed profile of a pocket or outside profile (GENERAL_CLOSED_PROFILE with a POLYLINE,
-// TRIMMED_CURVE or COMPOSITE_CURVE of lines and circular arcs; NGON_CLOSED_PROFILE) in the
-// feature's coordinates, counter-clockwise. nullopt after reporting why (STEPNC-101/103).
-std::optional<Outline> read_closed_outline(Context& ctx, const Instance& boundary);
-// The walls of an OPEN_POCKET: a GENERAL_PROFILE's curve, in its own sense.
-std::optional<Outline> read_open_outline(Context& ctx, const Instance& boundary);
+// A point of the plane for a message: "(x, y)".
+[[nodiscard]] inline std::string at_text(poly::P p) {
+  return "(" + fmt(p.x) + ", " + fmt(p.y) + ")";
+}
+
+// The margin by which every region of tool centres is kept inside the exact one: the round
+// joins' chords (chord_tolerance), the arcs fitted back (three times that), Clipper's grid.
+[[nodiscard]] inline double region_margin(const FeatureOptions& options) {
+  return 5 * options.chord_tolerance + 4 * poly::kResolution;
+}
 
 // Reverses the sense of travel.
 void reverse(Outline& outline);

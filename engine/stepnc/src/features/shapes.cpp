@@ -53,14 +53,15 @@ Loop full_circle(double radius) {
 }  // namespace
 
 Loop outside_ring(const Shape& shape, double offset) {
-  if (shape.kind == Shape::Kind::Circle) return full_circle(shape.a + offset);
-  return rounded_rectangle(shape.a + offset, shape.b + offset, corner_radii(shape, offset));
+  if (shape.kind == Shape::Kind::Circle) return full_circle(shape.half_length + offset);
+  return rounded_rectangle(shape.half_length + offset, shape.half_width + offset,
+                           corner_radii(shape, offset));
 }
 
 Rings contour_rings(const Shape& shape, double inset, double step) {
   Rings out;
-  const double a_out = shape.a - inset;
-  const double b_out = shape.b - inset;
+  const double a_out = shape.half_length - inset;
+  const double b_out = shape.half_width - inset;
   const double room = std::max(0.0, std::min(a_out, b_out));
   const std::size_t n = room <= kTiny ? 0 : static_cast<std::size_t>(std::ceil(room / step - 1e-9));
   const double s = n == 0 ? 0 : room / static_cast<double>(n);
@@ -90,8 +91,8 @@ Rings contour_rings(const Shape& shape, double inset, double step) {
 
 std::vector<std::pair<Vec3, Vec3>> raster(const Shape& shape, double inset, double step,
                                           bool along_x) {
-  const double a_out = std::max(0.0, shape.a - inset);
-  const double b_out = std::max(0.0, shape.b - inset);
+  const double a_out = std::max(0.0, shape.half_length - inset);
+  const double b_out = std::max(0.0, shape.half_width - inset);
   const double along = along_x ? a_out : b_out;  // half extent along the lines
   const double across = along_x ? b_out : a_out;
   // The corner radius of the region at each corner (counter-clockwise from (+a, +b)).
@@ -122,30 +123,26 @@ std::vector<std::pair<Vec3, Vec3>> raster(const Shape& shape, double inset, doub
   }
   return lines;
 }
-
-void play_rings(Context& ctx, const Rings& rings, const detail::Frame& frame, bool ccw, double z) {
+void play_loop(Draft& draft, const Loop& loop, const detail::Frame& frame, bool ccw, double z) {
   const auto at = [&](Vec3 p) { return frame.point({p.x, p.y, z}); };
-  if (rings.line_length > kTiny) ctx.feed(at(rings.start + rings.axis * rings.line_length));
-  for (const Loop& loop : rings.loops) {
-    ctx.feed(at(loop.start));
-    if (ccw) {
-      for (const Span& s : loop.spans) {
-        if (s.arc)
-          ctx.arc(at(s.to), at(s.centre), 1);
-        else
-          ctx.feed(at(s.to));
-      }
-    } else {
-      // Backwards: span i runs from the end of span i-1 (the start for the first) to its end.
-      for (std::size_t i = loop.spans.size(); i-- > 0;) {
-        const Vec3 to = i == 0 ? loop.start : loop.spans[i - 1].to;
-        const Span& s = loop.spans[i];
-        if (s.arc)
-          ctx.arc(at(to), at(s.centre), -1);
-        else
-          ctx.feed(at(to));
-      }
+  draft.feed(at(loop.start));
+  if (ccw) {
+    for (const Span& s : loop.spans) {
+      if (s.arc)
+        draft.arc(at(s.to), at(s.centre), 1);
+      else
+        draft.feed(at(s.to));
     }
+    return;
+  }
+  // Backwards: span i runs from the end of span i-1 (the start for the first) to its end.
+  for (std::size_t i = loop.spans.size(); i-- > 0;) {
+    const Vec3 to = i == 0 ? loop.start : loop.spans[i - 1].to;
+    const Span& s = loop.spans[i];
+    if (s.arc)
+      draft.arc(at(to), at(s.centre), -1);
+    else
+      draft.feed(at(to));
   }
 }
 

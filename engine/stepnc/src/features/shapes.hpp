@@ -7,25 +7,28 @@
 #include <optional>
 #include <vector>
 
-#include "context.hpp"
+#include "draft.hpp"
+#include "generator.hpp"
 
 namespace ncpost::stepnc::features {
 
 struct Shape {
   enum class Kind { Rectangle, Circle } kind = Kind::Rectangle;
-  double a = 0;           // half length along x (rectangle) or radius (circle)
-  double b = 0;           // half width along y (rectangle) or radius (circle)
-  double corner = 0;      // rectangle corner radius (the smallest, when they differ)
-  detail::Frame frame{};  // the profile in the feature's coordinates
+  double half_length = 0;  // along x (rectangle), or the radius (circle)
+  double half_width = 0;   // along y (rectangle), or the radius (circle)
+  double corner = 0;       // rectangle corner radius (the smallest, when they differ)
+  detail::Frame frame{};   // the profile in the feature's coordinates
   // A rectangle whose corners differ (a slot with mixed or flat ends): counter-clockwise from
   // (+a, +b), i.e. (+a, +b), (-a, +b), (-a, -b), (+a, -b). Unset: every corner is `corner`.
   std::optional<std::array<double, 4>> corners;
 
-  static Shape rectangle(double half_length, double half_width, double corner_radius) {
-    return {Kind::Rectangle, half_length, half_width, corner_radius, {}, {}};
+  static Shape rectangle(double half_x, double half_y, double corner_radius) {
+    return {Kind::Rectangle, half_x, half_y, corner_radius, {}, {}};
   }
   static Shape circle(double radius) { return {Kind::Circle, radius, radius, radius, {}, {}}; }
-  [[nodiscard]] double inradius() const { return a < b ? a : b; }
+  [[nodiscard]] double inradius() const {
+    return half_length < half_width ? half_length : half_width;
+  }
   [[nodiscard]] double corner_at(int k) const {
     return corners ? (*corners)[static_cast<std::size_t>(k)] : corner;
   }
@@ -67,8 +70,8 @@ struct Rings {
 [[nodiscard]] std::vector<std::pair<Vec3, Vec3>> raster(const Shape& shape, double inset,
                                                         double step, bool along_x);
 
-// The rings at height z in the feature's coordinates, from the innermost start (where the
-// tool is), each ring entered from the previous one by a straight feed inside the pocket.
-void play_rings(Context& ctx, const Rings& rings, const detail::Frame& frame, bool ccw, double z);
+// A loop at height z in the feature's coordinates (`frame` places the profile): a feed to its
+// start, then round it counter-clockwise, or clockwise (its spans backwards).
+void play_loop(Draft& draft, const Loop& loop, const detail::Frame& frame, bool ccw, double z);
 
 }  // namespace ncpost::stepnc::features

@@ -1,20 +1,22 @@
 #pragma once
-// A post job after loading: interpret the model and render it through one machine profile,
-// handing controller text to `out` chunk by chunk as it is ready. `ncpost post` and ncpostd's
+// A post job: read the input, interpret it and render it through one machine profile, handing
+// controller text to `out` chunk by chunk as it is ready. `ncpost post` and ncpostd's
 // POST /v1/posts both run this, so a program posted either way is byte-identical.
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/pipeline/block_map.hpp"
+#include "ncpost/pipeline/job.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/profile/profile.hpp"
 #include "ncpost/render/render.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
-#include "ncpost/xslt/xslt.hpp"
 
 namespace ncpost::pipeline {
 
@@ -32,6 +34,10 @@ struct PostOptions {
   std::size_t render_thread_min_instances = 50000;
   // Calls handed to the render thread at a time (at most four such batches wait).
   std::size_t render_thread_batch = 4096;
+  // Non-null: where each workingstep's text begins, for a block → workingstep map
+  // (block_map.hpp). Needs one transform per chunk, so the renderer's batching is turned off
+  // and the post runs on one thread.
+  std::vector<WorkingstepMark>* workingstep_marks = nullptr;
 };
 
 struct PostResult {
@@ -50,6 +56,29 @@ struct PostResult {
   std::chrono::nanoseconds render{0};
   std::chrono::nanoseconds interpret{0};
 };
+
+// Everything a whole post job reports: reading and checking, then the post.
+struct PostJobResult {
+  JobResult read;   // reading and checking (its diagnostics come first)
+  PostResult post;  // empty when reading failed
+  [[nodiscard]] bool ok() const { return read.ok && post.ok; }
+  // read.diagnostics, then post.diagnostics.
+  [[nodiscard]] std::vector<diag::FileDiagnostic> diagnostics() const;
+};
+
+// Called once reading and checking succeeded, before any text (ncpostd reports the read's
+// timing in the response's head, which goes out with the first text).
+using OnRead = std::function<void(const JobResult& read)>;
+
+// The whole job: read(input) (job.hpp), then post() below. Nothing reaches `out` when reading
+// fails. `context.tools` replaces options.tools.
+[[nodiscard]] PostJobResult post(Input input, const JobContext& context,
+                                 const profile::LoadedProfile& profile, const render::TextSink& out,
+                                 const PostOptions& options = {}, const OnRead& on_read = {});
+// The post of a program already read (which must be ok()).
+[[nodiscard]] PostResult post(const Program& program, const JobContext& context,
+                              const profile::LoadedProfile& profile, const render::TextSink& out,
+                              const PostOptions& options = {});
 
 // Interprets `loaded` (which must be ok()) and renders it with `profile`; a raw-mode profile
 // (profile::Mode::Raw) instead transforms the model as one P28 document (render/raw.hpp). The

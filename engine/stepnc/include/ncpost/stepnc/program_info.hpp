@@ -4,13 +4,17 @@
 // In:  a Model (read from P21 or P28) and the EXPRESS schema that describes it: every attribute
 //      is read by name through the schema (attributes.hpp), and "executable" means a subtype of
 //      ISO 14649-10 EXECUTABLE in that schema.
-// Out: JSON with the header, the PROJECT → main WORKPLAN → executables tree (recursively), the
+// Out: a ProgramInfo: the header, the PROJECT → main WORKPLAN → executables tree, the
 //      workpieces and tools, instance counts by entity type, and diagnostics about the program
-//      structure. The JSON shape is a contract shared by `ncpost inspect` and the HTTP service;
-//      docs/inspect.md describes it.
+//      structure. Its JSON form, which `ncpost inspect` and the HTTP service share, is made at
+//      the edge (pipeline/jobs.hpp) and described in docs/inspect.md.
 
-#include <nlohmann/json.hpp>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "ncpost/diag/diagnostic.hpp"
@@ -20,8 +24,76 @@
 
 namespace ncpost::stepnc {
 
+// A header field: a string, a list of strings, or unset (absent or `$`).
+using HeaderValue = std::variant<std::monostate, std::string, std::vector<std::string>>;
+
+struct Header {
+  // FILE_DESCRIPTION's and FILE_NAME's fields by their ISO 10303-21 names, in file order:
+  // description, implementation_level, name, time_stamp, author, organization,
+  // preprocessor_version, originating_system, authorization.
+  std::vector<std::pair<std::string, HeaderValue>> fields;
+  std::vector<std::string> schemas;  // FILE_SCHEMA
+};
+
+// An instance as a program shows it: id, entity and its its_id (unset when it has none).
+struct EntityRef {
+  std::uint64_t id = 0;
+  std::string type;
+  std::optional<std::string> name;
+};
+
+// One executable of the workplan tree. Which members mean something depends on `shape`.
+struct Executable {
+  enum class Shape : std::uint8_t {
+    Leaf,         // NC functions, RAPID_MOVEMENT, an element of an unknown type, ...
+    Workingstep,  // feature, operation, tool
+    Sequence,     // WORKPLAN, NON_SEQUENTIAL, SELECTIVE: `children` are the elements
+    Parallel,     // PARALLEL: `children` are the branches
+    If,           // IF_STATEMENT: children[0] the true branch, children[1] the false one
+    While,        // WHILE_STATEMENT: children[0] the body
+    Message,      // DISPLAY_MESSAGE: `text`
+    ToolChange,   // LOAD_TOOL, UNLOAD_TOOL: `tool`
+  };
+  EntityRef self;
+  Shape shape = Shape::Leaf;
+  std::optional<EntityRef> feature, operation, tool;
+  std::optional<std::string> text;
+  std::vector<Executable> children;
+  // An If branch or a While body that the file leaves unset: only `missing` is meaningful.
+  bool missing = false;
+};
+
+struct Project {
+  std::uint64_t id = 0;
+  std::string name;
+  std::optional<Executable> main_workplan;  // unset when it is not a WORKPLAN
+};
+
+struct Workpiece {
+  EntityRef self;
+  std::optional<std::string> material;  // its material's identifier
+  std::optional<std::size_t> clamping_positions;
+};
+
+struct ToolUse {
+  EntityRef self;
+  std::vector<std::uint64_t> used_by;  // workingsteps and tool changes, in program order
+};
+
+struct Statistics {
+  std::size_t bytes = 0;
+  std::size_t instances = 0;
+  std::size_t workingsteps = 0;
+  // Instances per entity type; a complex instance counts as "(A+B+...)".
+  std::map<std::string, std::size_t> by_type;
+};
+
 struct ProgramInfo {
-  nlohmann::ordered_json json;                // without the "diagnostics" member
+  Header header;
+  std::optional<Project> project;  // unset when the file has no PROJECT
+  std::vector<Workpiece> workpieces;
+  std::vector<ToolUse> tools;
+  Statistics statistics;
   std::vector<diag::Diagnostic> diagnostics;  // about the program structure
 };
 
@@ -42,11 +114,7 @@ struct InspectOptions {
 // no program at all (STEPNC-001). Shared by inspect and the interpreter.
 [[nodiscard]] diag::Diagnostic no_program_diagnostic(const p21::Model& model);
 
-// Diagnostics as JSON objects {file, line, column, severity, code, message}.
-[[nodiscard]] nlohmann::ordered_json diagnostics_json(const std::vector<diag::Diagnostic>& list,
-                                                      std::string_view file);
-
 // A human-readable tree of the same information (`ncpost inspect --format text`).
-[[nodiscard]] std::string format_text(const nlohmann::ordered_json& info);
+[[nodiscard]] std::string format_text(const ProgramInfo& info);
 
 }  // namespace ncpost::stepnc

@@ -2,13 +2,14 @@
 // (engine/stepnc/src/features/polygons.hpp) and the tessellation of outlines on the side away
 // from the material (outline.hpp), with numbers worked out by hand.
 
+#include "features/polygons.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "features/outline.hpp"
-#include "features/polygons.hpp"
 
 namespace ncpost::stepnc::features {
 namespace {
@@ -142,7 +143,7 @@ TEST(FeatureOutlines, ArcsAreTessellatedAwayFromTheMaterial) {
   Outline circle;
   Element e;
   e.arc = true;
-  e.a = e.b = {10, 0};
+  e.start = e.end = {10, 0};
   e.centre = {0, 0};
   e.radius = 10;
   e.sweep = 2 * std::numbers::pi;
@@ -182,8 +183,8 @@ TEST(FeatureOutlines, CornersTurnLeftWhereConvex) {
   const P v[4] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
   for (int k = 0; k < 4; ++k) {
     Element e;
-    e.a = v[k];
-    e.b = v[(k + 1) % 4];
+    e.start = v[k];
+    e.end = v[(k + 1) % 4];
     square.elements.push_back(e);
   }
   const auto c = corners(square);

@@ -1,12 +1,14 @@
 // White-box tests of the feature toolpath generator's geometry (engine/stepnc/src/features):
 // depth levels and contour-parallel rings, checked against numbers worked out by hand.
 
+#include "features/shapes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 
-#include "features/shapes.hpp"
+#include "features/spec.hpp"
 
 namespace ncpost::stepnc::features {
 namespace {

@@ -1,0 +1,87 @@
+#pragma once
+// One function per job that `ncpost` and ncpostd offer besides posting (post.hpp): trace,
+// verify, inspect, convert, and an EXPRESS schema as EXPRESS-X. Each reads its Input through
+// read() (job.hpp) and returns its result as a value; text that can be long goes to a TextSink
+// piece by piece. The CLI prints what comes back, the server turns it into HTTP: neither
+// assembles a job of its own.
+
+#include <chrono>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncpost/diag/diagnostic.hpp"
+#include "ncpost/pipeline/job.hpp"
+#include "ncpost/stepnc/program_info.hpp"
+#include "ncpost/verify/verify.hpp"
+
+namespace ncpost::pipeline {
+
+// ---- trace --------------------------------------------------------------------------------
+
+enum class TraceFormat : std::uint8_t { Text, Xml };
+
+// The canonical program of the input: one call per line (rs274 style) or the XML form that
+// stylesheets read (canon.rng), streamed chunk by chunk. A trace goes on after an error, to
+// show everything it can; `ok` is false then.
+[[nodiscard]] JobResult trace(Input input, const JobContext& context, TraceFormat format,
+                              const TextSink& out);
+
+// ---- verify -------------------------------------------------------------------------------
+
+struct VerifySettings {
+  double tolerance = 0.01;     // mm
+  std::optional<double> grid;  // mm; unset: chosen per feature (docs/verify.md)
+};
+
+struct VerifyOutcome {
+  JobResult job;  // reading and checking; ok when the program was read
+  // Set when the program could be read: the checks' result (ok() when every check passed).
+  std::optional<verify::VerifyResult> result;
+};
+
+[[nodiscard]] VerifyOutcome verify(Input input, const JobContext& context,
+                                   const VerifySettings& settings);
+// The report as text (one line per feature) or as one JSON document with the diagnostics.
+[[nodiscard]] std::string verify_report_text(const VerifyOutcome& outcome, std::string_view name);
+[[nodiscard]] std::string verify_report_json(const VerifyOutcome& outcome, std::string_view name);
+// The interpreter's diagnostics and the findings, with the input's name.
+[[nodiscard]] std::vector<diag::FileDiagnostic> verify_diagnostics(const VerifyOutcome& outcome,
+                                                                   std::string_view name);
+
+// ---- inspect ------------------------------------------------------------------------------
+
+struct Inspection {
+  JobResult job;  // ok: no error in reading, checking, or the program's structure
+  stepnc::ProgramInfo info;
+};
+
+[[nodiscard]] Inspection inspect(Input input, const JobContext& context);
+// docs/inspect.md: the program information without diagnostics, ...
+[[nodiscard]] nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info);
+// ... and with every diagnostic of the inspection in "diagnostics".
+[[nodiscard]] nlohmann::ordered_json inspection_json(const Inspection& inspection);
+// The same as a human-readable tree (`ncpost inspect --format text`).
+[[nodiscard]] std::string inspection_text(const Inspection& inspection);
+
+// ---- convert ------------------------------------------------------------------------------
+
+enum class ConvertTo : std::uint8_t { P21, P28Late, P28Early };
+
+// P21 or P28 in, P21 or P28 out. Lossless whatever the schema says, so the model is not
+// checked against it. An input with errors produces no output at all: a partial model must
+// never look like a whole one.
+[[nodiscard]] JobResult convert(Input input, const JobContext& context, ConvertTo to,
+                                const TextSink& out);
+
+// ---- schema -------------------------------------------------------------------------------
+
+// An EXPRESS schema as EXPRESS-X XML. A schema with errors gives no XML: a partial schema would
+// silently lose declarations.
+[[nodiscard]] JobResult schema_to_xml(std::string_view express_text, std::string_view name,
+                                      const TextSink& out);
+
+}  // namespace ncpost::pipeline

@@ -1,0 +1,89 @@
+#pragma once
+// ROUND_HOLE with the drilling-type operations: a canonical cycle (drill, peck, tap, bore, ream),
+// or explicit motions where the operation asks for what no cycle expresses (feed or speed
+// changing within the hole, a first peck unlike the others, a dwell between pecks, a retract at
+// feed). Coordinates are the hole's: its axis is z, its top z = 0 (docs/features.md).
+
+#include <optional>
+
+#include "draft.hpp"
+#include "spec.hpp"
+
+namespace ncpost::stepnc::features {
+
+class Reader;
+
+// DRILLING_TYPE_STRATEGY: feed and speed as shares of the technology's near the top and near the
+// bottom of the hole.
+struct DrillingZones {
+  double cut_start = 1, feed_start = 1, depth_start = 0;
+  double cut_end = 1, feed_end = 1, depth_end = 0;
+  [[nodiscard]] bool any() const {
+    return (depth_start > 0 && (cut_start != 1 || feed_start != 1)) ||
+           (depth_end > 0 && (cut_end != 1 || feed_end != 1));
+  }
+};
+
+struct HoleSpec {
+  Move::CycleKind cycle = Move::CycleKind::Drill;
+  double retract_z = 0;  // the R plane, above the top
+  double bottom_z = 0;   // where the tool's tip stops
+  double feed = 0;       // mm/min
+  double dwell = 0;      // seconds at the bottom
+  // Peck drilling: each peck's depth, how far the drill backs off between pecks (0: out to the
+  // R plane), a first peck of another depth, a dwell after each peck.
+  double peck = 0;
+  double peck_retract = 0;
+  std::optional<double> first_peck;
+  double peck_dwell = 0;
+  // Rigid tapping: the thread's pitch from feed and speed, the speed in rpm, the tap's hand.
+  double pitch = 0;
+  double rpm = 0;
+  bool left_hand = false;
+  bool spindle_stop = false;  // boring: the spindle stops at the bottom
+  DrillingZones zones;
+  std::optional<double> feed_on_retract;  // a share of the feed; unset: out at rapid
+  double spindle = 0;  // the technology's speed (ISO rev/s, signed; 0: unset), for the zones
+
+  // Whether the hole needs explicit motions: what the cycle cannot say.
+  [[nodiscard]] bool needs_motions() const {
+    return zones.any() || first_peck || peck_dwell != 0 || feed_on_retract;
+  }
+};
+
+// Where a drill's tip stops in `hole` (a ROUND_HOLE of `depth` whose bottom condition is
+// `bottom`), and the check that its cutting edge reaches that deep; thread drilling shares it.
+// A through hole: past the depth plane by the tool's point and FeatureOptions::through_clearance;
+// a conical bottom: the point below the depth plane (a drill's point angle must be the cone's);
+// a blind flat, flat-with-radius or spherical bottom: the tip on the depth plane.
+// `pointed`: the tool drills with its point (drills; not reamers, boring bars or taps).
+// Diagnostics: STEPNC-101 another bottom condition ("<what_prefix><hole> with <bottom>");
+// STEPNC-102 a point angle that is not the cone's; STEPNC-016 a point that leaves a cone in a
+// blind bottom another operation has to finish.
+[[nodiscard]] std::optional<double> read_drill_bottom(Reader& reader, const p21::Instance& hole,
+                                                      const p21::Instance& bottom, double depth,
+                                                      const Tool& tool, bool pointed,
+                                                      std::string_view what_prefix);
+// Diagnostics: STEPNC-102 a cutting edge shorter than the depth the tip goes to.
+[[nodiscard]] bool check_drill_edge(Reader& reader, const Tool& tool, double bottom_z,
+                                    const p21::Instance& hole);
+
+// Diagnostics (and Reader::read_depth's, read_tool's):
+// - STEPNC-101: an operation that is not drilling-type, or one of them the generator does not
+//   know; a taper (change_in_diameter); a bottom condition other than through, conical or blind;
+//   a test cut or waiting position (boring, reaming); a drilling strategy or feed_on_retract
+//   with a tap, reamer or boring cycle.
+// - STEPNC-102: a tool larger than the hole (+ tolerance); a reamer or tap smaller than it
+//   (- tolerance); a point angle that is not a conical bottom's; a cutting edge shorter than the
+//   depth; a tap whose hand is not the spindle's direction.
+// - STEPNC-103: no diameter or bottom condition; no feed rate; a cutting_depth outside the hole;
+//   a retract plane not above the hole; a negative dwell; a strategy ratio that is not positive;
+//   pecks that are not positive (or a negative retract distance); more pecks than the motion
+//   limit; a tap without spindle speed.
+// - STEPNC-016: a drill's point leaving a cone in a blind bottom.
+[[nodiscard]] bool read_hole(Reader& reader, HoleSpec& spec);
+
+// Diagnostics: STEPNC-103 more motions than the motion limit.
+[[nodiscard]] bool plan_hole(const HoleSpec& spec, Draft& draft);
+
+}  // namespace ncpost::stepnc::features
