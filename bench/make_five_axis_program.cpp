@@ -11,6 +11,19 @@
 #include <numbers>
 #include <string>
 
+namespace {
+
+// "#first,#first+step,..." (count ids).
+void append_ids(std::string& out, long first, long step, long count) {
+  for (long i = 0; i < count; ++i) {
+    if (i) out += ',';
+    out += '#';
+    out += std::to_string(first + i * step);
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::cerr << "usage: make_five_axis_program WORKINGSTEPS POINTS > program.stp\n";
@@ -35,10 +48,11 @@ int main(int argc, char** argv) {
       "'make_five_axis_program','');\nFILE_SCHEMA(('MACHINING_SCHEMA','MILLING_SCHEMA'));\n"
       "ENDSEC;\nDATA;\n";
   // Fixed part (ids below 100): project, setup, tool, technology, security plane, placement.
-  std::string list;
-  for (long w = 0; w < workingsteps; ++w) list += (w ? ",#" : "#") + std::to_string(1000 + w * 10);
   add("#1=PROJECT('FIVE AXIS BENCH',#2,(#50),$,$,$);");
-  add("#2=WORKPLAN('MAIN',(%s),$,#8,$);", list.c_str());
+  // Appended directly: an id list can be longer than `line`.
+  out += "#2=WORKPLAN('MAIN',(";
+  append_ids(out, 1000, 10, workingsteps);
+  out += "),$,#8,$);\n";
   out +=
       "#8=SETUP('SETUP',#63,#60,(#9));\n#9=WORKPIECE_SETUP(#50,#63,$,$,());\n"
       "#50=WORKPIECE('BLANK',$,$,$,$,$,());\n"
@@ -64,7 +78,6 @@ int main(int argc, char** argv) {
     add("#%ld=TOOLPATH_LIST((#%ld));", base + 3, base + 4);
     add("#%ld=CUTTER_LOCATION_TRAJECTORY(.T.,.TRAJECTORY_PATH.,$,$,$,$,#%ld,#%ld,$);", base + 4,
         base + 5, base + 6);
-    std::string path, axes;
     const long first_point = id;
     for (long p = 0; p < points; ++p) {
       const double t = static_cast<double>(p) / static_cast<double>(points);
@@ -82,12 +95,14 @@ int main(int argc, char** argv) {
       add("#%ld=CARTESIAN_POINT('',(%.9f,%.9f,%.9f));", id++, std::sin(a) * std::cos(c),
           std::sin(a) * std::sin(c), std::cos(a));
     }
-    for (long p = 0; p < points; ++p) {
-      path += (p ? ",#" : "#") + std::to_string(first_point + p);
-      axes += (p ? ",#" : "#") + std::to_string(first_axis + p);
-    }
-    out += "#" + std::to_string(base + 5) + "=POLYLINE('PATH',(" + path + "));\n";
-    out += "#" + std::to_string(base + 6) + "=POLYLINE('AXES',(" + axes + "));\n";
+    add("#%ld=POLYLINE('PATH',(", base + 5);
+    out.pop_back();  // the newline add() wrote
+    append_ids(out, first_point, 1, points);
+    out += "));\n";
+    add("#%ld=POLYLINE('AXES',(", base + 6);
+    out.pop_back();
+    append_ids(out, first_axis, 1, points);
+    out += "));\n";
   }
   out += "ENDSEC;\nEND-ISO-10303-21;\n";
   std::fwrite(out.data(), 1, out.size(), stdout);
