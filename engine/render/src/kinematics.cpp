@@ -233,9 +233,7 @@ Kinematics::Choice Kinematics::choose(const canon::Direction& axis,
     double tilt;
   };
   std::vector<Reachable> reachable;
-  std::string tried;
   for (const Candidate& c : found) {
-    tried += (tried.empty() ? "" : " or ") + describe(machine_, c.angles);
     const auto primary = wrap(machine_.primary, c.angles.primary, previous.primary);
     const auto secondary = wrap(machine_.secondary, c.angles.secondary, previous.secondary);
     if (!primary || !secondary) continue;
@@ -245,6 +243,10 @@ Kinematics::Choice Kinematics::choose(const canon::Direction& axis,
          tilt_is_primary ? p.primary : p.secondary});
   }
   if (reachable.empty()) {
+    // Worded only here: formatting the candidates of every motion cost a third of a post.
+    std::string tried;
+    for (const Candidate& c : found)
+      tried += (tried.empty() ? "" : " or ") + describe(machine_, c.angles);
     choice.refusal = "the tool axis " + describe(axis) + " needs " + tried + ", outside " +
                      describe_limits(machine_.primary) + ", " + describe_limits(machine_.secondary);
     return choice;
