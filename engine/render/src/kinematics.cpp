@@ -4,6 +4,7 @@
 #include "ncpost/render/kinematics.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -192,12 +193,17 @@ std::vector<Kinematics::Candidate> Kinematics::candidates(const canon::Direction
   const bool singular = length(v_across) <= machine_.pole_tolerance;
   // On the pole the two tilts coincide: exactly, not within rounding.
   const double delta = singular ? (s > 0 ? 0.0 : std::numbers::pi) : std::acos(s);
-  std::vector<double> tilts{gamma + delta};
-  if (std::abs(normalised((2 * delta) / kDegree)) > kAngleEpsilon) tilts.push_back(gamma - delta);
+  // Fixed arrays here and in choose(): this runs once per motion, and heap allocations were
+  // a noticeable part of it.
+  const std::array<double, 2> tilts{gamma + delta, gamma - delta};
+  const std::size_t tilt_count =
+      std::abs(normalised((2 * delta) / kDegree)) > kAngleEpsilon ? 2 : 1;
   const double previous_outer = f.outer_is_primary ? previous.primary : previous.secondary;
 
   std::vector<Candidate> out;
-  for (const double beta : tilts) {
+  out.reserve(tilt_count);
+  for (std::size_t t = 0; t < tilt_count; ++t) {
+    const double beta = tilts[t];
     double outer_position = previous_outer;
     if (!singular) {
       const Vec w = rotate(kZ, tilt_axis, beta / kDegree);
@@ -232,17 +238,18 @@ Kinematics::Choice Kinematics::choose(const canon::Direction& axis,
     double cost;
     double tilt;
   };
-  std::vector<Reachable> reachable;
+  std::array<Reachable, 2> reachable{};
+  std::size_t reachable_count = 0;
   for (const Candidate& c : found) {
     const auto primary = wrap(machine_.primary, c.angles.primary, previous.primary);
     const auto secondary = wrap(machine_.secondary, c.angles.secondary, previous.secondary);
     if (!primary || !secondary) continue;
     const RotaryPositions p{*primary, *secondary};
-    reachable.push_back(
-        {p, std::abs(p.primary - previous.primary) + std::abs(p.secondary - previous.secondary),
-         tilt_is_primary ? p.primary : p.secondary});
+    reachable[reachable_count++] = {
+        p, std::abs(p.primary - previous.primary) + std::abs(p.secondary - previous.secondary),
+        tilt_is_primary ? p.primary : p.secondary};
   }
-  if (reachable.empty()) {
+  if (reachable_count == 0) {
     // Worded only here: formatting the candidates of every motion cost a third of a post.
     std::string tried;
     for (const Candidate& c : found)
@@ -269,7 +276,8 @@ Kinematics::Choice Kinematics::choose(const canon::Direction& axis,
     if (std::abs(x.cost - y.cost) > kAngleEpsilon) return x.cost < y.cost;
     return x.tilt > y.tilt;
   };
-  choice.positions = std::min_element(reachable.begin(), reachable.end(), better)->positions;
+  choice.positions =
+      std::min_element(reachable.begin(), reachable.begin() + reachable_count, better)->positions;
   return choice;
 }
 
