@@ -489,6 +489,11 @@ std::optional<Profile> parse_profile(std::string_view text,
       p.limits.severity = *v == "error" ? diag::Severity::Error : diag::Severity::Warning;
   }
   p.kinematics = read_kinematics(c, doc);
+  // The kinematics turn tool axes given in program axes, while a set-up rotation turns only
+  // the points the stylesheet writes (ext:setup-x/y/z): together they would disagree, so a
+  // five-axis profile's set-up may only translate (docs/kinematics.md).
+  if (p.kinematics && p.setup.matrix != xslt::SetupTransform{}.matrix)
+    c.fail("/setup", "with kinematics the set-up may only translate (angle 0, identity matrix)");
   if (!c.ok()) return std::nullopt;
   return p;
 }
