@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <unordered_set>
+#include <utility>
 
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/stepnc/attributes.hpp"
@@ -255,7 +256,9 @@ class Inspector {
     auto it = std::find_if(info_.tools.begin(), info_.tools.end(),
                            [&](const ToolUse& t) { return t.self.id == tool.id; });
     if (it == info_.tools.end()) {
-      info_.tools.push_back({ref(tool), {}});
+      ToolUse use;  // the AIM details stay empty here: engine/ap238 fills them
+      use.self = ref(tool);
+      info_.tools.push_back(std::move(use));
       it = info_.tools.end() - 1;
     }
     it->used_by.push_back(user.id);

@@ -72,15 +72,16 @@ bool read_thread(Reader& reader, double& major, ThreadSpec& spec) {
   const auto major_diameter = reader.number(thread, "major_diameter");
   const Instance* count = reader.ref(thread, "number_of_threads", "numeric_parameter");
   const Instance* hand = reader.ref(thread, "thread_hand", "descriptive_parameter");
-  const auto threads = count ? reader.number(*count, "its_parameter_value") : std::nullopt;
-  if (!major_diameter || !(*major_diameter > 0) || !threads || !(*threads > 0) || hand == nullptr)
+  // 0 when missing (refused below); a plain double, which GCC does not think uninitialised.
+  const double threads = count ? reader.number(*count, "its_parameter_value").value_or(0.0) : 0.0;
+  if (!major_diameter || !(*major_diameter > 0) || !(threads > 0) || hand == nullptr)
     return report.bad(reader.subject(thread),
                       reader.name(thread) +
                           " needs a positive major_diameter and number_of_threads, and a "
                           "thread_hand");
   if (!reader.size_ok(thread, *major_diameter, "major_diameter")) return false;
   major = *major_diameter;
-  const auto pitch = read_pitch(reader, *count, *threads);
+  const auto pitch = read_pitch(reader, *count, threads);
   if (!pitch) return false;
   spec.pitch = *pitch;
   const std::string hand_text = upper_no_space(reader.text(*hand, "descriptive_string"));
