@@ -248,9 +248,10 @@ TEST(HttpDiagnostics, AnUploadsDiagnosticsAreBoundedAndItsMemoryGivenBack) {
   const std::uint64_t after = resident_bytes(server.pid());
   RecordProperty("resident_before_mb", std::to_string(before >> 20));
   RecordProperty("resident_after_mb", std::to_string(after >> 20));
-  if (kCheckResident)
+  if (kCheckResident) {
     EXPECT_LT(after, before + (std::uint64_t{96} << 20))
         << "resident " << (before >> 20) << " MB before, " << (after >> 20) << " MB after";
+  }
   expect_serving(server);
 }
 
