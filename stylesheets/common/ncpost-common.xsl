@@ -12,6 +12,11 @@
   <xsl:param name="arcs" select="'ijk'"/>
   <!-- The tool in the spindle when this chunk starts (0: none). -->
   <xsl:param name="tool" select="'0'"/>
+  <!-- Five-axis profiles (profile.json kinematics, docs/kinematics.md): the rotary addresses
+       the motions carry ('AC', 'BC', ...; all three otherwise) and whether the control keeps
+       the tool tip on the programmed point ('yes': TRAORI, G43.4, M128). -->
+  <xsl:param name="rotary_axes" select="'ABC'"/>
+  <xsl:param name="tcp" select="'no'"/>
   <!-- 'yes' when every block starts with N and a block number: the profile's
        block_numbers.numbered (profile.json), which ext:block-line() follows. -->
   <xsl:variable name="numbered" select="ext:block-numbering()"/>
@@ -34,7 +39,8 @@
     </xsl:call-template>
   </xsl:template>
 
-  <!-- " X.. Y.. Z.." of a point, through the machine set-up, plus rotary axes when present. -->
+  <!-- " X.. Y.. Z.." of a point, through the machine set-up, plus the machine's rotary axes
+       when present. -->
   <xsl:template name="xyz">
     <xsl:param name="x" select="@x"/>
     <xsl:param name="y" select="@y"/>
@@ -42,9 +48,9 @@
     <xsl:value-of select="concat(' X', ext:format(ext:setup-x($x, $y, $z), 'length'),
                                  ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
                                  ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))"/>
-    <xsl:if test="@a"><xsl:value-of select="concat(' A', ext:format(@a, 'angle'))"/></xsl:if>
-    <xsl:if test="@b"><xsl:value-of select="concat(' B', ext:format(@b, 'angle'))"/></xsl:if>
-    <xsl:if test="@c"><xsl:value-of select="concat(' C', ext:format(@c, 'angle'))"/></xsl:if>
+    <xsl:if test="@a and contains($rotary_axes, 'A')"><xsl:value-of select="concat(' A', ext:format(@a, 'angle'))"/></xsl:if>
+    <xsl:if test="@b and contains($rotary_axes, 'B')"><xsl:value-of select="concat(' B', ext:format(@b, 'angle'))"/></xsl:if>
+    <xsl:if test="@c and contains($rotary_axes, 'C')"><xsl:value-of select="concat(' C', ext:format(@c, 'angle'))"/></xsl:if>
   </xsl:template>
 
   <!-- Structure -->

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
+#include <vector>
 
 #include "corpus.hpp"
 #include "golden.hpp"
@@ -59,9 +61,26 @@ TEST(GoldenPost, TraceCases) {
     }
 }
 
+// The five-axis profiles (profile.json kinematics, docs/kinematics.md): the trace cases and
+// the five-axis case with its tool-axis curve.
+const char* const kFiveAxisProfiles[] = {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"};
+
+TEST(GoldenPost, FiveAxisProfiles) {
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
+  for (const char* profile_id : kFiveAxisProfiles)
+    for (const char* name : {"curves", "placement-rotated-setup", "executables", "five-axis"}) {
+      SCOPED_TRACE(std::string(profile_id) + " " + name);
+      expect_golden(post(cases / (std::string(name) + ".stp"), profile_id),
+                    test::source_dir() / "tests" / "golden" / "post" / profile_id /
+                        (std::string(name) + ".nc"));
+    }
+}
+
 TEST(GoldenPost, NistEx1E) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
-  for (const char* profile_id : kProfiles) {
+  std::vector<const char*> all(std::begin(kProfiles), std::end(kProfiles));
+  all.insert(all.end(), std::begin(kFiveAxisProfiles), std::end(kFiveAxisProfiles));
+  for (const char* profile_id : all) {
     SCOPED_TRACE(profile_id);
     expect_golden(
         post(corpus / "p21" / "nist_toolkit_ex1E.stp", profile_id),

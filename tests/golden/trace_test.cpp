@@ -162,7 +162,7 @@ TEST_P(TraceGolden, MatchesItsTraceFile) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, TraceGolden,
                          ::testing::Values("placement-rotated-setup", "curves", "executables",
-                                           "errors"),
+                                           "errors", "five-axis"),
                          [](const auto& param_info) {
                            std::string n = param_info.param;
                            for (char& c : n)

@@ -6,11 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <optional>
 #include <regex>
 #include <sstream>
 
 #include "corpus.hpp"
+#include "forward_kinematics.hpp"
 #include "ncpost/ap238/ap238.hpp"
 #include "ncpost/canon/cycle.hpp"
 #include "ncpost/express/registry.hpp"
@@ -25,6 +28,8 @@ std::string describe(const Motion& m) {
   s << m.kind << "(";
   for (std::size_t i = 0; i < m.values.size(); ++i) s << (i ? ", " : "") << m.values[i];
   s << ") F" << m.feed;
+  if (m.axis.size() == 3)
+    s << " axis (" << m.axis[0] << ", " << m.axis[1] << ", " << m.axis[2] << ")";
   return s.str();
 }
 
@@ -38,8 +43,47 @@ canon::Point Motions::map(canon::Point p) const {
           m[6] * p.x + m[7] * p.y + m[8] * p.z + t[2]};
 }
 
+void Motions::push(Motion m) {
+  if (options_.kinematics) m.axis = axis_;
+  motions.push_back(std::move(m));
+}
+
+void Motions::follow_orientation(const canon::Pose& pose) {
+  if (!options_.kinematics) return;
+  if (!options_.posted) {
+    if (!pose.tool_axis) return;
+    const auto& v = *pose.tool_axis;
+    const double size = std::hypot(v.i, v.j, v.k);
+    if (size > 0) axis_ = {v.i / size, v.j / size, v.k / size};
+    return;
+  }
+  if (pose.rotary) rotary_ = *pose.rotary;
+  const auto tool = test::forward(*options_.kinematics, {0, 0, 0}, rotary_, 0);
+  axis_ = {tool.axis[0], tool.axis[1], tool.axis[2]};
+}
+
+canon::Point Motions::program_point(const canon::Point& p) const {
+  if (!options_.kinematics || !options_.posted || options_.kinematics->tool_centre_point) return p;
+  const auto tool = test::forward(*options_.kinematics, {p.x, p.y, p.z}, rotary_, tool_length_,
+                                  options_.pivot_scale);
+  return {tool.tip[0], tool.tip[1], tool.tip[2]};
+}
+
 void Motions::add_arc(const canon::ArcFeed& original) {
   canon::ArcFeed arc = original;
+  follow_orientation(arc.end);
+  if (options_.kinematics && options_.posted && !options_.kinematics->tool_centre_point) {
+    // A posted arc in machine positions: its end, centre and normal back in the program's.
+    const canon::Point end = program_point({arc.end.x, arc.end.y, arc.end.z});
+    const canon::Point centre = program_point(arc.centre);
+    const canon::Point tip = program_point(
+        {arc.centre.x + arc.normal.i, arc.centre.y + arc.normal.j, arc.centre.z + arc.normal.k});
+    arc.end.x = end.x;
+    arc.end.y = end.y;
+    arc.end.z = end.z;
+    arc.centre = centre;
+    arc.normal = {tip.x - centre.x, tip.y - centre.y, tip.z - centre.z};
+  }
   if (options_.setup) {
     // A rotation keeps the turn count's sense relative to the (rotated) normal.
     const auto e = map({arc.end.x, arc.end.y, arc.end.z});
@@ -79,42 +123,60 @@ void Motions::add_arc(const canon::ArcFeed& original) {
                                  ? end
                                  : canon::Point{cx + r * std::cos(angle), cy + r * std::sin(angle),
                                                 z0 + (end.z - z0) * t};
-      motions.push_back(
-          {"ARC_FEED", {q.x, q.y, cx, cy, double(p->rotation > 0 ? 1 : -1), q.z}, feed_, q});
+      push({"ARC_FEED", {q.x, q.y, cx, cy, double(p->rotation > 0 ? 1 : -1), q.z}, feed_, q});
     }
   } else {
-    motions.push_back({"ARC_FEED",
-                       {p->first_end, p->second_end, p->first_axis, p->second_axis,
-                        double(p->rotation), p->axis_end_point},
-                       feed_,
-                       end});
+    push({"ARC_FEED",
+          {p->first_end, p->second_end, p->first_axis, p->second_axis, double(p->rotation),
+           p->axis_end_point},
+          feed_,
+          end});
   }
   position_ = end;
 }
 
 void Motions::call(const canon::Call& call) {
   if (const auto* f = std::get_if<canon::SetFeedRate>(&call)) feed_ = f->rate;
+  if (const auto* l = std::get_if<canon::UseToolLengthOffset>(&call)) tool_length_ = l->length;
   if (const auto* t = std::get_if<canon::StraightTraverse>(&call)) {
-    position_ = map({t->to.x, t->to.y, t->to.z});
-    motions.push_back({"STRAIGHT_TRAVERSE", {position_.x, position_.y, position_.z}, feed_});
+    follow_orientation(t->to);
+    position_ = map(program_point({t->to.x, t->to.y, t->to.z}));
+    push({"STRAIGHT_TRAVERSE", {position_.x, position_.y, position_.z}, feed_});
   }
   if (const auto* t = std::get_if<canon::StraightFeed>(&call)) {
-    position_ = map({t->to.x, t->to.y, t->to.z});
-    motions.push_back({"STRAIGHT_FEED", {position_.x, position_.y, position_.z}, feed_});
+    follow_orientation(t->to);
+    position_ = map(program_point({t->to.x, t->to.y, t->to.z}));
+    push({"STRAIGHT_FEED", {position_.x, position_.y, position_.z}, feed_});
   }
   if (const auto* a = std::get_if<canon::ArcFeed>(&call)) add_arc(*a);
-  if (const auto* n = std::get_if<canon::NurbsFeed>(&call); n && options_.nurbs_samples > 0) {
+  const auto* original = std::get_if<canon::NurbsFeed>(&call);
+  std::optional<canon::NurbsFeed> n;
+  if (original) {
+    n = *original;
+    canon::Pose end{};
+    end.rotary = n->rotary;
+    end.tool_axis = n->tool_axis;
+    follow_orientation(end);
+    for (auto& q : n->points) {
+      const canon::Point p = program_point({q.x, q.y, q.z});
+      q.x = p.x;
+      q.y = p.y;
+      q.z = p.z;
+    }
+  }
+  if (n && options_.nurbs_samples > 0) {
     Motion m{"NURBS_FEED", {}, feed_};
     for (const auto& q : sample(*n, options_.nurbs_samples)) {
       position_ = map(q);
       m.values.insert(m.values.end(), {position_.x, position_.y, position_.z});
     }
-    motions.push_back(std::move(m));
-  } else if (n)
+    push(std::move(m));
+  } else if (n) {
     for (const auto& q : linearize(*n, options_.chord_tolerance)) {
       position_ = map(q);
-      motions.push_back({"STRAIGHT_FEED", {position_.x, position_.y, position_.z}, feed_});
+      push({"STRAIGHT_FEED", {position_.x, position_.y, position_.z}, feed_});
     }
+  }
   // The expansion is a program of its own (its feed included); the feed in force after it is
   // the expansion's last, as for a controller running the cycle.
   if (const auto* c = std::get_if<canon::Cycle>(&call)) (void)canon::expand_cycle(*c, *this);
@@ -123,6 +185,7 @@ void Motions::call(const canon::Call& call) {
 MotionOptions options_for(const profile::Profile& profile) {
   MotionOptions o;
   o.chord_tolerance = profile.chord_tolerance;
+  if (profile.kinematics) o.kinematics = &*profile.kinematics;
   return o;
 }
 
@@ -135,6 +198,15 @@ std::vector<canon::Point> sample(const canon::NurbsFeed& nurbs, int count) {
     out.push_back(render::nurbs_point(nurbs, u0 + (u1 - u0) * double(k) / double(count - 1)));
   return out;
 }
+
+namespace {
+bool same_direction(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (std::abs(a[i] - b[i]) > 1e-9) return false;
+  return true;
+}
+}  // namespace
 
 std::vector<Motion> normalised(const std::vector<Motion>& motions) {
   std::vector<Motion> out;
@@ -149,8 +221,10 @@ std::vector<Motion> normalised(const std::vector<Motion>& motions) {
       continue;
     }
     const canon::Point to{m.values[0], m.values[1], m.values[2]};
-    if (known_at && to == at) continue;
-    if (m.kind == "STRAIGHT_TRAVERSE" && known_from && known_at &&
+    // A five-axis motion that only turns the tool is a motion.
+    const bool same_axis = known_at && same_direction(m.axis, out.back().axis);
+    if (known_at && to == at && same_axis) continue;
+    if (m.kind == "STRAIGHT_TRAVERSE" && known_from && known_at && same_axis &&
         out.back().kind == "STRAIGHT_TRAVERSE") {
       const double ax = at.x - from.x, ay = at.y - from.y, az = at.z - from.z;
       const double bx = to.x - at.x, by = to.y - at.y, bz = to.z - at.z;
@@ -197,7 +271,7 @@ std::vector<canon::Point> linearize(const canon::NurbsFeed& nurbs, double tolera
 }
 
 Comparison compare_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
-                           const std::string& who, bool compare_feeds) {
+                           const std::string& who, bool compare_feeds, double axis_tolerance) {
   Comparison c;
   if (ours.size() != theirs.size())
     c.differences.push_back("motion count: ours " + std::to_string(ours.size()) + ", " + who + " " +
@@ -226,37 +300,64 @@ Comparison compare_motions(const std::vector<Motion>& ours, const std::vector<Mo
       c.differences.push_back("motion " + std::to_string(i) + ": ours " + describe(a) + ", " + who +
                               " " + describe(b));
     c.outcome.max_deviation = std::max({c.outcome.max_deviation, dev, position});
+    if (a.axis.size() != b.axis.size()) {
+      c.differences.push_back("motion " + std::to_string(i) +
+                              ": a tool axis on one side only: ours " + describe(a) + ", " + who +
+                              " " + describe(b));
+      continue;
+    }
+    double axis_dev = 0;
+    for (std::size_t k = 0; k < a.axis.size(); ++k)
+      axis_dev = std::max(axis_dev, std::abs(a.axis[k] - b.axis[k]));
+    if (axis_dev > axis_tolerance)
+      c.differences.push_back("tool axis of motion " + std::to_string(i) + ": ours " + describe(a) +
+                              ", " + who + " " + describe(b));
+    c.outcome.max_axis_deviation = std::max(c.outcome.max_axis_deviation, axis_dev);
   }
   c.outcome.compared = n;
   return c;
 }
 
 Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
-                            const std::string& who) {
-  const Comparison c = compare_motions(ours, theirs, who);
+                            const std::string& who, double axis_tolerance) {
+  const Comparison c = compare_motions(ours, theirs, who, true, axis_tolerance);
   for (const auto& d : c.differences) ADD_FAILURE() << d;
   return c.outcome;
 }
 
-std::vector<Motion> parse_rs274(const std::string& text) {
+namespace {
+
+// Calls `each(name, arguments, numbers)` for every call line of rs274's canonical output.
+template <class Each>
+void for_each_rs274_call(const std::string& text, Each&& each) {
   static const std::regex line(R"(^\s*(?:\d+\s+)?N(?:\.\.\.\.\.|\d+)\s+([A-Z_0-9]+)\((.*)\)\s*$)");
-  std::vector<Motion> out;
-  double feed = 0;
-  std::string plane = "CANON_PLANE_XY";
   std::istringstream in(text);
   std::string s;
   while (std::getline(in, s)) {
     std::smatch m;
     if (!std::regex_match(s, m, line)) continue;
     const std::string name = m[1];
-    if (name == "SELECT_PLANE") plane = m[2];
-    std::vector<double> args;
-    std::string arg;
-    std::istringstream a(m[2]);
-    while (std::getline(a, arg, ',')) args.push_back(std::strtod(arg.c_str(), nullptr));
+    const std::string arguments = m[2];
+    std::vector<double> numbers;
+    std::string number;
+    std::istringstream a(arguments);
+    while (std::getline(a, number, ',')) numbers.push_back(std::strtod(number.c_str(), nullptr));
+    each(name, arguments, numbers);
+  }
+}
+
+}  // namespace
+
+std::vector<Motion> parse_rs274(const std::string& text) {
+  std::vector<Motion> out;
+  double feed = 0;
+  std::string plane = "CANON_PLANE_XY";
+  for_each_rs274_call(text, [&](const std::string& name, const std::string& arguments,
+                                std::vector<double> args) {
+    if (name == "SELECT_PLANE") plane = arguments;
     if (name == "SET_FEED_RATE" && !args.empty()) feed = args[0];
     if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED") {
-      args.resize(3);  // x, y, z; a, b, c are compared by the callers that need them
+      args.resize(3);  // x, y, z; a, b, c are read by parse_rs274_calls for those that need them
       out.push_back({name, args, feed});
     } else if (name == "ARC_FEED") {
       args.resize(6);  // first_end, second_end, first_axis, second_axis, rotation, axis_end_point
@@ -269,7 +370,51 @@ std::vector<Motion> parse_rs274(const std::string& text) {
     } else if (name == "NURBS_FEED") {
       out.push_back({name, {}, feed});
     }
-  }
+  });
+  return out;
+}
+
+std::vector<canon::Call> parse_rs274_calls(const std::string& text,
+                                           const std::map<int, double>& tool_lengths,
+                                           double length_scale) {
+  std::vector<canon::Call> out;
+  canon::Plane plane = canon::Plane::Xy;
+  int selected = 0, tool = 0;
+  for_each_rs274_call(text, [&](const std::string& name, const std::string& arguments,
+                                const std::vector<double>& args) {
+    const auto rotary = [&](std::size_t first) {
+      return canon::Rotary{args[first], args[first + 1], args[first + 2]};
+    };
+    if (name == "SET_FEED_RATE" && !args.empty())
+      out.emplace_back(canon::SetFeedRate{args[0] * length_scale});
+    if (name == "SELECT_PLANE")
+      plane = arguments.find("YZ") != std::string::npos   ? canon::Plane::Yz
+              : arguments.find("XZ") != std::string::npos ? canon::Plane::Xz
+                                                          : canon::Plane::Xy;
+    // SELECT_TOOL names the tool; CHANGE_TOOL prints its index in the tool table.
+    if (name == "SELECT_TOOL" && !args.empty()) selected = static_cast<int>(args[0]);
+    if (name == "CHANGE_TOOL") tool = selected;
+    if (name == "USE_TOOL_LENGTH_OFFSET") {
+      const auto length = tool_lengths.find(tool);
+      out.emplace_back(
+          canon::UseToolLengthOffset{length != tool_lengths.end() ? length->second : 0.0});
+    }
+    if ((name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED") && args.size() >= 6) {
+      const canon::Pose to{args[0] * length_scale, args[1] * length_scale, args[2] * length_scale,
+                           rotary(3), std::nullopt};
+      if (name == "STRAIGHT_TRAVERSE")
+        out.emplace_back(canon::StraightTraverse{to});
+      else
+        out.emplace_back(canon::StraightFeed{to});
+    } else if (name == "ARC_FEED" && args.size() >= 9) {
+      // first_end, second_end, first_axis, second_axis, rotation, axis_end_point, a, b, c
+      canon::ArcFeed arc = canon::arc_from_plane(
+          {plane, args[0] * length_scale, args[1] * length_scale, args[2] * length_scale,
+           args[3] * length_scale, static_cast<int>(args[4]), args[5] * length_scale});
+      arc.end.rotary = rotary(6);
+      out.emplace_back(arc);
+    }
+  });
   return out;
 }
 
@@ -368,6 +513,7 @@ std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
 
 ReadBackOptions read_back_options(const std::string& profile_id, const profile::Profile& p) {
   ReadBackOptions c{options_for(p), options_for(p)};
+  c.theirs.posted = true;  // five-axis: rotary (and machine) positions, turned back
   if (p.nurbs == profile::NurbsMode::Native) {
     c.ours.nurbs_samples = kNurbsSamples;
     c.theirs.nurbs_samples = kNurbsSamples;
@@ -451,6 +597,56 @@ std::shared_ptr<const profile::LoadedProfile> load_profile(const std::string& id
   auto p = store.load(id, diagnostics);
   EXPECT_TRUE(p) << id;
   return p;
+}
+
+// A five-axis program by hand: tilts in every direction, a wrap of the rotating axis, an arc
+// and a NURBS with the tool tilted (they keep the orientation in force), and back to the pole.
+std::vector<canon::Call> five_axis_program() {
+  using canon::Direction;
+  std::vector<canon::Call> calls;
+  calls.emplace_back(canon::Begin{canon::Scope::Project, {1, "PROJECT", "FIVE"}});
+  calls.emplace_back(canon::UseLengthUnits{canon::Units::Millimetres});
+  calls.emplace_back(canon::SelectPlane{canon::Plane::Xy});
+  calls.emplace_back(canon::Begin{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "5X"}});
+  calls.emplace_back(canon::SelectTool{4});
+  calls.emplace_back(canon::ChangeTool{4});
+  calls.emplace_back(canon::UseToolLengthOffset{82.5});
+  calls.emplace_back(canon::SetSpindleSpeed{9000});
+  calls.emplace_back(canon::StartSpindleClockwise{});
+  calls.emplace_back(canon::StraightTraverse{{0, 0, 60}});
+  calls.emplace_back(canon::SetFeedRate{800});
+  const double s = std::sin(25 * std::numbers::pi / 180), c = std::cos(25 * std::numbers::pi / 180);
+  const auto feed = [&](double x, double y, double z, Direction d) {
+    calls.emplace_back(canon::StraightFeed{{x, y, z, std::nullopt, d}});
+  };
+  feed(0, 0, 10, {0, 0, 1});
+  for (int step = 0; step <= 8; ++step) {  // round Z in eighths of a turn, twice past +-180
+    const double a = step * std::numbers::pi / 4;
+    feed(10 * std::cos(a), 10 * std::sin(a), 5 - 0.5 * step, {s * std::cos(a), s * std::sin(a), c});
+  }
+  // An arc and a NURBS with the tool at 25 degrees towards +X (both keep it).
+  feed(20, 0, 0, {s, 0, c});
+  canon::ArcFeed arc;
+  arc.end = {30, 10, 0};
+  arc.centre = {30, 0, 0};
+  arc.normal = {0, 0, 1};
+  arc.turns = 1;
+  calls.emplace_back(arc);
+  canon::NurbsFeed nurbs;
+  nurbs.degree = 2;
+  nurbs.points = {{30, 10, 0, 1}, {30, 20, 0, 0.8}, {40, 20, -2, 1}};
+  nurbs.knots = {0, 0, 0, 1, 1, 1};
+  nurbs.tool_axis = Direction{s, 0, c};
+  calls.emplace_back(nurbs);
+  // A slanted line and back to the pole.
+  feed(50, 20, -2, {-0.3, 0.4, std::sqrt(1 - 0.25)});
+  feed(50, 20, 20, {0, 0, 1});
+  calls.emplace_back(canon::StraightTraverse{{50, 20, 60}});
+  calls.emplace_back(canon::End{canon::Scope::Workingstep, {2, "MACHINING_WORKINGSTEP", "5X"}});
+  calls.emplace_back(canon::StopSpindleTurning{});
+  calls.emplace_back(canon::ProgramEnd{});
+  calls.emplace_back(canon::End{canon::Scope::Project, {1, "PROJECT", "FIVE"}});
+  return calls;
 }
 
 }  // namespace ncpost::interop

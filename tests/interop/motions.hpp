@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,6 +20,9 @@ namespace ncpost::interop {
 
 // Largest difference allowed between a motion read back and ours (program units, mm/min).
 inline constexpr double kTolerance = 0.001;
+// Largest difference allowed between the tool axes (unit vectors, per component) of a
+// five-axis post read back through the forward kinematics and ours (docs/kinematics.md).
+inline constexpr double kAxisTolerance = 1e-6;
 
 // One motion: "STRAIGHT_TRAVERSE" or "STRAIGHT_FEED" with x y z, or "ARC_FEED" with rs274's
 // first_end second_end first_axis second_axis rotation axis_end_point; and the feed rate in
@@ -29,6 +33,9 @@ struct Motion {
   double feed = 0;
   // Where an arc ends in X Y Z (its values are in its plane's order), when the reader knows it.
   std::optional<canon::Point> end{};
+  // Five-axis profiles: the tool axis in force at the motion's end (unit, program
+  // coordinates); empty otherwise.
+  std::vector<double> axis{};
 };
 
 [[nodiscard]] std::string describe(const Motion& m);
@@ -48,6 +55,16 @@ struct MotionOptions {
   // the spline itself: the posted spline, read back, is sampled the same way, which is
   // independent of how its knots are shifted or its weights scaled.
   int nurbs_samples = 0;
+  // A five-axis profile's kinematics: every motion carries the tool axis in force (+Z at the
+  // start). Ours (`posted` false): from the calls' tool axes. Posted (`posted` true): the
+  // calls carry the machine's rotary positions and, without tool-centre-point control, its
+  // linear positions; the tests' forward kinematics (tests/common/forward_kinematics.hpp)
+  // turns them back into the tool tip and axis, with the tool length of the last
+  // USE_TOOL_LENGTH_OFFSET.
+  const profile::Kinematics* kinematics = nullptr;
+  bool posted = false;
+  // The profile's length unit in program units (pivots are in the profile's unit).
+  double pivot_scale = 1.0;
 };
 
 // Our canonical program as motions: cycles expanded (canon::expand_cycle), NURBS linearised
@@ -61,9 +78,17 @@ class Motions final : public canon::Sink {
  private:
   [[nodiscard]] canon::Point map(canon::Point p) const;
   void add_arc(const canon::ArcFeed& arc);
+  // Five-axis: the pose's tool axis (ours) or rotary positions (posted) taken into force, and
+  // a posted point turned back into program coordinates.
+  void follow_orientation(const canon::Pose& pose);
+  [[nodiscard]] canon::Point program_point(const canon::Point& p) const;
+  void push(Motion m);
   MotionOptions options_;
   canon::Point position_{};
   double feed_ = 0;
+  std::vector<double> axis_{0, 0, 1};
+  canon::Rotary rotary_{};
+  double tool_length_ = 0;
 };
 
 // The default options for a profile: its chord tolerance, no set-up, no arc split.
@@ -90,27 +115,31 @@ class Motions final : public canon::Sink {
 struct Outcome {
   std::size_t compared = 0;
   double max_deviation = 0;
+  double max_axis_deviation = 0;  // five-axis: tool axes, per component
 };
 
-// What compare_motions found: the motions compared, the largest deviation, and each
+// What compare_motions found: the motions compared, the largest deviations, and each
 // difference (a different count, a different kind — where the comparison stops —, a number or
-// a feed beyond kTolerance) as a message naming the other side.
+// a feed beyond kTolerance, a tool axis beyond the axis tolerance or on one side only) as a
+// message naming the other side.
 struct Comparison {
   Outcome outcome;
   std::vector<std::string> differences;
   [[nodiscard]] bool same() const { return differences.empty(); }
 };
 
-// Compares motion by motion: kind, count, every number, and the feed of feed motions unless
+// Compares motion by motion: kind, count, every number, the feed of feed motions unless
 // `compare_feeds` is false (a program in inverse time or per revolution, whose feeds rs274
-// prints as written while the canonical program has them per minute).
+// prints as written while the canonical program has them per minute), and the tool axis of
+// five-axis motions within `axis_tolerance`.
 [[nodiscard]] Comparison compare_motions(const std::vector<Motion>& ours,
                                          const std::vector<Motion>& theirs, const std::string& who,
-                                         bool compare_feeds = true);
+                                         bool compare_feeds = true,
+                                         double axis_tolerance = kAxisTolerance);
 
-// compare_motions, with a gtest failure for each difference.
+// compare_motions (feeds compared), with a gtest failure for each difference.
 Outcome expect_same_motions(const std::vector<Motion>& ours, const std::vector<Motion>& theirs,
-                            const std::string& who);
+                            const std::string& who, double axis_tolerance = kAxisTolerance);
 
 // ---- LinuxCNC's rs274 -----------------------------------------------------------------------
 
@@ -121,6 +150,16 @@ inline constexpr const char* kRs274 = "/usr/bin/rs274";
 // SET_FEED_RATE in force. NURBS_FEED, which rs274 prints without its numbers, becomes a motion
 // of kind "NURBS_FEED" without values.
 [[nodiscard]] std::vector<Motion> parse_rs274(const std::string& text);
+
+// rs274's canonical output read into canonical calls, for the five-axis profiles (whose motions
+// Motions turns back through the forward kinematics, MotionOptions::posted): feeds, planes,
+// motions with their rotary axes A B C, and the tool length offset, with the length
+// `tool_lengths` gives the tool in the spindle (the tool table rs274 reads has zero lengths:
+// its positions are the programmed ones). Lengths and feeds are multiplied by `length_scale`
+// (rs274 prints millimetres whatever the program's unit: 1/25.4 for an inch program).
+[[nodiscard]] std::vector<canon::Call> parse_rs274_calls(
+    const std::string& text, const std::map<int, double>& tool_lengths = {},
+    double length_scale = 1.0);
 
 struct Rs274Run {
   int status = -1;    // exit status of rs274 (0: the program was accepted)
@@ -183,5 +222,10 @@ inline constexpr int kNurbsSamples = 33;
 // The motions of `calls` with `options`.
 [[nodiscard]] std::vector<Motion> motions_of(const std::vector<canon::Call>& calls,
                                              const MotionOptions& options);
+
+// A five-axis program by hand (for the five-axis profiles): tilts in every direction, the
+// rotating axis twice past +-180 degrees, an arc and a NURBS with the tool tilted, back to the
+// pole.
+[[nodiscard]] std::vector<canon::Call> five_axis_program();
 
 }  // namespace ncpost::interop

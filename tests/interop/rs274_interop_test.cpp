@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -24,6 +25,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The tool table of a program: each tool with the length its USE_TOOL_LENGTH_OFFSET gives it.
+std::map<int, double> tool_lengths(const std::vector<canon::Call>& calls) {
+  std::map<int, double> lengths;
+  int tool = 0;
+  for (const auto& c : calls) {
+    if (const auto* t = std::get_if<canon::ChangeTool>(&c)) tool = t->slot;
+    if (const auto* l = std::get_if<canon::UseToolLengthOffset>(&c); l && l->length != 0)
+      lengths[tool] = l->length;
+  }
+  return lengths;
+}
+
+// rs274 prints angles with 4 decimals: a tool axis read back from them is off by up to about
+// 1.3e-6 (the dialect checker reads the post's own 6 decimals within 1e-6).
+constexpr double kRs274AxisTolerance = 2e-6;
+
 // Ours (the canonical program `posted` was rendered from) against rs274's reading of the text.
 Outcome compare_posted_with_rs274(const Posted& posted, const std::string& case_name,
                                   const std::string& profile_id) {
@@ -35,7 +52,7 @@ Outcome compare_posted_with_rs274(const Posted& posted, const std::string& case_
     if (const auto* t = std::get_if<canon::SelectTool>(&c); t && t->slot > 0) tools.insert(t->slot);
   }
   std::string ngc = posted.text;
-  if (profile_id != "linuxcnc") {
+  if (profile_id.rfind("linuxcnc", 0) != 0) {
     // FANUC's "O0001 (name)" is a subroutine label to LinuxCNC: the one line dropped.
     std::string kept;
     std::istringstream lines(ngc);
@@ -64,20 +81,17 @@ Outcome compare_posted_with_rs274(const Posted& posted, const std::string& case_
   const std::string& canon_text = run.canon;
   EXPECT_NE(canon_text.find("PROGRAM_END()"), std::string::npos) << "rs274 stopped early:\n"
                                                                  << run.log;
-  auto theirs = parse_rs274(canon_text);
   // rs274 prints millimetres whatever the program's unit: an inch program's are scaled back.
   const bool inches = std::any_of(posted.calls.begin(), posted.calls.end(), [](const auto& c) {
     const auto* u = std::get_if<canon::UseLengthUnits>(&c);
     return u && u->units == canon::Units::Inches;
   });
-  for (auto& m : theirs) {
-    if (!inches) break;
-    for (std::size_t i = 0; i < m.values.size(); ++i)
-      if (m.kind != "ARC_FEED" || i != 4) m.values[i] /= 25.4;  // not the turn count
-    m.feed /= 25.4;
-  }
+  MotionOptions read = options_for(posted.profile->profile);
+  read.posted = true;  // five-axis: machine positions, turned back by the forward kinematics
+  const auto theirs = motions_of(
+      parse_rs274_calls(canon_text, tool_lengths(posted.calls), inches ? 1 / 25.4 : 1.0), read);
 
-  const Outcome outcome = expect_same_motions(ours, theirs, "rs274");
+  const Outcome outcome = expect_same_motions(ours, theirs, "rs274", kRs274AxisTolerance);
   std::error_code ec;
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
   return outcome;
@@ -243,6 +257,28 @@ TEST(Rs274Interop, LinuxcncClFiles) {
     ++files;
   }
   EXPECT_EQ(files, 4u);
+}
+
+// A five-axis fork head (C carrying A) without tool-centre-point control: the post moves X Y Z
+// for the pivot and the tool length. rs274 reads A and C like any axis; its motions, turned
+// back by the tests' forward kinematics with the tool table's lengths, are the program's tips
+// and tool axes. Three-axis programs on the same machine stay as they were.
+TEST(Rs274Interop, LinuxcncFiveAxisProfile) {
+  NCPOST_REQUIRE_RS274_OR_SKIP();
+  check_profile("linuxcnc-5ax");
+  const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
+  const auto step_nc = compare_with_rs274(cases / "five-axis.stp", "five-axis", "linuxcnc-5ax");
+  EXPECT_GT(step_nc.compared, 10u);
+  std::printf(
+      "[ rs274    ] linuxcnc-5ax five-axis.stp: %zu motions, max deviation %.6f, tool axes %.2e\n",
+      step_nc.compared, step_nc.max_deviation, step_nc.max_axis_deviation);
+  const auto o = compare_posted_with_rs274(post_calls(five_axis_program(), "linuxcnc-5ax"),
+                                           "five-axis-program", "linuxcnc-5ax");
+  EXPECT_GT(o.compared, 15u);
+  std::printf(
+      "[ rs274    ] linuxcnc-5ax five-axis program: %zu motions, max deviation %.6f, tool axes "
+      "%.2e\n",
+      o.compared, o.max_deviation, o.max_axis_deviation);
 }
 
 }  // namespace

@@ -210,6 +210,98 @@ bool valid_extension(std::string_view text) {
   return true;
 }
 
+// ---- kinematics (docs/kinematics.md) ----
+
+constexpr double kMaxAxisDegrees = 36000;  // a hundred turns either way
+
+std::optional<RotaryAxis> read_rotary_axis(Checker& c, const json& kin, std::string_view role) {
+  const json* a = c.object(kin, "/kinematics", role, true,
+                           {"name", "axis", "direction", "continuous", "min", "max", "pivot"},
+                           {"name", "axis", "direction"});
+  if (!a) return std::nullopt;
+  const std::string path = "/kinematics/" + std::string(role);
+  RotaryAxis axis;
+  bool good = true;
+  if (auto v = c.enumeration(*a, path, "name", {"A", "B", "C"}))
+    axis.name = (*v)[0];
+  else
+    good = false;
+  if (auto v = c.enumeration(*a, path, "axis", {"x", "y", "z"}))
+    axis.axis = *v == "x" ? MachineAxis::X : *v == "y" ? MachineAxis::Y : MachineAxis::Z;
+  else
+    good = false;
+  const auto direction = c.integer(*a, path, "direction", -1, 1);
+  if (direction && *direction != 0) {
+    axis.direction = static_cast<int>(*direction);
+  } else {
+    if (direction) c.fail(path + "/direction", "must be 1 or -1");
+    good = false;
+  }
+  if (auto v = c.boolean(*a, path, "continuous")) axis.continuous = *v;
+  const auto lo = c.number(*a, path, "min", -kMaxAxisDegrees, kMaxAxisDegrees);
+  const auto hi = c.number(*a, path, "max", -kMaxAxisDegrees, kMaxAxisDegrees);
+  if (axis.continuous) {
+    if (a->contains("min") || a->contains("max")) {
+      c.fail(path, "a continuous axis has no min and max");
+      good = false;
+    }
+  } else if (!a->contains("min") || !a->contains("max")) {
+    c.fail(path, "min and max are required unless the axis is continuous");
+    good = false;
+  } else if (lo && hi) {
+    if (*lo >= *hi) {
+      c.fail(path, "min must be less than max");
+      good = false;
+    }
+    axis.min = *lo;
+    axis.max = *hi;
+  }
+  if (auto v = c.vector3(*a, path, "pivot")) axis.pivot = *v;
+  if (!good) return std::nullopt;
+  return axis;
+}
+
+std::optional<Kinematics> read_kinematics(Checker& c, const json& doc) {
+  const json* k = c.object(doc, "", "kinematics", false,
+                           {"type", "primary", "secondary", "solution", "tool_centre_point",
+                            "pole_tolerance", "rotation_warning"},
+                           {"type", "primary", "secondary"});
+  if (!k) return std::nullopt;
+  Kinematics kin;
+  const auto type =
+      c.enumeration(*k, "/kinematics", "type", {"head-head", "table-table", "head-table"});
+  if (type)
+    kin.type = *type == "head-head"     ? KinematicsType::HeadHead
+               : *type == "table-table" ? KinematicsType::TableTable
+                                        : KinematicsType::HeadTable;
+  const auto primary = read_rotary_axis(c, *k, "primary");
+  const auto secondary = read_rotary_axis(c, *k, "secondary");
+  if (auto v = c.enumeration(*k, "/kinematics", "solution",
+                             {"shortest", "positive_tilt", "negative_tilt"}))
+    kin.solution = *v == "shortest"        ? RotarySolution::Shortest
+                   : *v == "positive_tilt" ? RotarySolution::PositiveTilt
+                                           : RotarySolution::NegativeTilt;
+  if (auto v = c.boolean(*k, "/kinematics", "tool_centre_point")) kin.tool_centre_point = *v;
+  if (auto v = c.number(*k, "/kinematics", "pole_tolerance", 0, 1e-3, true))
+    kin.pole_tolerance = *v;
+  if (auto v = c.number(*k, "/kinematics", "rotation_warning", 0, 360)) kin.rotation_warning = *v;
+  if (!type || !primary || !secondary) return std::nullopt;
+  kin.primary = *primary;
+  kin.secondary = *secondary;
+  // The solver needs a tilting axis across the tool (X or Y) and a second axis across that:
+  // docs/kinematics.md, "The machine".
+  const RotaryAxis& tilt = kin.type == KinematicsType::HeadHead ? kin.secondary : kin.primary;
+  if (kin.primary.name == kin.secondary.name)
+    c.fail("/kinematics/secondary/name", "must differ from the primary axis's name");
+  if (kin.primary.axis == kin.secondary.axis)
+    c.fail("/kinematics/secondary/axis", "must differ from the primary axis's machine axis");
+  if (tilt.axis == MachineAxis::Z)
+    c.fail(std::string("/kinematics/") +
+               (kin.type == KinematicsType::HeadHead ? "secondary" : "primary") + "/axis",
+           "the tilting axis must turn about x or y");
+  return kin;
+}
+
 }  // namespace
 
 bool valid_id(std::string_view id) noexcept {
@@ -240,7 +332,7 @@ std::optional<Profile> parse_profile(std::string_view text,
   c.check_keys(
       doc, "",
       {"$schema", "id", "name", "controller", "mode", "output", "block_numbers", "formats", "units",
-       "capabilities", "setup", "limits", "render", "checks"},
+       "capabilities", "setup", "limits", "render", "checks", "kinematics"},
       {"id", "name", "controller", "output", "block_numbers", "formats", "units", "capabilities"});
   if (auto v = c.string(doc, "", "id", 1, 64)) {
     if (valid_id(*v))
@@ -404,6 +496,12 @@ std::optional<Profile> parse_profile(std::string_view text,
     else
       c.fail("/checks", "must be an object");
   }
+  p.kinematics = read_kinematics(c, doc);
+  // The kinematics turn tool axes given in program axes, while a set-up rotation turns only
+  // the points the stylesheet writes (ext:setup-x/y/z): together they would disagree, so a
+  // five-axis profile's set-up may only translate (docs/kinematics.md).
+  if (p.kinematics && p.setup.matrix != xslt::SetupTransform{}.matrix)
+    c.fail("/setup", "with kinematics the set-up may only translate (angle 0, identity matrix)");
   if (!c.ok()) return std::nullopt;
   return p;
 }
@@ -421,6 +519,11 @@ xslt::JobConfig job_config(const Profile& p) {
   if (!p.block_wrap) config.block.maximum = std::numeric_limits<std::int64_t>::max() / 2;
   config.setup = p.setup;
   config.max_line_length = p.limits.max_line_length;
+  if (p.kinematics) {
+    config.rotary_axes = {false, false, false};
+    for (const char name : {p.kinematics->primary.name, p.kinematics->secondary.name})
+      config.rotary_axes[static_cast<std::size_t>(name - 'A')] = true;
+  }
   return config;
 }
 

@@ -1,5 +1,6 @@
 #include "ncpost/render/render.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -130,7 +131,19 @@ Renderer::Renderer(const profile::LoadedProfile& profile, TextSink out, RenderOp
       chunker_(std::make_unique<canon::Chunker>(*chunk_sink_, options.chunk)),
       single_chunk_(options.single_chunk),
       batch_bytes_(options.batch_bytes),
-      batch_delay_(options.batch_delay) {}
+      batch_delay_(options.batch_delay) {
+  if (const auto& machine = profile.profile.kinematics) {
+    kinematics_ = std::make_unique<KinematicsConverter>(
+        *machine, profile.profile.units == xslt::Units::Inch ? 25.4 : 1.0);
+    max_kinematics_warnings_ = options.max_kinematics_warnings;
+    // For the stylesheet: whether the control keeps the tool tip (TCP words), and the rotary
+    // addresses the motions carry (docs/kinematics.md, "Stylesheets").
+    std::string axes{machine->primary.name, machine->secondary.name};
+    std::sort(axes.begin(), axes.end());
+    params_.emplace_back("tcp", machine->tool_centre_point ? "yes" : "no");
+    params_.emplace_back("rotary_axes", axes);
+  }
+}
 
 Renderer::~Renderer() = default;
 
@@ -236,7 +249,8 @@ void Renderer::call(const canon::Call& call) {
     unit_mm_ = u->units == canon::Units::Inches        ? 25.4
                : u->units == canon::Units::Centimetres ? 10.0
                                                        : 1.0;
-  check_limits(call);
+  // With kinematics the limits apply to the machine's positions: forward() checks them.
+  if (!kinematics_) check_limits(call);
   const auto& caps = profile_.profile;
   if (const auto* cycle = std::get_if<canon::Cycle>(&call); cycle) {
     if (const auto e = canon::check(*cycle); e != canon::CycleError::None) {
@@ -273,7 +287,26 @@ void Renderer::call(const canon::Call& call) {
 }
 
 void Renderer::forward(const canon::Call& call) {
-  if (failed_) return;  // an error stops the output; the rest is only checked
+  if (!kinematics_) {
+    if (!failed_) pass(call);  // an error stops the output; the rest is only checked
+    return;
+  }
+  canon::Call converted = call;
+  kinematics_warnings_.clear();
+  if (const auto issue = kinematics_->convert(converted, kinematics_warnings_)) {
+    if (!failed_)
+      report(issue->code, diag::Severity::Error, issue->message + " (" + where(call) + ")");
+    return;
+  }
+  for (auto& w : kinematics_warnings_) {
+    if (kinematics_warning_count_++ < max_kinematics_warnings_)
+      report(w.code, diag::Severity::Warning, w.message + " (" + where(call) + ")");
+  }
+  check_limits(converted);
+  if (!failed_) pass(converted);
+}
+
+void Renderer::pass(const canon::Call& call) {
   if (single_chunk_)
     whole_.push_back(call);
   else

@@ -156,8 +156,8 @@ bool append_word(Call& call, std::string& out, char letter, Quantity quantity, d
   return true;
 }
 
-// " X.. Y.. Z.." of the end point through the set-up, then " A.. B.. C.." when present: as
-// the "xyz" template of ncpost-common.xsl writes them.
+// " X.. Y.. Z.." of the end point through the set-up, then " A.. B.. C.." when present (those
+// of JobConfig::rotary_axes): as the "xyz" template of ncpost-common.xsl writes them.
 bool append_end_point(Call& call, std::string& out, const MotionValues& m) {
   for (const double v : m.end) {
     if (!std::isfinite(v)) {
@@ -170,9 +170,10 @@ bool append_end_point(Call& call, std::string& out, const MotionValues& m) {
       !append_word(call, out, 'Y', Quantity::Length, setup_axis(setup, 1, m.end, true)) ||
       !append_word(call, out, 'Z', Quantity::Length, setup_axis(setup, 2, m.end, true)))
     return false;
-  if (m.a && !append_word(call, out, 'A', Quantity::Angle, *m.a)) return false;
-  if (m.b && !append_word(call, out, 'B', Quantity::Angle, *m.b)) return false;
-  if (m.c && !append_word(call, out, 'C', Quantity::Angle, *m.c)) return false;
+  const std::array<bool, 3>& axes = call.config().rotary_axes;
+  if (m.a && axes[0] && !append_word(call, out, 'A', Quantity::Angle, *m.a)) return false;
+  if (m.b && axes[1] && !append_word(call, out, 'B', Quantity::Angle, *m.b)) return false;
+  if (m.c && axes[2] && !append_word(call, out, 'C', Quantity::Angle, *m.c)) return false;
   return true;
 }
 

@@ -35,7 +35,8 @@ class ProfileTest : public ::testing::Test {
 };
 
 TEST_F(ProfileTest, BuiltInProfilesParse) {
-  for (const char* id : {"linuxcnc", "fanuc-0i"}) {
+  for (const char* id :
+       {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
     std::vector<diag::Diagnostic> d;
     auto p = parse_profile(test::read_file(stylesheets() / id / "profile.json"), d);
     ASSERT_TRUE(p) << id << ": " << (d.empty() ? "" : d[0].message);
@@ -101,6 +102,12 @@ TEST_F(ProfileTest, HandPickedInvalidExamples) {
     }
     EXPECT_FALSE(accepts(doc)) << example["name"];
   }
+  // min not below max: a rule JSON Schema cannot state (the C++ side only, like travel).
+  auto h = v;
+  h["kinematics"] = json::parse(
+      R"({"type": "head-head", "primary": {"name": "C", "axis": "z", "direction": 1, "min": 0, "max": 0},
+          "secondary": {"name": "A", "axis": "x", "direction": 1, "min": -90, "max": 90}})");
+  EXPECT_FALSE(accepts(h));
   std::vector<diag::Diagnostic> d;
   EXPECT_FALSE(parse_profile("{not json", d));
   ASSERT_EQ(d.size(), 1u);
@@ -178,6 +185,53 @@ TEST_F(ProfileTest, SchemaAndValidationAgree) {
   mutations(s, s, doc, doc, "", count);
   EXPECT_GT(count, 80);
   EXPECT_TRUE(accepts(doc));  // restored
+  // The five-axis profiles carry a kinematics section (one of each type): walked the same way.
+  for (const char* id : {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
+    SCOPED_TRACE(id);
+    json five = json::parse(test::read_file(stylesheets() / id / "profile.json"));
+    int kinematics_count = 0;
+    mutations(s["properties"]["kinematics"], s, five, five["kinematics"], "/kinematics",
+              kinematics_count);
+    EXPECT_GT(kinematics_count, 25);
+    EXPECT_TRUE(accepts(five));
+  }
+}
+
+// The shared valid examples (valid_examples.json, which schema_check.py checks the JSON Schema
+// accepts too): each kinematics type, every optional field.
+TEST_F(ProfileTest, ValidKinematicsExamples) {
+  const json examples = json::parse(
+      test::read_file(test::source_dir() / "tests" / "unit" / "profile" / "valid_examples.json"));
+  ASSERT_GE(examples.size(), 3u);
+  for (const auto& example : examples) {
+    json doc = valid();
+    for (const auto& [path, value] : example["set"].items()) doc[json::json_pointer(path)] = value;
+    EXPECT_TRUE(accepts(doc)) << example["name"];
+  }
+  std::vector<diag::Diagnostic> d;
+  const auto p =
+      parse_profile(test::read_file(stylesheets() / "fanuc-30i-5ax" / "profile.json"), d);
+  ASSERT_TRUE(p);
+  ASSERT_TRUE(p->kinematics);
+  const Kinematics& k = *p->kinematics;
+  EXPECT_EQ(k.type, KinematicsType::TableTable);
+  EXPECT_EQ(k.primary.name, 'A');
+  EXPECT_EQ(k.primary.axis, MachineAxis::X);
+  EXPECT_EQ(k.primary.min, -120);
+  EXPECT_EQ(k.primary.max, 30);
+  EXPECT_TRUE(k.secondary.continuous);
+  EXPECT_TRUE(k.tool_centre_point);
+  EXPECT_EQ(k.solution, RotarySolution::Shortest);
+  EXPECT_EQ(k.pole_tolerance, 1e-9);
+  const auto config = job_config(*p);
+  EXPECT_TRUE(config.rotary_axes[0]);
+  EXPECT_FALSE(config.rotary_axes[1]);
+  EXPECT_TRUE(config.rotary_axes[2]);
+  // A profile without kinematics writes every rotary axis a motion carries, as before.
+  const auto three = parse_profile(test::read_file(stylesheets() / "linuxcnc" / "profile.json"), d);
+  ASSERT_TRUE(three);
+  EXPECT_FALSE(three->kinematics);
+  EXPECT_EQ(job_config(*three).rotary_axes, (std::array<bool, 3>{true, true, true}));
 }
 
 TEST_F(ProfileTest, StoreListsAndLoadsBuiltIns) {

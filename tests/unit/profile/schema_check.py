@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The other half of SchemaAndValidationAgree: with the Python jsonschema package (when it is
-installed), the built-in profiles satisfy stylesheets/profile.schema.json and every example of
+installed), the built-in profiles satisfy stylesheets/profile.schema.json, every example of
 invalid_examples.json (which profile_test.cpp checks the C++ validation refuses) is refused by
-the schema too. Exit 77 (skip) without jsonschema."""
+the schema too, and every example of valid_examples.json (which the C++ validation accepts) is
+accepted. Exit 77 (skip) without jsonschema."""
 import copy
 import json
 import pathlib
@@ -32,8 +33,8 @@ def pointer(doc, path):
     return doc, parts[-1]
 
 valid = json.loads((root / "stylesheets" / "linuxcnc" / "profile.json").read_text())
-examples = json.loads((root / "tests" / "unit" / "profile" / "invalid_examples.json").read_text())
-for example in examples:
+
+def applied(example):
     doc = copy.deepcopy(valid)
     for path, value in example.get("set", {}).items():
         parent, key = pointer(doc, path)
@@ -41,8 +42,18 @@ for example in examples:
     for path in example.get("remove", []):
         parent, key = pointer(doc, path)
         del parent[key]
-    if validator.is_valid(doc):
+    return doc
+
+examples = json.loads((root / "tests" / "unit" / "profile" / "invalid_examples.json").read_text())
+for example in examples:
+    if validator.is_valid(applied(example)):
         failures += 1
         print(f"schema accepts invalid example: {example['name']}")
-print(f"{len(examples)} invalid examples checked, {failures} failures")
+good = json.loads((root / "tests" / "unit" / "profile" / "valid_examples.json").read_text())
+for example in good:
+    errors = list(validator.iter_errors(applied(example)))
+    if errors:
+        failures += 1
+        print(f"schema refuses valid example: {example['name']}: {errors[0].message}")
+print(f"{len(examples)} invalid and {len(good)} valid examples checked, {failures} failures")
 sys.exit(1 if failures else 0)

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "corpus.hpp"
 #include "ncpost/express/registry.hpp"
@@ -109,10 +110,14 @@ void expect_chunked_equals_whole(const profile::LoadedProfile& p,
 
 TEST_F(RenderTest, ChunkedEqualsWholeProgram) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
-  for (const char* id : {"linuxcnc", "fanuc-0i"}) {
+  // The five-axis profiles too: their kinematics state (previous angles, tool length) lives
+  // in the renderer, not in the chunks.
+  for (const char* id :
+       {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
     auto p = builtin(id);
     ASSERT_TRUE(p);
-    for (const char* c : {"curves.stp", "placement-rotated-setup.stp", "executables.stp"}) {
+    for (const char* c :
+         {"curves.stp", "placement-rotated-setup.stp", "executables.stp", "five-axis.stp"}) {
       SCOPED_TRACE(std::string(id) + " " + c);
       expect_chunked_equals_whole(*p, program(cases / c));
     }
@@ -315,6 +320,75 @@ TEST_F(RenderTest, LimitViolationNamesTheWorkingstep) {
   EXPECT_EQ(partial.find("G1 X10."), std::string::npos);
 }
 
+// A five-axis program on linuxcnc-5ax (C/A fork head) whose tool leans 60 degrees to +X,
+// then to -X, `flips` times: from C90 A60 the other side is C90 A-60 (A turns 120) or C-90
+// A60 (C turns 180), so every feed after the first turns an axis by more than 90 degrees.
+std::vector<canon::Call> flipping_program(int flips, canon::Direction last) {
+  using namespace canon;
+  const double s = std::sin(std::numbers::pi / 3), c = std::cos(std::numbers::pi / 3);
+  std::vector<Call> calls;
+  calls.emplace_back(Begin{Scope::Project, entity(1, "PROJECT", "FLIPS")});
+  calls.emplace_back(UseLengthUnits{Units::Millimetres});
+  calls.emplace_back(Begin{Scope::Workingstep, entity(10, "MACHINING_WORKINGSTEP", "WS")});
+  calls.emplace_back(UseToolLengthOffset{50});
+  calls.emplace_back(StraightTraverse{{0, 0, 50}});
+  calls.emplace_back(SetFeedRate{500});
+  for (int i = 0; i < flips; ++i)
+    calls.emplace_back(
+        StraightFeed{{double(i), 0, 10, std::nullopt, Direction{i % 2 == 0 ? s : -s, 0, c}}});
+  calls.emplace_back(StraightFeed{{99, 0, 10, std::nullopt, last}});
+  calls.emplace_back(StraightTraverse{{99, 0, 50}});
+  calls.emplace_back(End{Scope::Workingstep, entity(10, "MACHINING_WORKINGSTEP", "WS")});
+  calls.emplace_back(ProgramEnd{});
+  calls.emplace_back(End{Scope::Project, entity(1, "PROJECT", "FLIPS")});
+  return calls;
+}
+
+std::size_t count_code(const std::vector<diag::FileDiagnostic>& d, diag::Code code) {
+  return static_cast<std::size_t>(
+      std::count_if(d.begin(), d.end(), [&](const auto& x) { return x.diagnostic.code == code; }));
+}
+
+// KIN-005 (a large rotary motion) is a warning per motion, at most
+// RenderOptions::max_kinematics_warnings of them per program; the output is complete.
+TEST_F(RenderTest, KinematicsWarningsAreCapped) {
+  const auto p = builtin("linuxcnc-5ax");
+  ASSERT_TRUE(p);
+  const auto calls = flipping_program(10, {0, 0, 1});
+  std::vector<diag::FileDiagnostic> all;
+  const std::string text = render_program(*p, calls, all);
+  EXPECT_FALSE(diag::has_errors(all));
+  EXPECT_EQ(count_code(all, diag::Code::KinLargeRotation), 9u);
+  EXPECT_NE(text.find("M2"), std::string::npos) << text;
+  for (const auto& x : all)
+    EXPECT_NE(x.diagnostic.message.find("STRAIGHT_FEED("), std::string::npos)
+        << x.diagnostic.message;  // each names its motion
+
+  RenderOptions capped;
+  capped.max_kinematics_warnings = 3;
+  std::vector<diag::FileDiagnostic> few;
+  EXPECT_EQ(render_program(*p, calls, few, capped), text);
+  EXPECT_EQ(count_code(few, diag::Code::KinLargeRotation), 3u);
+}
+
+// A tool axis the machine cannot reach (pointing up: A would be 180, beyond +-110) is KIN-001:
+// an error that names the motion, and the output stops before it.
+TEST_F(RenderTest, UnreachableToolAxisStopsThePost) {
+  const auto p = builtin("linuxcnc-5ax");
+  ASSERT_TRUE(p);
+  std::vector<diag::FileDiagnostic> d;
+  const std::string text = render_program(*p, flipping_program(2, {0, 0, -1}), d);
+  EXPECT_TRUE(diag::has_errors(d));
+  ASSERT_EQ(count_code(d, diag::Code::KinUnreachable), 1u);
+  const auto& e = *std::find_if(d.begin(), d.end(), [](const auto& x) {
+    return x.diagnostic.code == diag::Code::KinUnreachable;
+  });
+  EXPECT_NE(e.diagnostic.message.find("STRAIGHT_FEED(99.0000"), std::string::npos)
+      << e.diagnostic.message;
+  EXPECT_EQ(text.find("X99."), std::string::npos) << text;
+  EXPECT_EQ(text.find("M2"), std::string::npos) << text;
+}
+
 // A failure inside a batch of chunks: the batch is rendered again chunk by chunk, so the text
 // before the failing chunk and the diagnostics are those of rendering without batching.
 TEST_F(RenderTest, FailureInABatchEndsWhereUnbatchedDoes) {
@@ -381,11 +455,12 @@ void expect_runs_change_nothing(const profile::LoadedProfile& with_runs,
 
 TEST_F(RenderTest, MotionRunsWriteWhatTheElementTemplatesWrite) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
-  for (const char* id :
-       {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "okuma-osp", "siemens-840d"}) {
+  for (const char* id : {"linuxcnc", "fanuc-0i", "haas-ngc", "mitsubishi-m80", "okuma-osp",
+                         "siemens-840d", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
     auto p = builtin(id);
     ASSERT_TRUE(p);
-    for (const char* c : {"curves.stp", "placement-rotated-setup.stp", "executables.stp"}) {
+    for (const char* c :
+         {"curves.stp", "placement-rotated-setup.stp", "executables.stp", "five-axis.stp"}) {
       SCOPED_TRACE(std::string(id) + " " + c);
       expect_runs_change_nothing(*p, program(cases / c));
     }

@@ -41,6 +41,50 @@ struct Limits {
   diag::Severity severity = diag::Severity::Warning;
 };
 
+// ---- kinematics: a five-axis machine's rotary axes (docs/kinematics.md) ----
+// The renderer turns each motion's tool axis into positions of these two axes
+// (render/kinematics.hpp). Roles: head-head: `primary` is the outer head axis (it carries
+// `secondary`, the one next to the spindle); table-table: `primary` is the outer table axis (it
+// carries `secondary`, the one that carries the workpiece); head-table: `primary` is the head
+// axis, `secondary` the table axis.
+enum class KinematicsType : std::uint8_t { HeadHead, TableTable, HeadTable };
+enum class MachineAxis : std::uint8_t { X, Y, Z };
+// Which of the (usually two) solutions for a tool axis is taken when both are within the limits.
+enum class RotarySolution : std::uint8_t {
+  Shortest,      // the smaller rotary motion from the previous position (ties: positive tilt)
+  PositiveTilt,  // the tilting axis at or above 0
+  NegativeTilt,  // the tilting axis at or below 0
+};
+
+struct RotaryAxis {
+  char name = 'C';                    // 'A', 'B' or 'C': its address, and its canonical slot
+  MachineAxis axis = MachineAxis::Z;  // the machine axis it turns about
+  // +1: a positive angle turns the axis's own part (the head, or the table with the
+  // workpiece) by the right-hand rule about the machine axis; -1: the other way.
+  int direction = 1;
+  bool continuous = false;  // turns without end (no min/max): the shortest way is taken
+  double min = 0, max = 0;  // degrees, when not continuous
+  // A point of the axis with every rotary axis at 0, in the controller's length unit: for a
+  // head axis from the spindle's gauge point, for a table axis from the program zero. Used
+  // only without tool-centre-point output.
+  std::array<double, 3> pivot{0, 0, 0};
+};
+
+struct Kinematics {
+  KinematicsType type = KinematicsType::HeadHead;
+  RotaryAxis primary{}, secondary{};
+  RotarySolution solution = RotarySolution::Shortest;
+  // The control keeps the tool tip on the programmed point (TRAORI, G43.4, M128): the post
+  // writes the tip and the angles. Otherwise the post moves the linear axes for the pivots.
+  bool tool_centre_point = false;
+  // A tool axis closer than this (the sine of the angle) to the rotary axis's own direction is
+  // on the pole: the rotary angle is then undefined and the previous one is kept.
+  double pole_tolerance = 1e-9;
+  // KIN-005: a warning when one feed motion turns a rotary axis by more than this many
+  // degrees (a solution change at the pole or at a limit); 0: never.
+  double rotation_warning = 90;
+};
+
 struct Profile {
   std::string id;
   std::string name;
@@ -81,6 +125,8 @@ struct Profile {
   // The `checks` section as JSON text, for cls::parse_checks (the pre-post checks of CL input;
   // validated there, docs/cls.md). Empty when the profile has none.
   std::optional<std::string> checks_json;
+  // A five-axis machine: tool axes become rotary positions (docs/kinematics.md).
+  std::optional<Kinematics> kinematics{};
 };
 
 // Parses and validates profile.json. On any problem returns nullopt and adds PROFILE-001/002

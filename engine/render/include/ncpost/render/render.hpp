@@ -18,6 +18,7 @@
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/canon/xml.hpp"
 #include "ncpost/profile/profile.hpp"
+#include "ncpost/render/kinematics.hpp"
 #include "ncpost/xslt/xslt.hpp"
 
 namespace ncpost::render {
@@ -47,6 +48,9 @@ struct RenderOptions {
   // A batch is also rendered at the first chunk boundary after it has been open this long, so
   // text keeps flowing while a slow interpretation fills it. 0: no time limit.
   std::chrono::milliseconds batch_delay{50};
+  // KIN-005 warnings (a large rotary motion) reported per program at most; the rest are
+  // dropped (docs/kinematics.md).
+  std::size_t max_kinematics_warnings = 100;
 };
 
 class Renderer final : public canon::Sink {
@@ -79,6 +83,7 @@ class Renderer final : public canon::Sink {
   class TreeEvents;
   class RunTaker;
   void forward(const canon::Call& call);
+  void pass(const canon::Call& call);
   void check_limits(const canon::Call& call);
   void check_point(double x, double y, double z, const canon::Call& call);
   void report(diag::Code code, diag::Severity severity, std::string message);
@@ -105,6 +110,12 @@ class Renderer final : public canon::Sink {
   std::unique_ptr<canon::Chunker> chunker_;
   std::vector<diag::FileDiagnostic> diagnostics_;
   std::optional<canon::Entity> workingstep_;
+  // The profile's kinematics (profile.json "kinematics"): every call is converted before the
+  // limits are checked and the stylesheet sees it (docs/kinematics.md). Null without.
+  std::unique_ptr<KinematicsConverter> kinematics_;
+  std::vector<KinematicsConverter::Issue> kinematics_warnings_;
+  std::size_t kinematics_warning_count_ = 0;
+  std::size_t max_kinematics_warnings_ = 0;
   std::int32_t tool_ = 0;  // in the spindle after the chunks rendered so far
   double unit_mm_ = 1.0;   // the program's length unit, in mm
   std::size_t limit_reports_ = 0;

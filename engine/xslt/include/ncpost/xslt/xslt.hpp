@@ -172,6 +172,10 @@ struct JobConfig {
   CommentRules comment;
   std::size_t max_line_length = 0;  // ext:line(): 0 means no limit
   std::size_t max_modal_groups = 256;
+  // The rotary addresses A, B, C that ext:motion-words() and ext:motion-run() write when a
+  // motion carries rotary axes: a five-axis profile's two (profile.json kinematics), all
+  // three otherwise.
+  std::array<bool, 3> rotary_axes{true, true, true};
 };
 
 // A motion that ext:motion-run() renders from memory. A renderer may write one
