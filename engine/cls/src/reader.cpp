@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "check_run.hpp"
+#include "ncpost/canon/vec3.hpp"
 #include "ncpost/cls/checks.hpp"
 #include "records.hpp"
 
@@ -37,27 +38,7 @@ constexpr std::size_t kMaxUnknownWords = 256;
 // Records between two looks at the cancel flag.
 constexpr std::uint64_t kCancelEvery = 4096;
 
-struct Vec {
-  double x = 0, y = 0, z = 0;
-};
-Vec operator+(Vec a, Vec b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec operator-(Vec a, Vec b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec operator*(double s, Vec a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-double dot(Vec a, Vec b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-Vec cross(Vec a, Vec b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double norm(Vec a) {
-  return std::sqrt(dot(a, a));
-}
+using Vec = canon::Vec3;
 
 enum class Word : std::uint8_t {
   Goto,
@@ -482,7 +463,7 @@ class Reader::Impl {
     if (incremental_) to = position_ + to;
     if (n == 6) {
       const Vec axis{v[3], v[4], v[5]};
-      if (norm(axis) == 0) {
+      if (length(axis) == 0) {
         at(diag::Code::ClsBadArguments, r.at(args), "GOTO/: the tool axis is zero");
         return;
       }
@@ -508,7 +489,7 @@ class Reader::Impl {
     Vec delta{v[0], n == 3 ? v[1] : 0, n == 3 ? v[2] : 0};
     if (n == 1) {
       const Vec a = axis_.value_or(Vec{0, 0, 1});
-      delta = (v[0] / norm(a)) * a;
+      delta = (v[0] / length(a)) * a;
     }
     move(position_ + delta, rapid_next_, r.at(fields_[0]));
   }
@@ -536,7 +517,7 @@ class Reader::Impl {
     double v[6];
     if (!numbers(r, args, 0, n, v, "FROM/")) return;
     position_ = Vec{v[0], v[1], v[2]};
-    if (n == 6 && norm(Vec{v[3], v[4], v[5]}) > 0) axis_ = Vec{v[3], v[4], v[5]};
+    if (n == 6 && length(Vec{v[3], v[4], v[5]}) > 0) axis_ = Vec{v[3], v[4], v[5]};
   }
 
   void indirv(const Record& r, std::string_view args) {
@@ -562,7 +543,7 @@ class Reader::Impl {
     if (!numbers(r, args, 0, 7, v, "CIRCLE/")) return;
     if (circle_) dangling_circle();
     const Vec axis{v[3], v[4], v[5]};
-    if (norm(axis) == 0 || !(v[6] > 0)) {
+    if (length(axis) == 0 || !(v[6] > 0)) {
       at(diag::Code::ClsBadCircle, r.at(fields_[0]), "CIRCLE/ with a zero axis or radius");
       return;
     }
@@ -571,7 +552,7 @@ class Reader::Impl {
          "RAPID before CIRCLE/: the arc is fed, not traversed");
       rapid_next_ = false;
     }
-    circle_ = PendingCircle{{v[0], v[1], v[2]}, (1 / norm(axis)) * axis, v[6], r.at(fields_[0])};
+    circle_ = PendingCircle{{v[0], v[1], v[2]}, (1 / length(axis)) * axis, v[6], r.at(fields_[0])};
   }
 
   void dangling_circle() {
@@ -593,11 +574,11 @@ class Reader::Impl {
     const Vec start = from_centre - dot(from_centre, c.normal) * c.normal;
     const Vec end = to_centre - dot(to_centre, c.normal) * c.normal;
     const double tolerance = std::max(options_.arc_tolerance, c.radius * 1e-9);
-    if (std::fabs(norm(start) - c.radius) > tolerance ||
-        std::fabs(norm(end) - c.radius) > tolerance) {
+    if (std::fabs(length(start) - c.radius) > tolerance ||
+        std::fabs(length(end) - c.radius) > tolerance) {
       at(diag::Code::ClsBadCircle, where,
-         "the arc's start and end are " + detail::format_number(norm(start)) + " and " +
-             detail::format_number(norm(end)) + " from the axis of CIRCLE/ (line " +
+         "the arc's start and end are " + detail::format_number(length(start)) + " and " +
+             detail::format_number(length(end)) + " from the axis of CIRCLE/ (line " +
              std::to_string(c.where.line) + "), whose radius is " +
              detail::format_number(c.radius) + "; fed as a straight line");
       indirv_.reset();
@@ -662,7 +643,7 @@ class Reader::Impl {
     if (!numbers(r, args, 0, 9, v, "MSYS/")) return;
     const Vec o{v[0], v[1], v[2]}, x{v[3], v[4], v[5]}, y{v[6], v[7], v[8]};
     constexpr double kTolerance = 1e-5;
-    if (std::fabs(norm(x) - 1) > kTolerance || std::fabs(norm(y) - 1) > kTolerance ||
+    if (std::fabs(length(x) - 1) > kTolerance || std::fabs(length(y) - 1) > kTolerance ||
         std::fabs(dot(x, y)) > kTolerance) {
       at(diag::Code::ClsBadMsys, r.at(fields_[3]),
          "MSYS/: the X and Y axes must be unit vectors at right angles");
@@ -670,7 +651,7 @@ class Reader::Impl {
     }
     if (!options_.apply_msys) return;
     const bool identity =
-        norm(o) == 0 && x.x == 1 && x.y == 0 && x.z == 0 && y.x == 0 && y.y == 1 && y.z == 0;
+        length(o) == 0 && x.x == 1 && x.y == 0 && x.z == 0 && y.x == 0 && y.y == 1 && y.z == 0;
     if (identity)
       frame_.reset();
     else
@@ -943,7 +924,7 @@ class Reader::Impl {
     rapid_next_ = false;
     const CycleSpec& s = *cycle_;
     const Vec axis_cl = axis_.value_or(Vec{0, 0, 1});
-    const Vec a = (1 / norm(axis_cl)) * axis_cl;
+    const Vec a = (1 / length(axis_cl)) * axis_cl;
     const Vec axis = frame_direction(a);
     if (std::fabs(axis.x) > 1e-9 || std::fabs(axis.y) > 1e-9 || axis.z <= 0) {
       at(diag::Code::ClsBadCycle, where,

@@ -129,15 +129,19 @@ Interpretation interpret_model(const Program& program, canon::Sink& sink, const 
 
 // ---- cutter-location files (APT CL, NX CLSF) -------------------------------------------------
 
-// CL records become canonical calls as they are read: the read stage keeps the text, the
-// interpret stage reads it (engine/cls, docs/cls.md).
-Program read_cl(Input input, const JobContext& context, const ReadOptions&) {
+// A format read as it is interpreted (CL, G-code): the read stage only keeps the whole text.
+Program text_program(Input input, const JobContext& context, InputFormat format) {
   Program program;
   program.name = std::move(input.name);
-  program.format = InputFormat::Cl;
+  program.format = format;
   program.diagnostics = context.schemas->reports;
   program.text = input.arriving != nullptr ? input.arriving->take_text() : std::move(input.bytes);
   return program;
+}
+
+// CL records become canonical calls as they are read (engine/cls, docs/cls.md).
+Program read_cl(Input input, const JobContext& context, const ReadOptions&) {
+  return text_program(std::move(input), context, InputFormat::Cl);
 }
 
 // The profile's checks section, or why it cannot be used (an error: a shop that wrote checks
@@ -172,11 +176,7 @@ Interpretation interpret_cl(const Program& program, canon::Sink& sink, const Job
 // A controller's program is read with a dialect (engine/gcode, docs/gcode.md): the read stage
 // keeps the text and says how to give the dialect when none was; the interpret stage reads it.
 Program read_gcode(Input input, const JobContext& context, const ReadOptions&) {
-  Program program;
-  program.name = std::move(input.name);
-  program.format = InputFormat::Gcode;
-  program.diagnostics = context.schemas->reports;
-  program.text = input.arriving != nullptr ? input.arriving->take_text() : std::move(input.bytes);
+  Program program = text_program(std::move(input), context, InputFormat::Gcode);
   const profile::LoadedProfile* dialect = context.gcode_dialect.get();
   if (dialect == nullptr || !dialect->dialect_json) {
     const std::string why =

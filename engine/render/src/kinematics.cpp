@@ -10,6 +10,8 @@
 #include <numbers>
 #include <utility>
 
+#include "ncpost/canon/vec3.hpp"
+
 namespace ncpost::render {
 namespace {
 
@@ -23,27 +25,7 @@ constexpr double kAngleEpsilon = 1e-9;
 // An arc or NURBS keeps the orientation when its tool axis is this close to the one in force.
 constexpr double kSameAxis = 1e-7;
 
-struct Vec {
-  double x = 0, y = 0, z = 0;
-};
-Vec operator+(Vec a, Vec b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec operator-(Vec a, Vec b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec operator*(double s, Vec a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-double dot(Vec a, Vec b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-Vec cross(Vec a, Vec b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double length(Vec a) {
-  return std::sqrt(dot(a, a));
-}
+using Vec = canon::Vec3;
 Vec vec(const std::array<double, 3>& a) {
   return {a[0], a[1], a[2]};
 }
