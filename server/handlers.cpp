@@ -562,11 +562,11 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   head.set("X-Ncpost-Profile-Version", loaded_profile->version);
   head.set(http::field::vary, "Accept");
   head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
-  // The head goes out once kHeldBack bytes of text are there (or the job ends), so that an
+  // The head goes out once --hold-back bytes of text are there (or the job ends), so that an
   // error found before that is still an ordinary problem+json response. That matters for
   // inputs read as they are interpreted (G-code, CL), whose errors can follow the first
   // blocks; it costs a small program's first byte nothing, a large one's 64 KiB.
-  constexpr std::size_t kHeldBack = 64 * 1024;
+  const std::uint64_t hold_back = services.config.hold_back;
   std::string held;
   bool begun = false;
   bool alive = true;
@@ -603,7 +603,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
         if (!alive) return;
         if (!begun) {
           held.append(piece);
-          if (held.size() < kHeldBack) return;
+          if (held.size() < hold_back) return;
           begun = true;
           alive = begin() && exchange.write(held);
           held = std::string();

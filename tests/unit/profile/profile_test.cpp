@@ -114,7 +114,7 @@ TEST_F(ProfileTest, HandPickedInvalidExamples) {
   EXPECT_EQ(d[0].code, diag::Code::ProfileJson);
   // Issue 23 (11): the position is the diagnostic's, not only words in its message.
   EXPECT_EQ(d[0].line, 1u);
-  EXPECT_EQ(d[0].column, 2u);
+  EXPECT_EQ(d[0].column, 3u) << "the 'o' that cannot continue a literal";
   EXPECT_EQ(d[0].message.find("json.exception"), std::string::npos) << d[0].message;
   d.clear();
   EXPECT_FALSE(parse_profile("{\n  \"id\": \"x\",\n  \"name\": ,\n}", d));
