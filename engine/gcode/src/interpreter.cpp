@@ -74,32 +74,56 @@ bool has_rotary_words(std::string_view text, const Dialect& dialect) {
     const void* nl = std::memchr(s + from, '\n', n - from);
     return nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - s) : n;
   };
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t k = kind[static_cast<unsigned char>(s[i])];
-    if (k == Other) continue;
-    if (k == Paren) {
-      // A comment to its ')' (or the line's end, where an unclosed one ends).
-      while (i + 1 < n && s[i + 1] != ')' && s[i + 1] != '\n') ++i;
-      if (i + 1 < n && s[i + 1] == ')') ++i;
-      continue;
+  // Eight bytes at a time: most words hold none of the bytes looked at. A set high bit marks a
+  // byte equal to the one asked for (exact for "any", which is all that is used); lower-casing
+  // by OR 0x20 may also flag a few control bytes, which the byte loop then just passes.
+  constexpr std::uint64_t kOnes = 0x0101010101010101ull;
+  constexpr std::uint64_t kHighs = 0x8080808080808080ull;
+  const auto equal = [](std::uint64_t word, unsigned char b) {
+    const std::uint64_t x = word ^ (kOnes * b);
+    return (x - kOnes) & ~x & kHighs;
+  };
+  std::size_t i = 0;
+  while (i < n) {
+    if (i + 8 <= n) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, s + i, 8);
+      const std::uint64_t lower = word | (kOnes * 0x20);
+      if ((equal(lower, 'a') | equal(lower, 'b') | equal(lower, 'c') | equal(word, '(') |
+           equal(word, ';')) == 0) {
+        i += 8;
+        continue;
+      }
     }
-    if (k == Semicolon) {
-      i = line_end(i) - 1;  // the loop's ++i steps onto the '\n'
-      continue;
+    const std::size_t stop = std::min(n, i + 8);
+    for (; i < stop; ++i) {
+      const std::uint8_t k = kind[static_cast<unsigned char>(s[i])];
+      if (k == Other) continue;
+      if (k == Paren) {
+        // A comment to its ')' (or the line's end, where an unclosed one ends).
+        while (i + 1 < n && s[i + 1] != ')' && s[i + 1] != '\n') ++i;
+        if (i + 1 < n && s[i + 1] == ')') ++i;
+        continue;
+      }
+      if (k == Semicolon) {
+        i = line_end(i) - 1;  // the loop's ++i steps onto the '\n'
+        continue;
+      }
+      if (i > 0 && (is_letter(s[i - 1]) || s[i - 1] == '_' || s[i - 1] == '$')) continue;
+      std::size_t j = i + 1;
+      while (j < n && (s[j] == ' ' || s[j] == '\t')) ++j;
+      if (j >= n) continue;
+      const char v = s[j];
+      if (!(is_digit(v) || v == '-' || v == '+' || v == '.' || v == '#' || v == '[' || v == '='))
+        continue;
+      // A macro call's letters are its arguments (G65 P9010 A15.), not axes: its line is
+      // skipped.
+      std::size_t begin = i;
+      while (begin > 0 && s[begin - 1] != '\n') --begin;
+      const std::size_t end = line_end(i);
+      if (!calls_macro(text.substr(begin, end - begin))) return true;
+      i = end;
     }
-    if (i > 0 && (is_letter(s[i - 1]) || s[i - 1] == '_' || s[i - 1] == '$')) continue;
-    std::size_t j = i + 1;
-    while (j < n && (s[j] == ' ' || s[j] == '\t')) ++j;
-    if (j >= n) continue;
-    const char v = s[j];
-    if (!(is_digit(v) || v == '-' || v == '+' || v == '.' || v == '#' || v == '[' || v == '='))
-      continue;
-    // A macro call's letters are its arguments (G65 P9010 A15.), not axes: its line is skipped.
-    std::size_t begin = i;
-    while (begin > 0 && s[begin - 1] != '\n') --begin;
-    const std::size_t end = line_end(i);
-    if (!calls_macro(text.substr(begin, end - begin))) return true;
-    i = end == n ? n : end;
   }
   return false;
 }

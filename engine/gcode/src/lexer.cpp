@@ -19,7 +19,8 @@ Lexing::Lexing(const Dialect& d) : dialect(d) {
   const bool squeeze = d.ignore_whitespace;
   for (std::size_t c = 0; c < 256; ++c) {
     const char ch = static_cast<char>(c);
-    upper[c] = ncpost::gcode::detail::upper(ch);
+    upper[c] = ch == '\t' ? ' ' : ncpost::gcode::detail::upper(ch);
+    advance[c] = (ch == ' ' || ch == '\t') && squeeze ? 0 : 1;
     std::uint8_t k = Plain;
     if (ch == ' ' || ch == '\t')
       k = Space;
@@ -56,7 +57,6 @@ void normalise(std::string_view raw, const Lexing& lexing, Line& line) {
     line.text.resize(out);
     line.columns.resize(out);
   };
-  const bool squeeze = dialect.ignore_whitespace;
   std::size_t i = 0;
   while (i < n && (raw[i] == ' ' || raw[i] == '\t')) ++i;
   if (i < n && raw[i] == '/' && dialect.block_delete) {
@@ -76,16 +76,15 @@ void normalise(std::string_view raw, const Lexing& lexing, Line& line) {
       if (c == '"') in_string = false;
       continue;
     }
-    switch (lexing.classes[c]) {
-      case Lexing::Plain:
-        text[out] = lexing.upper[c];
-        columns[out++] = column;
-        continue;
-      case Lexing::Space:
-        if (squeeze) continue;
-        text[out] = ' ';
-        columns[out++] = column;
-        continue;
+    const std::uint8_t kind = lexing.classes[c];
+    if (kind <= Lexing::Space) {
+      // Most bytes: written (upper case, a tab as a blank) and kept unless a dropped blank.
+      text[out] = lexing.upper[c];
+      columns[out] = column;
+      out += lexing.advance[c];
+      continue;
+    }
+    switch (kind) {
       case Lexing::OpenComment: {
         const std::size_t close = raw.find(')', i + 1);
         if (close == std::string_view::npos) {

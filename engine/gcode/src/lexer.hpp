@@ -51,7 +51,9 @@ struct Lexing {
   explicit Lexing(const Dialect& dialect);
   const Dialect& dialect;
   std::array<std::uint8_t, 256> classes{};
-  std::array<char, 256> upper{};  // a Plain byte as written into the text
+  std::array<char, 256> upper{};  // a Plain or Space byte as written into the text
+  // 0 for a byte that is dropped (a blank where blanks may stand inside words), else 1.
+  std::array<std::uint8_t, 256> advance{};
 };
 
 // Normalises `raw` into `line` (its number is left as set).
