@@ -21,6 +21,29 @@ void print_io_error(const std::string& path, std::string message) {
             << '\n';
 }
 
+// The regular files of `directory`, by name, as a G-code program's subprogram files; sorted so
+// that which of two files of one name wins does not depend on the file system.
+std::optional<std::vector<pipeline::SourceFile>> read_subprograms(const std::string& directory) {
+  std::error_code ec;
+  std::vector<std::filesystem::path> paths;
+  for (std::filesystem::directory_iterator it(directory, ec), end; !ec && it != end;
+       it.increment(ec))
+    if (it->is_regular_file(ec)) paths.push_back(it->path());
+  if (ec) {
+    print_io_error(directory,
+                   "cannot read the subprogram folder '" + directory + "': " + ec.message());
+    return std::nullopt;
+  }
+  std::sort(paths.begin(), paths.end());
+  std::vector<pipeline::SourceFile> files;
+  for (const auto& path : paths) {
+    auto file = read_input(path.string());
+    if (!file) return std::nullopt;
+    files.push_back({path.filename().string(), std::move(file->bytes)});
+  }
+  return files;
+}
+
 }  // namespace
 
 Options::Options(Args args, const VerbSpec& spec) {
@@ -150,6 +173,12 @@ std::unique_ptr<CliJob> prepare_job(const Options& options) {
     print_diagnostics(lookup.diagnostics);
     if (!lookup.profile) return nullptr;
     job->context.gcode_dialect = lookup.profile;
+  }
+  if (const auto directory = options.value("subprograms")) {
+    auto files = read_subprograms(*directory);
+    if (!files) return nullptr;
+    job->context.gcode_subprograms =
+        std::make_shared<const std::vector<pipeline::SourceFile>>(std::move(*files));
   }
   auto input = read_input(options.positionals().front());
   if (!input) {

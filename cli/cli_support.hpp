@@ -36,6 +36,8 @@ inline constexpr OptionSpec kToolsOption{"tools", "TABLE"};
 inline constexpr OptionSpec kDialectOption{"dialect", "PROFILE"};
 inline constexpr OptionSpec kFromOption{"from", "PROFILE"};
 inline constexpr OptionSpec kProfilesOption{"profiles", "DIR"};
+// The files of DIR are the G-code program's subprogram files (M98 P, CALL PGM, o<name> call).
+inline constexpr OptionSpec kSubprogramsOption{"subprograms", "DIR"};
 
 // `--name value`, `--name=value`, flags `--name`, and positionals; `-` alone is a positional.
 class Options {
@@ -89,8 +91,8 @@ struct CliJob {
 };
 // The profiles of --profiles DIR, or the built-in ones.
 [[nodiscard]] std::unique_ptr<pipeline::Profiles> open_profiles(const Options& options);
-// Null after printing why the job cannot start (a tool table or FILE that cannot be read, a
-// G-code dialect profile given by --dialect or --from that does not load).
+// Null after printing why the job cannot start (a tool table, FILE or --subprograms DIR that
+// cannot be read, a G-code dialect profile given by --dialect or --from that does not load).
 [[nodiscard]] std::unique_ptr<CliJob> prepare_job(const Options& options);
 
 }  // namespace ncpost::cli

@@ -14,10 +14,13 @@ namespace {
 int run_parse(Args args) {
   static const VerbSpec spec{
       "nc parse",
-      "nc parse --dialect PROFILE [--format text|xml] [--profiles DIR] FILE|-\n"
+      "nc parse --dialect PROFILE [--format text|xml] [--profiles DIR] [--tools TABLE]\n"
+      "         [--subprograms DIR] FILE|-\n"
       "  G-code read with PROFILE's dialect.json: the canonical program (text, as `ncpost\n"
-      "  trace`) or the XML intermediate form with <error> elements where it is wrong (xml).\n",
-      {kDialectOption, {"format", "text|xml"}, kProfilesOption}};
+      "  trace`) or the XML intermediate form with <error> elements where it is wrong (xml).\n"
+      "  Subprograms the program calls but does not hold are looked for among DIR's files; a\n"
+      "  T word that is not a pocket of TABLE is an error.\n",
+      {kDialectOption, {"format", "text|xml"}, kProfilesOption, kToolsOption, kSubprogramsOption}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;
   if (!options.value("dialect")) return usage_error(spec, "--dialect PROFILE is required");
@@ -38,10 +41,12 @@ int run_parse(Args args) {
 int run_translate(Args args) {
   static const VerbSpec spec{
       "nc translate",
-      "nc translate --from PROFILE --to PROFILE [--profiles DIR] [--tools TABLE] FILE|-\n"
+      "nc translate --from PROFILE --to PROFILE [--profiles DIR] [--tools TABLE]\n"
+      "             [--subprograms DIR] FILE|-\n"
       "  G-code written for one machine (read with --from's dialect.json) as the program of\n"
-      "  another (posted with --to's stylesheet), streamed like `ncpost post`.\n",
-      {kFromOption, {"to", "PROFILE"}, kProfilesOption, kToolsOption}};
+      "  another (posted with --to's stylesheet), streamed like `ncpost post`; --to's limits\n"
+      "  are checked on the G-code blocks. Subprogram files are looked for in DIR.\n",
+      {kFromOption, {"to", "PROFILE"}, kProfilesOption, kToolsOption, kSubprogramsOption}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;
   if (!options.value("from")) return usage_error(spec, "--from PROFILE is required");

@@ -20,13 +20,15 @@ int run_post(Args args) {
       "  Controller code for one machine profile (see `ncpost profiles`). --no-checks: skip the\n"
       "  profile's pre-post checks of CL input (docs/cls.md). --from PROFILE: G-code input is "
       "read\n"
-      "  with that profile's dialect.json (as `ncpost nc translate`).\n",
+      "  with that profile's dialect.json (as `ncpost nc translate`), its subprogram files\n"
+      "  from --subprograms DIR.\n",
       {{"profile", "ID"},
        {"profiles", "DIR"},
        kToolsOption,
        kSchemasOption,
        kStrictOption,
        kFromOption,
+       kSubprogramsOption,
        {"no-checks", ""}}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;

@@ -13,10 +13,15 @@ int run_trace(Args args) {
   static const VerbSpec spec{
       "trace",
       "trace [--format text|xml] [--tools TABLE] [--schemas DIR] [--strict] [--dialect PROFILE]\n"
-      "      FILE|-\n"
+      "      [--subprograms DIR] FILE|-\n"
       "  The canonical machining program: one call per line (text), or the XML form that\n"
       "  stylesheets read (xml). G-code is read with PROFILE's dialect.json.\n",
-      {{"format", "text|xml"}, kToolsOption, kSchemasOption, kStrictOption, kDialectOption}};
+      {{"format", "text|xml"},
+       kToolsOption,
+       kSchemasOption,
+       kStrictOption,
+       kDialectOption,
+       kSubprogramsOption}};
   const Options options(args, spec);
   if (const auto exit = parse_or_exit(options, spec)) return *exit;
   const std::string format = options.value("format").value_or("text");

@@ -37,9 +37,10 @@ Response bad_request(std::string detail) {
 
 // The upload of a job route, or nullopt after the problem (413, 415, a broken multipart body)
 // has been sent.
-std::optional<Upload> take_upload_or_respond(Request& request, Exchange& exchange) {
+std::optional<Upload> take_upload_or_respond(Request& request, Exchange& exchange,
+                                             FileParts file_parts = FileParts::One) {
   std::optional<Response> error;
-  auto upload = take_upload(request, error, exchange.upload);
+  auto upload = take_upload(request, error, exchange.upload, file_parts);
   if (!upload) exchange.respond(std::move(*error));
   return upload;
 }
@@ -182,6 +183,20 @@ pipeline::Input job_input(Upload& upload) {
   input.bytes = std::move(upload.bytes);
   if (upload.streamed) input.arriving = &upload.streamed->reader();
   return input;
+}
+
+// A G-code upload's further files are its subprogram files.
+void add_subprograms(pipeline::JobContext& context, const Upload& upload) {
+  context.gcode_subprograms = upload.others;
+}
+
+// What the further files add to an ETag: their names and bytes.
+std::string others_key(const Upload& upload) {
+  if (!upload.others) return {};
+  std::string key;
+  for (const pipeline::SourceFile& file : *upload.others)
+    key += "/" + file.name + ":" + std::to_string(body_hash(file.text));
+  return key;
 }
 
 void record_read(Metrics& metrics, const pipeline::JobResult& job) {
@@ -392,7 +407,7 @@ void handle_profile_put(Request& request, Services& services, Exchange& exchange
   if (!boundary) {
     exchange.respond(
         bad_request("PUT /v1/profiles/{id} takes multipart/form-data with the parts 'profile' and "
-                    "'stylesheet'"));
+                    "'stylesheet' (and 'dialect', its dialect.json, optionally)"));
     return;
   }
   const MultipartResult parts = parse_multipart(request.body(), *boundary);
@@ -400,14 +415,24 @@ void handle_profile_put(Request& request, Services& services, Exchange& exchange
     exchange.respond(bad_request(parts.error));
     return;
   }
+  for (const std::string_view name : {"profile", "stylesheet", "dialect"}) {
+    if (std::count_if(parts.parts.begin(), parts.parts.end(),
+                      [&](const MultipartPart& part) { return part.name == name; }) > 1) {
+      exchange.respond(bad_request("the part '" + std::string(name) + "' is repeated"));
+      return;
+    }
+  }
   const auto* profile_part = parts.find("profile");
   const auto* stylesheet_part = parts.find("stylesheet");
   if (profile_part == nullptr || stylesheet_part == nullptr) {
     exchange.respond(bad_request("the parts 'profile' and 'stylesheet' are both required"));
     return;
   }
-  const pipeline::ProfilePut put =
-      services.profiles->put(exchange.path_id, profile_part->body, stylesheet_part->body);
+  // The dialect (how the machine's G-code is read: stylesheets/dialect.schema.json), if given.
+  const auto* dialect_part = parts.find("dialect");
+  const pipeline::ProfilePut put = services.profiles->put(
+      exchange.path_id, profile_part->body, stylesheet_part->body,
+      dialect_part != nullptr ? std::optional<std::string_view>(dialect_part->body) : std::nullopt);
   if (!put.profile) {
     exchange.respond(profile_put_problem(put));
     return;
@@ -523,13 +548,16 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   // The job keeps this version even if the profile is replaced while it runs.
   const auto loaded_profile = find_profile_or_respond(services, exchange, *id).profile;
   if (!loaded_profile) return;
-  const auto context = job_context(request, services, exchange);
+  auto context = job_context(request, services, exchange);
   if (!context) return;
   // checks=false: without the profile's pre-post checks of CL input (docs/cls.md).
   const auto shop_checks = bool_query(request, "checks", true, exchange);
   if (!shop_checks) return;
-  auto upload = take_upload_or_respond(request, exchange);
+  // A G-code post (from=) may bring its subprogram files as further `file` parts.
+  auto upload = take_upload_or_respond(
+      request, exchange, context->gcode_dialect ? FileParts::Several : FileParts::One);
   if (!upload) return;
+  add_subprograms(*context, *upload);
   // The same input, profile version and engine give the same program. A large upload was
   // hashed as it arrived.
   const std::uint64_t input_hash =
@@ -537,7 +565,8 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   const std::uint64_t context_hash =
       body_hash(loaded_profile->version + "/" + services.engine_version +
                 (context->strict ? "/strict" : "") + (*shop_checks ? "" : "/no-checks") +
-                (context->gcode_dialect ? "/from:" + context->gcode_dialect->version : ""));
+                (context->gcode_dialect ? "/from:" + context->gcode_dialect->version : "") +
+                others_key(*upload));
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
   if (none_match_matches(request[http::field::if_none_match], etag) && !as_json) {
@@ -714,16 +743,19 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
   exchange.respond(json_response(200, info));
 }
 
-void handle_trace(Request& request, Services& services, Exchange& exchange) {
+// A trace; `file_parts`: Several when it is nc parse's (a G-code program and its subprogram
+// files).
+void trace_job(Request& request, Services& services, Exchange& exchange, FileParts file_parts) {
   const std::string format = query_param(request.target(), "format").value_or("text");
   if (format != "text" && format != "xml") {
     exchange.respond(bad_request("the query parameter 'format' must be text or xml"));
     return;
   }
-  const auto context = job_context(request, services, exchange);
+  auto context = job_context(request, services, exchange);
   if (!context) return;
-  auto upload = take_upload_or_respond(request, exchange);
+  auto upload = take_upload_or_respond(request, exchange, file_parts);
   if (!upload) return;
+  add_subprograms(*context, *upload);
   std::string text;
   const pipeline::JobResult result =
       pipeline::trace(job_input(*upload), *context,
@@ -745,6 +777,10 @@ void handle_trace(Request& request, Services& services, Exchange& exchange) {
       text_response(format == "text" ? "text/plain; charset=utf-8" : "application/xml", text));
 }
 
+void handle_trace(Request& request, Services& services, Exchange& exchange) {
+  trace_job(request, services, exchange, FileParts::One);
+}
+
 // G-code read with ?dialect=PROFILE: the canonical program as text (as a trace), or the XML
 // intermediate form (format=xml) with its <error> elements; a program with errors is still
 // answered in XML (that is what the form is for), with their count in Ncpost-Errors.
@@ -756,17 +792,18 @@ void handle_nc_parse(Request& request, Services& services, Exchange& exchange) {
   }
   const std::string format = query_param(request.target(), "format").value_or("text");
   if (format == "text") {
-    handle_trace(request, services, exchange);
+    trace_job(request, services, exchange, FileParts::Several);
     return;
   }
   if (format != "xml") {
     exchange.respond(bad_request("the query parameter 'format' must be text or xml"));
     return;
   }
-  const auto context = job_context(request, services, exchange);
+  auto context = job_context(request, services, exchange);
   if (!context) return;
-  auto upload = take_upload_or_respond(request, exchange);
+  auto upload = take_upload_or_respond(request, exchange, FileParts::Several);
   if (!upload) return;
+  add_subprograms(*context, *upload);
   std::string text;
   const pipeline::JobResult result = pipeline::gcode_xml(
       job_input(*upload), *context, [&text](std::string_view piece) { text.append(piece); });
@@ -847,6 +884,33 @@ void handle_schema(Request& request, Services& services, Exchange& exchange) {
   exchange.respond(text_response("application/xml", std::move(xml)));
 }
 
+// The `file` parts after `first`: the subprogram files of a G-code upload. Nullopt after a 400:
+// a repeated `file` part on a route that reads one file, or one without a filename (the name
+// is how a program calls it).
+std::optional<std::vector<pipeline::SourceFile>> further_files(const MultipartResult& parts,
+                                                               const MultipartPart& first,
+                                                               FileParts file_parts,
+                                                               std::optional<Response>& error) {
+  std::vector<pipeline::SourceFile> files;
+  for (const MultipartPart& part : parts.parts) {
+    if (&part == &first || part.name != "file") continue;
+    if (file_parts == FileParts::One) {
+      error = bad_request(
+          "the part 'file' is repeated: this route reads one file (several 'file' parts, a "
+          "G-code program and its subprogram files, are taken by /v1/nc/parse, /v1/nc/translate "
+          "and /v1/posts?from=PROFILE)");
+      return std::nullopt;
+    }
+    if (part.filename.empty()) {
+      error = bad_request(
+          "a further 'file' part has no filename: a subprogram file is found by its name");
+      return std::nullopt;
+    }
+    files.push_back({part.filename, std::string(part.body)});
+  }
+  return files;
+}
+
 }  // namespace
 
 std::string problem_body(unsigned status, std::string_view type, std::string_view title,
@@ -902,7 +966,7 @@ std::optional<std::string> query_param(std::string_view target, std::string_view
 }
 
 std::optional<Upload> take_upload(Request& request, std::optional<Response>& error,
-                                  std::shared_ptr<StreamedUpload> streamed) {
+                                  std::shared_ptr<StreamedUpload> streamed, FileParts file_parts) {
   Upload upload;
   const auto content_type = request[http::field::content_type];
   if (auto name = query_param(request.target(), "name"); name && !name->empty())
@@ -924,19 +988,16 @@ std::optional<Upload> take_upload(Request& request, std::optional<Response>& err
       error = bad_request(parts.error);
       return std::nullopt;
     }
-    const auto files = std::count_if(parts.parts.begin(), parts.parts.end(),
-                                     [](const MultipartPart& p) { return p.name == "file"; });
-    if (files > 1) {
-      error = bad_request("the upload has " + std::to_string(files) +
-                          " parts named 'file': one program per request");
-      return std::nullopt;
-    }
     const MultipartPart* part = parts.find("file");
     if (part == nullptr && parts.parts.size() == 1) part = &parts.parts.front();
     if (part == nullptr) {
       error = bad_request("multipart/form-data upload needs a part named 'file'");
       return std::nullopt;
     }
+    auto others = further_files(parts, *part, file_parts, error);
+    if (!others) return std::nullopt;
+    if (!others->empty())
+      upload.others = std::make_shared<const std::vector<pipeline::SourceFile>>(std::move(*others));
     if (!part->filename.empty()) upload.name = part->filename;
     upload.content_type = part->content_type;
     // The part is moved to the front of the body it is in, not copied: a large upload's copy

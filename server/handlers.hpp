@@ -131,10 +131,17 @@ struct Upload {
   std::shared_ptr<StreamedUpload> streamed;
   std::string name = "upload";  // names the input in diagnostics
   std::string content_type;
+  // The further `file` parts of a G-code upload, by their filenames: the program's subprogram
+  // files (docs/gcode.md, "Subprograms"). Null when the upload is one file.
+  std::shared_ptr<const std::vector<pipeline::SourceFile>> others;
 };
+// Whether a route takes several `file` parts: only those that read G-code do (the first part
+// is the program, the others its subprogram files); elsewhere a repeated `file` part is a 400.
+enum class FileParts : std::uint8_t { One, Several };
 // nullopt: a 400 problem is in `error`. `streamed`: what the session took in as it arrived.
 [[nodiscard]] std::optional<Upload> take_upload(Request& request, std::optional<Response>& error,
-                                                std::shared_ptr<StreamedUpload> streamed = {});
+                                                std::shared_ptr<StreamedUpload> streamed = {},
+                                                FileParts file_parts = FileParts::One);
 
 // At most this much of the diagnostics goes into the Ncpost-Diagnostics trailer (whole entries;
 // Ncpost-Warnings still counts them all), so that the trailer stays within any client's limits:

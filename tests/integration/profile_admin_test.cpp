@@ -230,6 +230,52 @@ TEST_F(ProfileAdmin, UploadValidateActivateDelete) {
 // large program streamed to a client that does not read yet (its job is blocked on the full
 // socket, so it is still running), then a new version with CRLF line endings; the stream goes
 // on to its end with the old version's LF only, and the next post has CRLF.
+// A PUT may carry the profile's dialect.json (a `dialect` part): checked against
+// stylesheets/dialect.schema.json, and then G-code is read with the new profile's id.
+TEST_F(ProfileAdmin, UploadedProfileCarriesItsDialect) {
+  ServerProcess server(writable());
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto json = write(files_ / "profile.json", profile_json("shop-mill", "Shop mill"));
+  const auto xsl = write(files_ / "post.xsl", stylesheet());
+  std::string dialect = read_file(source_dir() / "stylesheets/linuxcnc/dialect.json");
+  dialect = std::regex_replace(dialect, std::regex(R"("id": "linuxcnc")"), R"("id": "shop-mill")");
+  dialect = std::regex_replace(dialect, std::regex(R"("\$schema": "[^"]*",)"), "");
+  const auto good = write(files_ / "dialect.json", dialect);
+  const auto bad = write(files_ / "bad-dialect.json",
+                         std::regex_replace(dialect, std::regex(R"("syntax": "word_address")"),
+                                            R"("syntax": "no_such_syntax")"));
+  const auto put_with = [&](const fs::path& d, std::vector<std::string> more = {}) {
+    std::vector<std::string> args = {"-X", "PUT",
+                                     "-F", "profile=<" + json.string(),
+                                     "-F", "stylesheet=<" + xsl.string(),
+                                     "-F", "dialect=<" + d.string(),
+                                     "-H", bearer()};
+    args.insert(args.end(), more.begin(), more.end());
+    args.push_back(server.url("/v1/profiles/shop-mill"));
+    return curl(args);
+  };
+  const std::string gcode = "@" + (source_dir() / "tests/cli/data/gcode/limits.nc").string();
+  // Without a dialect, the profile cannot read G-code.
+  ASSERT_EQ(put(server, "shop-mill", json, xsl).status, 201);
+  const auto unread = curl({"--data-binary", gcode, server.url("/v1/nc/parse?dialect=shop-mill")});
+  EXPECT_EQ(unread.status, 422) << unread.body;
+  EXPECT_NE(unread.body.find("has no dialect.json"), std::string::npos) << unread.body;
+  // A dialect that breaks the schema is refused, naming dialect.json; nothing changes.
+  const auto refused = put_with(bad);
+  EXPECT_EQ(refused.status, 422) << refused.body;
+  EXPECT_NE(refused.body.find("GCODE-002"), std::string::npos) << refused.body;
+  EXPECT_NE(refused.body.find("\"file\": \"dialect.json\""), std::string::npos) << refused.body;
+  // Two dialect parts: 400.
+  EXPECT_EQ(put_with(good, {"-F", "dialect=<" + good.string()}).status, 400);
+  // With its dialect: G-code is read by the new profile's id.
+  const auto stored = put_with(good);
+  EXPECT_EQ(stored.status, 200) << stored.body;
+  const auto read = curl({"--data-binary", gcode, server.url("/v1/nc/parse?dialect=shop-mill")});
+  EXPECT_EQ(read.status, 200) << read.body;
+  EXPECT_NE(read.body.find("STRAIGHT_FEED(900"), std::string::npos) << read.body;
+  EXPECT_EQ(curl({server.url("/healthz")}).status, 200);
+}
+
 TEST_F(ProfileAdmin, ARunningPostKeepsTheVersionItStartedWith) {
   REQUIRE_LARGE_PROGRAM(large, 24);
   ServerProcess server(writable());

@@ -163,6 +163,64 @@ TEST(ServerRoutes, GcodeIsReadWithAProfilesDialect) {
   EXPECT_EQ(missing.status, 400);
 }
 
+// Subprograms in other files: the upload's further `file` parts, on the routes that read G-code
+// only; elsewhere a repeated `file` part is a 400. Without the file, the missing program is named.
+TEST(ServerRoutes, GcodeSubprogramsComeAsFurtherFileParts) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string data = std::string(NCPOST_SOURCE_DIR) + "/tests/cli/data/gcode/";
+  const std::string main = "file=@" + data + "main.nc";
+  const std::string sub = "file=@" + data + "subs/O2000.nc";
+  for (const std::string route :
+       {"/v1/nc/parse?dialect=fanuc-0i", "/v1/nc/parse?dialect=fanuc-0i&format=xml",
+        "/v1/nc/translate?from=fanuc-0i&to=siemens-840d",
+        "/v1/posts?profile=linuxcnc&from=fanuc-0i"}) {
+    auto both = curl({"-F", main, "-F", sub, server.url(route)});
+    EXPECT_EQ(both.status, 200) << route << "\n" << both.body;
+    EXPECT_EQ(both.body.find("GCODE-044"), std::string::npos) << route << "\n" << both.body;
+    EXPECT_NE(both.body.find("40"), std::string::npos) << route << "\n" << both.body;
+    auto alone = curl({"-F", main, server.url(route)});
+    if (route.find("format=xml") != std::string::npos) {
+      EXPECT_EQ(alone.status, 200) << alone.body;  // the XML form holds the <error>
+      EXPECT_EQ(alone.header("Ncpost-Errors"), "1");
+    } else if (route.find("parse") != std::string::npos) {
+      EXPECT_EQ(alone.status, 422) << route << "\n" << alone.body;
+    } else if (alone.status == 200) {
+      // A post whose first blocks went out before the call ends with the error marker.
+      EXPECT_NE(alone.body.find("ERROR: GCODE-044"), std::string::npos) << alone.body;
+      EXPECT_NE(alone.body.find("the program is incomplete"), std::string::npos) << alone.body;
+    } else {
+      EXPECT_EQ(alone.status, 422) << route << "\n" << alone.body;
+    }
+    EXPECT_NE(alone.body.find("subprogram O2000 is neither in the program nor among the uploaded"),
+              std::string::npos)
+        << route << "\n"
+        << alone.body;
+  }
+  // The post's ETag depends on the further files too.
+  auto first =
+      curl({"-F", main, "-F", sub, server.url("/v1/posts?profile=linuxcnc&from=fanuc-0i")});
+  auto other =
+      curl({"-F", main, "-F", sub + ";filename=O2000.nc", "-F", "file=@" + data + "tools.tbl",
+            server.url("/v1/posts?profile=linuxcnc&from=fanuc-0i")});
+  EXPECT_EQ(other.status, 200) << other.body;
+  EXPECT_NE(first.header("ETag"), other.header("ETag"));
+  // A further part without a filename cannot be called: 400.
+  auto unnamed = curl({"-F", main, "-F", "file=<" + data + "subs/O2000.nc",
+                       server.url("/v1/nc/parse?dialect=fanuc-0i")});
+  EXPECT_EQ(unnamed.status, 400) << unnamed.body;
+  // Every other route reads one file: two `file` parts are a 400 that says so.
+  const std::string model = "file=@" + std::string(NCPOST_SOURCE_DIR) + "/examples/bracket.stp";
+  for (const std::string route :
+       {"/v1/posts?profile=linuxcnc", "/v1/conversions?to=p21", "/v1/inspections", "/v1/traces",
+        "/v1/traces?dialect=fanuc-0i", "/v1/verifications"}) {
+    auto two = curl({"-F", model, "-F", model, server.url(route)});
+    EXPECT_EQ(two.status, 400) << route << "\n" << two.body;
+    EXPECT_NE(two.body.find("the part 'file' is repeated"), std::string::npos) << two.body;
+  }
+  EXPECT_EQ(curl({server.url("/healthz")}).status, 200);
+}
+
 // ---- posts ---------------------------------------------------------------------------------
 
 TEST(ServerPosts, StreamedPostIsByteIdenticalToTheCli) {

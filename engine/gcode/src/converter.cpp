@@ -1,6 +1,7 @@
 #include "converter.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -558,10 +559,11 @@ std::uint32_t Converter::motion_column(const Block& b) const noexcept {
   for (const CodeRef& c : b.codes)
     if (is_motion_action(c.spec->action)) return c.column;
   std::uint32_t column = 0;
-  for (std::size_t w = 0; w < dialect_.words.size(); ++w) {
+  for (std::uint64_t bits = b.present.to_ullong(); bits != 0; bits &= bits - 1) {
+    const auto w = static_cast<std::size_t>(std::countr_zero(bits));
+    if (w >= dialect_.words.size()) continue;
     const WordKind k = dialect_.words[w].kind;
     if ((k == WordKind::Axis || k == WordKind::PolarRadius || k == WordKind::PolarAngle) &&
-        b.has(static_cast<WordId>(w)) &&
         (column == 0 || b.word(static_cast<WordId>(w)).column < column))
       column = b.word(static_cast<WordId>(w)).column;
   }
@@ -1218,7 +1220,10 @@ bool Converter::convert_home(const CodeSpec& code, const Block& b, const Where& 
 
 bool Converter::execute(const Block& b, std::span<const Comment> comments, const Where& where,
                         FlowRequest& flow) {
-  flow = FlowRequest{};
+  // Copied from a constant: a temporary built on the stack and read back whole stalls the
+  // store buffer, once per block.
+  static const FlowRequest kNoFlow{};
+  flow = kNoFlow;
   // ---- Check: modal groups, refused codes, required and unused words ----
   const CodeSpec* motion = nullptr;
   const CodeSpec* non_motion[16] = {};
@@ -1309,8 +1314,11 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   }
   // Every word must be used by a code of the block, be a free word, or be an axis word with a
   // motion in force.
-  for (std::size_t w = 0; w < dialect_.words.size(); ++w) {
-    if (!b.has(static_cast<WordId>(w))) continue;
+  // Over the block's words only (the bits set), not every word of the dialect.
+  static_assert(kMaxWords <= 64, "the present words fit one 64-bit mask");
+  for (std::uint64_t bits = b.present.to_ullong(); bits != 0; bits &= bits - 1) {
+    const auto w = static_cast<std::size_t>(std::countr_zero(bits));
+    if (w >= dialect_.words.size()) continue;
     const WordKind kind = dialect_.words[w].kind;
     if (kind == WordKind::Feed || kind == WordKind::Speed || kind == WordKind::Tool ||
         kind == WordKind::GCode || kind == WordKind::MCode || kind == WordKind::LineNumber ||

@@ -1,8 +1,10 @@
 #include "interpreter.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 
 #include "klartext.hpp"
 
@@ -45,41 +47,82 @@ std::string stem_of(std::string_view name) {
   return upper_copy(name);
 }
 
+// Whether a line holds G65 or G66 (any case), whose letters are a macro's arguments.
+bool calls_macro(std::string_view line) {
+  for (std::size_t i = 0; i + 2 < line.size(); ++i)
+    if (upper(line[i]) == 'G' && line[i + 1] == '6' && (line[i + 2] == '5' || line[i + 2] == '6'))
+      return true;
+  return false;
+}
+
 // Whether the text (outside comments) has a rotary axis word: then every canonical motion
 // carries A, B, C (docs/canon.md: a program's motions either all have them or none does).
+// One pass over the bytes, which looks closer only at A, B, C and comment starts.
 bool has_rotary_words(std::string_view text, const Dialect& dialect) {
   for (const char letter : {'A', 'B', 'C'}) {
     const WordId w = letter_word(letter);
     if (!dialect.letter_known[w] || dialect.words[w].kind != WordKind::Axis) return false;
   }
-  LineCursor lines(text);
-  while (!lines.at_end()) {
-    std::uint32_t number = 0;
-    const std::string_view line = lines.next(number);
-    // A macro call's letters are its arguments (G65 P9010 A15.), not axes.
-    const std::string up = upper_copy(line);
-    if (up.find("G65") != std::string::npos || up.find("G66") != std::string::npos) continue;
-    bool paren = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-      const char c = line[i];
-      if (paren) {
-        paren = c != ')';
+  enum : std::uint8_t { Other, Letter, Paren, Semicolon };
+  std::array<std::uint8_t, 256> kind{};
+  for (const char c : {'A', 'B', 'C', 'a', 'b', 'c'}) kind[static_cast<unsigned char>(c)] = Letter;
+  if (dialect.parenthesis_comments) kind['('] = Paren;
+  if (dialect.semicolon_comments) kind[';'] = Semicolon;
+  const char* const s = text.data();
+  const std::size_t n = text.size();
+  const auto line_end = [&](std::size_t from) {
+    const void* nl = std::memchr(s + from, '\n', n - from);
+    return nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - s) : n;
+  };
+  // Eight bytes at a time: most words hold none of the bytes looked at. A set high bit marks a
+  // byte equal to the one asked for (exact for "any", which is all that is used); lower-casing
+  // by OR 0x20 may also flag a few control bytes, which the byte loop then just passes.
+  constexpr std::uint64_t kOnes = 0x0101010101010101ull;
+  constexpr std::uint64_t kHighs = 0x8080808080808080ull;
+  const auto equal = [](std::uint64_t word, unsigned char b) {
+    const std::uint64_t x = word ^ (kOnes * b);
+    return (x - kOnes) & ~x & kHighs;
+  };
+  std::size_t i = 0;
+  while (i < n) {
+    if (i + 8 <= n) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, s + i, 8);
+      const std::uint64_t lower = word | (kOnes * 0x20);
+      if ((equal(lower, 'a') | equal(lower, 'b') | equal(lower, 'c') | equal(word, '(') |
+           equal(word, ';')) == 0) {
+        i += 8;
         continue;
       }
-      if (c == '(' && dialect.parenthesis_comments) {
-        paren = true;
+    }
+    const std::size_t stop = std::min(n, i + 8);
+    for (; i < stop; ++i) {
+      const std::uint8_t k = kind[static_cast<unsigned char>(s[i])];
+      if (k == Other) continue;
+      if (k == Paren) {
+        // A comment to its ')' (or the line's end, where an unclosed one ends).
+        while (i + 1 < n && s[i + 1] != ')' && s[i + 1] != '\n') ++i;
+        if (i + 1 < n && s[i + 1] == ')') ++i;
         continue;
       }
-      if (c == ';' && dialect.semicolon_comments) break;
-      const char u = upper(c);
-      if (u != 'A' && u != 'B' && u != 'C') continue;
-      if (i > 0 && (is_letter(line[i - 1]) || line[i - 1] == '_' || line[i - 1] == '$')) continue;
+      if (k == Semicolon) {
+        i = line_end(i) - 1;  // the loop's ++i steps onto the '\n'
+        continue;
+      }
+      if (i > 0 && (is_letter(s[i - 1]) || s[i - 1] == '_' || s[i - 1] == '$')) continue;
       std::size_t j = i + 1;
-      while (j < line.size() && (line[j] == ' ' || line[j] == '\t')) ++j;
-      if (j >= line.size()) continue;
-      const char n = line[j];
-      if (is_digit(n) || n == '-' || n == '+' || n == '.' || n == '#' || n == '[' || n == '=')
-        return true;
+      while (j < n && (s[j] == ' ' || s[j] == '\t')) ++j;
+      if (j >= n) continue;
+      const char v = s[j];
+      if (!(is_digit(v) || v == '-' || v == '+' || v == '.' || v == '#' || v == '[' || v == '='))
+        continue;
+      // A macro call's letters are its arguments (G65 P9010 A15.), not axes: its line is
+      // skipped.
+      std::size_t begin = i;
+      while (begin > 0 && s[begin - 1] != '\n') --begin;
+      const std::size_t end = line_end(i);
+      if (!calls_macro(text.substr(begin, end - begin))) return true;
+      i = end;
     }
   }
   return false;
@@ -122,13 +165,13 @@ ReadResult Interpreter::result() && {
 // ---- Diagnostics -----------------------------------------------------------------------------
 
 bool Interpreter::error(std::uint32_t col, diag::Code code, std::string message) {
-  if (!report_.add(sources_[position_.source].name, code, line_.number, col, std::move(message)))
+  if (!report_.add(sources_[position_.source].name, code, line_->number, col, std::move(message)))
     done_ = true;
   return false;
 }
 
 void Interpreter::warn(std::uint32_t col, diag::Code code, std::string message) {
-  report_.add(sources_[position_.source].name, code, line_.number, col, std::move(message));
+  report_.add(sources_[position_.source].name, code, line_->number, col, std::move(message));
 }
 
 void Interpreter::report_eval_error() {
@@ -175,7 +218,7 @@ bool Interpreter::next_line() {
         // A subprogram file may end without its return (FANUC files often do): an implicit
         // return, as the controllers make it.
         if (f.kind == FrameKind::OWord) {
-          line_.number = position_.line;
+          line_->number = position_.line;
           error(0, diag::Code::GcodeBadFlow,
                 "end of file inside subprogram " + f.label + " (no endsub)");
           done_ = true;
@@ -190,9 +233,8 @@ bool Interpreter::next_line() {
     std::uint32_t number = 0;
     const std::string_view raw = cursor_.next(number);
     position_.line = number;
-    line_.number = number;
     if (++steps_ > options_.max_steps) {
-      line_.raw = raw;
+      set_unread_line(raw, number);
       error(0, diag::Code::GcodeStepLimit,
             "more than " + std::to_string(options_.max_steps) +
                 " blocks evaluated (ReadOptions::max_steps): an endless loop?");
@@ -206,18 +248,47 @@ bool Interpreter::next_line() {
       return false;
     }
     if (raw.size() > options_.max_line_length) {
-      line_.raw = raw.substr(0, 0);
-      line_.text.clear();
-      line_.columns.clear();
+      set_unread_line(raw.substr(0, 0), number);
       error(1, diag::Code::GcodeLineTooLong,
             "line of " + std::to_string(raw.size()) + " bytes (ReadOptions::max_line_length is " +
                 std::to_string(options_.max_line_length) + ")");
       continue;
     }
-    normalise(raw, dialect_, line_);
+    load_line(raw, number);
     return true;
   }
   return false;
+}
+
+void Interpreter::load_line(std::string_view raw, std::uint32_t number) {
+  if (raw.size() > kCachedLineMax) {
+    line_ = &spare_line_;
+    normalise(raw, lexing_, spare_line_);
+  } else {
+    const std::uint64_t mixed =
+        (static_cast<std::uint64_t>(position_.offset) + position_.source) * 0x9E3779B97F4A7C15ull;
+    CachedLine& slot = line_cache_[(mixed >> 32) % kLineCacheSize];
+    if (slot.source != position_.source || slot.offset != position_.offset) {
+      slot.source = position_.source;
+      slot.offset = position_.offset;
+      normalise(raw, lexing_, slot.line);
+    }
+    line_ = &slot.line;
+  }
+  line_->number = number;
+}
+
+void Interpreter::set_unread_line(std::string_view raw, std::uint32_t number) {
+  line_ = &spare_line_;
+  normalise({}, lexing_, spare_line_);
+  spare_line_.raw = raw;
+  spare_line_.number = number;
+}
+
+void Interpreter::detach_line() {
+  if (line_ == &spare_line_) return;
+  spare_line_ = *line_;
+  line_ = &spare_line_;
 }
 
 void Interpreter::jump(const Position& p) {
@@ -232,7 +303,7 @@ void Interpreter::jump(const Position& p) {
 bool Interpreter::skip_to(const std::vector<std::string_view>& keywords, std::string_view label,
                           std::string_view& found) {
   // O-word lines `o<label> <keyword>`.
-  const std::uint32_t from_line = line_.number;
+  const std::uint32_t from_line = line_->number;
   const std::string from_file = sources_[position_.source].name;
   while (!done_) {
     if (cursor_.at_end()) break;
@@ -240,17 +311,20 @@ bool Interpreter::skip_to(const std::vector<std::string_view>& keywords, std::st
     std::uint32_t number = 0;
     const std::string_view raw = cursor_.next(number);
     position_.line = number;
-    line_.number = number;
     if (++steps_ > options_.max_steps) {
+      set_unread_line(raw, number);
       error(0, diag::Code::GcodeStepLimit,
             "more than " + std::to_string(options_.max_steps) +
                 " blocks evaluated (ReadOptions::max_steps)");
       done_ = true;
       return false;
     }
-    if (raw.size() > options_.max_line_length) continue;
-    normalise(raw, dialect_, line_);
-    const std::string_view t = line_.text;
+    if (raw.size() > options_.max_line_length) {
+      set_unread_line(raw.substr(0, 0), number);
+      continue;
+    }
+    load_line(raw, number);
+    const std::string_view t = line_->text;
     std::size_t pos = 0;
     if (pos < t.size() && t[pos] == 'N') {
       ++pos;
@@ -298,7 +372,7 @@ void Interpreter::index_subprograms(Source& s) {
     std::uint32_t number = 0;
     const std::string_view raw = c.next(number);
     if (raw.size() > options_.max_line_length) continue;
-    normalise(raw, dialect_, line);
+    normalise(raw, lexing_, line);
     const std::string_view t = line.text;
     std::size_t pos = 0;
     while (pos < t.size() && t[pos] == ' ') ++pos;
@@ -423,7 +497,7 @@ void Interpreter::index_labels(Source& s) {
     std::uint32_t number = 0;
     const std::string_view raw = c.next(number);
     if (raw.size() > options_.max_line_length) continue;
-    normalise(raw, dialect_, line);
+    normalise(raw, lexing_, line);
     const std::string_view t = line.text;
     std::size_t pos = 0;
     while (pos < t.size() && t[pos] == ' ') ++pos;
@@ -503,7 +577,7 @@ bool Interpreter::read_word_value(std::size_t& pos, Value& value, bool& integer_
 
 bool Interpreter::read_words(std::size_t pos, Block& b) {
   const std::string_view t = text();
-  b.line = line_.number;
+  b.line = line_->number;
   b.first_column = column(pos);
   const ParameterStyle style = dialect_.parameters.style;
   while (pos < t.size()) {
@@ -702,7 +776,7 @@ bool Interpreter::assign(const Assignment& a) {
     // FANUC #3000 = n (TEXT): alarm n, the program ends; #3006 = 1 (TEXT): a stop with a
     // message. The text is the block's comment.
     const std::string text =
-        line_.comments.empty() ? std::string() : std::string(trim(line_.comments.front().text));
+        line_->comments.empty() ? std::string() : std::string(trim(line_->comments.front().text));
     if (alarm) {
       error(a.column, diag::Code::GcodeAbort,
             "alarm " + number_key(a.value.number) + (text.empty() ? "" : ": " + text));
@@ -746,7 +820,7 @@ void Interpreter::handle_comments(bool& stop) {
   // here; plain ones stay for the converter (COMMENT calls).
   stop = false;
   plain_comments_.clear();
-  for (const Comment& c : line_.comments) {
+  for (const Comment& c : line_->comments) {
     const std::string_view body = trim(c.text);
     std::string_view command;
     std::string_view rest;
@@ -966,16 +1040,16 @@ bool Interpreter::o_word_statement(std::size_t pos) {
     if (!executed_any_ && frames_.size() == 1 && !titled_) {
       // The main program's title: O1234 or O<name>.
       titled_ = true;
-      if (!line_.comments.empty())
-        program_name_ = std::string(trim(line_.comments.front().text));
+      if (!line_->comments.empty())
+        program_name_ = std::string(trim(line_->comments.front().text));
       else
         program_name_ = "O" + label;
       return true;
     }
     // A FANUC-style subprogram met in sequence: its body runs only when called.
-    const std::uint32_t from = line_.number;
+    const std::uint32_t from = line_->number;
     while (!done_ && next_line()) {
-      const std::string_view s = line_.text;
+      const std::string_view s = line_->text;
       bool m99 = false;
       for (std::size_t i = 0; i + 2 < s.size() + 1 && !m99; ++i) {
         if (s[i] == 'M' && (i == 0 || !is_letter(s[i - 1]))) {
@@ -1076,7 +1150,7 @@ bool Interpreter::o_word_statement(std::size_t pos) {
       if (found != "ELSEIF") return true;
       // An ELSEIF: its own condition, read from that line.
       std::size_t p = 0;
-      const std::string_view s = line_.text;
+      const std::string_view s = line_->text;
       p = s.find("ELSEIF") + 6;
       while (p < s.size() && s[p] == ' ') ++p;
       if (p >= s.size() || s[p] != dialect_.expressions.open)
@@ -1278,10 +1352,10 @@ bool Interpreter::macro_statement(std::size_t pos, bool& handled) {
     }
     if (it != frame.loops.end()) frame.loops.erase(it);
     // Skip to the matching END m.
-    const std::uint32_t from = line_.number;
+    const std::uint32_t from = line_->number;
     const std::string end = "END" + number_key(m.number);
     while (!done_ && next_line()) {
-      std::string_view s = line_.text;
+      std::string_view s = line_->text;
       std::size_t p = 0;
       if (p < s.size() && s[p] == 'N') {
         ++p;
@@ -1342,10 +1416,10 @@ bool Interpreter::macro_statement(std::size_t pos, bool& handled) {
 // ---- The main loop ---------------------------------------------------------------------------
 
 void Interpreter::step_block() {
-  if (line_.block_delete && options_.block_delete) return;
+  if (line_->block_delete && options_.block_delete) return;
   if (observer_) {
-    observer_->begin_block(sources_[position_.source].name, line_.number, line_.raw);
-    for (const Comment& c : line_.comments) observer_->comment(c.text, c.column);
+    observer_->begin_block(sources_[position_.source].name, line_->number, line_->raw);
+    for (const Comment& c : line_->comments) observer_->comment(c.text, c.column);
   }
   struct End {
     BlockObserver* o;
@@ -1353,13 +1427,13 @@ void Interpreter::step_block() {
       if (o) o->end_block();
     }
   } end{observer_};
-  if (line_.has_error) {
-    error(line_.error.column, diag::Code::GcodeUnclosedComment,
-          line_.error.unclosed_string ? "string not closed on its line"
-                                      : "comment not closed on its line");
+  if (line_->has_error) {
+    error(line_->error.column, diag::Code::GcodeUnclosedComment,
+          line_->error.unclosed_string ? "string not closed on its line"
+                                       : "comment not closed on its line");
     return;
   }
-  const std::string_view t = line_.text;
+  const std::string_view t = line_->text;
   if (dialect_.percent_delimits && !t.empty() && t[0] == '%') {
     if (frames_.size() == 1 && position_.source == 0) {
       if (!percent_seen_ && !executed_any_) {
@@ -1399,7 +1473,8 @@ void Interpreter::step_block() {
         after_n + 1 < t.size() && is_digit(t[after_n + 1])) {
       scratch_.assign(t);
       scratch_[after_n] = 'O';
-      line_.text = scratch_;
+      detach_line();
+      line_->text = scratch_;
       o_word_statement(after_n);
       return;
     }

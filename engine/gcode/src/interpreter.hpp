@@ -9,6 +9,7 @@
 // loop stacks (bounded by max_call_depth) and — only for files where a program jumps to a
 // label or calls a subprogram — an index of that file's labels and subprogram starts.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -124,9 +125,9 @@ class Interpreter {
   void warn(std::uint32_t column, diag::Code code, std::string message);
   void end_program();
   [[nodiscard]] bool done_by_error() const;
-  [[nodiscard]] std::uint32_t column(std::size_t pos) const { return line_.column(pos); }
-  [[nodiscard]] Where where() const { return {sources_[position_.source].name, line_.number}; }
-  [[nodiscard]] std::string_view text() const { return line_.text; }
+  [[nodiscard]] std::uint32_t column(std::size_t pos) const { return line_->column(pos); }
+  [[nodiscard]] Where where() const { return {sources_[position_.source].name, line_->number}; }
+  [[nodiscard]] std::string_view text() const { return line_->text; }
 
   // LinuxCNC O-words.
   bool o_word_statement(std::size_t pos);
@@ -155,6 +156,7 @@ class Interpreter {
   bool klartext_q_target(std::size_t& p, double& index);
 
   const Dialect& dialect_;
+  const Lexing lexing_{dialect_};
   const ReadOptions& options_;
   BlockObserver* observer_;
   Report report_;
@@ -166,7 +168,25 @@ class Interpreter {
   std::vector<Frame> frames_;
   LineCursor cursor_;
   Position position_;  // of the line in line_
-  Line line_;
+  // Normalised lines by the source and offset they start at, direct-mapped: the lines of a
+  // loop are lexed once, not on every pass. Lines longer than kCachedLineMax go to spare_line_
+  // (as does a line that is not normalised, or is changed), so the cache stays small.
+  static constexpr std::size_t kLineCacheSize = 64;
+  static constexpr std::size_t kCachedLineMax = 512;
+  struct CachedLine {
+    std::size_t source = static_cast<std::size_t>(-1);
+    std::size_t offset = 0;
+    Line line;
+  };
+  std::array<CachedLine, kLineCacheSize> line_cache_;
+  Line spare_line_;
+  Line* line_ = &spare_line_;  // the current line
+  // The line `raw` at position_ into line_, normalised (or from the cache).
+  void load_line(std::string_view raw, std::uint32_t number);
+  // line_ as a line of its own, to be changed without changing the cache.
+  void detach_line();
+  // line_: a line that is not read (too long, past the step limit), for its diagnostic.
+  void set_unread_line(std::string_view raw, std::uint32_t number);
   Block block_;
   std::uint64_t steps_ = 0;
   bool done_ = false;

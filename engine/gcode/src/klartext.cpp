@@ -41,7 +41,7 @@ bool starts(std::string_view t, std::size_t p, std::string_view w) {
 void Interpreter::klartext_line() {
   if (!klartext_) klartext_ = std::make_unique<KlartextState>();
   KlartextState& k = *klartext_;
-  const std::string_view t = line_.text;
+  const std::string_view t = line_->text;
   std::size_t pos = skip_spaces(t, 0);
   // The block number.
   while (pos < t.size() && is_digit(t[pos])) ++pos;
@@ -51,7 +51,7 @@ void Interpreter::klartext_line() {
   // Comments: ';' to the line end (the lexer took them out), '*' blocks.
   if (pos >= t.size() || t[pos] == '*') {
     if (!converter_.started()) converter_.start(program_name_);
-    for (const Comment& c : line_.comments) {
+    for (const Comment& c : line_->comments) {
       std::string_view text = c.text;
       while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
       while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
@@ -491,13 +491,13 @@ void Interpreter::klartext_line() {
     k.cycle = static_cast<int>(number);
     k.q.clear();
     auto continues = [&]() {
-      std::string_view raw = line_.raw;
+      std::string_view raw = line_->raw;
       while (!raw.empty() && (raw.back() == ' ' || raw.back() == '\t')) raw.remove_suffix(1);
       return !raw.empty() && raw.back() == '~';
     };
     while (continues()) {
       if (!next_line()) break;
-      const std::string_view s = line_.text;
+      const std::string_view s = line_->text;
       std::size_t q = skip_spaces(s, 0);
       double index = 0;
       if (!klartext_q_target(q, index)) return;
@@ -607,7 +607,7 @@ void Interpreter::klartext_line() {
 // "Q5 =", "QL2 =", "QR1 =" at `p` of the line: the parameter's number in the one table (QL
 // +10000, QR +20000, as the evaluator reads them) and `p` after the '='.
 bool Interpreter::klartext_q_target(std::size_t& p, double& index) {
-  const std::string_view t = line_.text;
+  const std::string_view t = line_->text;
   p = skip_spaces(t, p);
   if (p >= t.size() || t[p] != 'Q')
     return error(column(p), diag::Code::GcodeBadStatement, "a Q parameter expected");
@@ -678,7 +678,7 @@ void Interpreter::klartext_cycle_call(std::uint32_t col) {
 
 // FN 0..13 arithmetic, FN 9..12 conditional jumps, FN 14 error, FN 16 print, FN 18 SYSREAD.
 void Interpreter::klartext_fn(std::size_t pos) {
-  const std::string_view t = line_.text;
+  const std::string_view t = line_->text;
   const std::uint32_t col = column(pos);
   std::size_t p = skip_spaces(t, pos + 2);
   double number = 0;

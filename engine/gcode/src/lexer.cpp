@@ -15,7 +15,29 @@ std::string_view LineCursor::next(std::uint32_t& number) noexcept {
   return text_.substr(start, end - start);
 }
 
-void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
+Lexing::Lexing(const Dialect& d) : dialect(d) {
+  const bool squeeze = d.ignore_whitespace;
+  for (std::size_t c = 0; c < 256; ++c) {
+    const char ch = static_cast<char>(c);
+    upper[c] = ch == '\t' ? ' ' : ncpost::gcode::detail::upper(ch);
+    advance[c] = (ch == ' ' || ch == '\t') && squeeze ? 0 : 1;
+    std::uint8_t k = Plain;
+    if (ch == ' ' || ch == '\t')
+      k = Space;
+    else if (ch == '(' && d.parenthesis_comments)
+      k = OpenComment;
+    else if (ch == ';' && d.semicolon_comments)
+      k = Semicolon;
+    else if (ch == '*' && d.checksums && d.syntax != Syntax::Klartext)
+      k = Checksum;
+    else if (ch == '"' && !squeeze)
+      k = Quote;
+    classes[c] = k;
+  }
+}
+
+void normalise(std::string_view raw, const Lexing& lexing, Line& line) {
+  const Dialect& dialect = lexing.dialect;
   line.raw = raw;
   line.comments.clear();
   line.block_delete = false;
@@ -35,8 +57,6 @@ void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
     line.text.resize(out);
     line.columns.resize(out);
   };
-  const bool squeeze = dialect.ignore_whitespace;
-  const bool klartext = dialect.syntax == Syntax::Klartext;
   std::size_t i = 0;
   while (i < n && (raw[i] == ' ' || raw[i] == '\t')) ++i;
   if (i < n && raw[i] == '/' && dialect.block_delete) {
@@ -48,42 +68,52 @@ void normalise(std::string_view raw, const Dialect& dialect, Line& line) {
   bool in_string = false;
   std::uint32_t string_column = 0;
   for (; i < n; ++i) {
-    const char c = raw[i];
+    const auto c = static_cast<unsigned char>(raw[i]);
     const auto column = static_cast<std::uint32_t>(i + 1);
     if (in_string) {
-      text[out] = c;
+      text[out] = raw[i];
       columns[out++] = column;
       if (c == '"') in_string = false;
       continue;
     }
-    if (c == '(' && dialect.parenthesis_comments) {
-      const std::size_t close = raw.find(')', i + 1);
-      if (close == std::string_view::npos) {
-        line.has_error = true;
-        line.error.column = column;
-        line.error.unclosed_comment = true;
-        finish();
-        return;
+    const std::uint8_t kind = lexing.classes[c];
+    if (kind <= Lexing::Space) {
+      // Most bytes: written (upper case, a tab as a blank) and kept unless a dropped blank.
+      text[out] = lexing.upper[c];
+      columns[out] = column;
+      out += lexing.advance[c];
+      continue;
+    }
+    switch (kind) {
+      case Lexing::OpenComment: {
+        const std::size_t close = raw.find(')', i + 1);
+        if (close == std::string_view::npos) {
+          line.has_error = true;
+          line.error.column = column;
+          line.error.unclosed_comment = true;
+          finish();
+          return;
+        }
+        line.comments.push_back({raw.substr(i + 1, close - i - 1), column, false});
+        i = close;
+        continue;
       }
-      line.comments.push_back({raw.substr(i + 1, close - i - 1), column, false});
-      i = close;
-      continue;
+      case Lexing::Semicolon:
+        line.comments.push_back({raw.substr(i + 1), column, true});
+        i = n;
+        break;
+      case Lexing::Checksum:  // '*NN' checksum to the line end
+        i = n;
+        break;
+      case Lexing::Quote:
+      default:
+        in_string = true;
+        string_column = column;
+        text[out] = raw[i];
+        columns[out++] = column;
+        continue;
     }
-    if (c == ';' && dialect.semicolon_comments) {
-      line.comments.push_back({raw.substr(i + 1), column, true});
-      break;
-    }
-    if (c == '*' && dialect.checksums && !klartext) break;  // '*NN' checksum to the line end
-    if (c == '"' && !squeeze) {
-      in_string = true;
-      string_column = column;
-      text[out] = c;
-      columns[out++] = column;
-      continue;
-    }
-    if ((c == ' ' || c == '\t') && squeeze) continue;
-    text[out] = c == '\t' ? ' ' : upper(c);
-    columns[out++] = column;
+    break;
   }
   if (in_string) {
     line.has_error = true;

@@ -6,6 +6,7 @@
 // diagnostics point at the source. One Line is reused for every block: no allocation per line
 // once it has grown to the longest line.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -43,8 +44,20 @@ struct Line {
   }
 };
 
+// What normalising does with each byte in one dialect, looked up once per character instead
+// of asking the dialect's rules for each (made once per reading).
+struct Lexing {
+  enum Class : std::uint8_t { Plain, Space, OpenComment, Semicolon, Checksum, Quote };
+  explicit Lexing(const Dialect& dialect);
+  const Dialect& dialect;
+  std::array<std::uint8_t, 256> classes{};
+  std::array<char, 256> upper{};  // a Plain or Space byte as written into the text
+  // 0 for a byte that is dropped (a blank where blanks may stand inside words), else 1.
+  std::array<std::uint8_t, 256> advance{};
+};
+
 // Normalises `raw` into `line` (its number is left as set).
-void normalise(std::string_view raw, const Dialect& dialect, Line& line);
+void normalise(std::string_view raw, const Lexing& lexing, Line& line);
 
 // Walks a text line by line; offsets let control flow jump back and forth without copying.
 class LineCursor {

@@ -85,11 +85,11 @@ Structure structure_of(std::string_view t) {
 // (`open`), counting nested ones; `also` is accepted at the outer level (ELSE). Leaves the found
 // line in line_, the cursor after it.
 bool Interpreter::sinumerik_skip(Structure_ open, Structure_ close, Structure_ also) {
-  const std::uint32_t from = line_.number;
+  const std::uint32_t from = line_->number;
   int depth = 0;
   while (!done_ && next_line()) {
-    if (line_.has_error) continue;
-    const auto s = static_cast<Structure_>(structure_of(line_.text));
+    if (line_->has_error) continue;
+    const auto s = static_cast<Structure_>(structure_of(line_->text));
     if (s == open) ++depth;
     if (s == close) {
       if (depth == 0) return true;
@@ -533,7 +533,7 @@ bool Interpreter::sinumerik_statement(std::size_t pos, bool& handled) {
         if (close == std::string_view::npos)
           return error(column(p), diag::Code::GcodeUnclosedComment, "string not closed");
         // The string as written (the normaliser kept its case).
-        message += std::string(line_.raw.substr(line_.columns[p], close - p - 1));
+        message += std::string(line_->raw.substr(line_->columns[p], close - p - 1));
         p = close + 1;
       } else if (t.compare(p, 2, "<<") == 0) {
         p += 2;

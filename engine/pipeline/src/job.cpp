@@ -193,10 +193,49 @@ Program read_gcode(Input input, const JobContext& context, const ReadOptions&) {
   return program;
 }
 
-gcode::ReadOptions gcode_options(const Program& program, const JobContext& context) {
+// A profile's limits as the G-code reader checks them (GCODE-036). Travel is checked in the
+// program's axes, so only when the profile's setup transform leaves them as the machine's;
+// otherwise the renderer's check in machine axes (RENDER-0xx) is the only one.
+gcode::MachineLimits machine_limits(const profile::Profile& profile) {
+  const profile::Limits& limits = profile.limits;
+  gcode::MachineLimits out;
+  const xslt::SetupTransform identity{};
+  if (profile.setup.matrix == identity.matrix &&
+      profile.setup.translation == identity.translation) {
+    const auto range = [](const std::optional<profile::Range>& r) {
+      return r ? std::optional<gcode::MachineLimits::Range>({r->min, r->max}) : std::nullopt;
+    };
+    out.x = range(limits.x);
+    out.y = range(limits.y);
+    out.z = range(limits.z);
+  }
+  out.metric = profile.units == xslt::Units::Millimetre;
+  out.max_feed = limits.max_feed;
+  out.max_spindle = limits.max_spindle;
+  if (limits.tool_number) {
+    out.min_tool = (*limits.tool_number)[0];
+    out.max_tool = (*limits.tool_number)[1];
+  }
+  out.errors = limits.severity == diag::Severity::Error;
+  return out;
+}
+
+gcode::ReadOptions gcode_options(const Program& program, const JobContext& context,
+                                 const profile::LoadedProfile* limits_of = nullptr) {
   gcode::ReadOptions options;
   options.program_name = program.name;
   options.cancel = context.cancel;
+  if (context.gcode_subprograms) options.subprograms = *context.gcode_subprograms;
+  // A tool table's pockets are the T numbers a program may call, with their lengths (G43 H).
+  if (context.tools) {
+    std::vector<int> pockets;
+    for (const stepnc::ToolTableEntry& entry : context.tools->entries) {
+      pockets.push_back(entry.pocket);
+      options.tool_lengths.emplace_back(entry.pocket, entry.length_offset);
+    }
+    options.tools = std::move(pockets);
+  }
+  if (limits_of != nullptr) options.limits = machine_limits(limits_of->profile);
   return options;
 }
 
@@ -204,7 +243,7 @@ Interpretation interpret_gcode(const Program& program, canon::Sink& sink, const 
                                const InterpretSettings& settings) {
   Interpretation out;
   const profile::LoadedProfile& dialect = *context.gcode_dialect;  // read_gcode checked it
-  gcode::ReadOptions options = gcode_options(program, context);
+  gcode::ReadOptions options = gcode_options(program, context, settings.limits_of);
   // A post stops at the first error; the reader goes on to list them all otherwise.
   if (settings.stop_at_first_error) options.max_errors = 1;
   gcode::ReadResult result = gcode::read_with_dialect(

@@ -297,6 +297,7 @@ PostResult post(const Program& program, const JobContext& context,
   InterpretSettings settings;
   settings.stop_at_first_error = true;
   if (options.shop_checks) settings.checks_of = &profile;
+  settings.limits_of = &profile;
   const auto interpret_into = [&](canon::Sink& sink) {
     return interpret(program, sink, context, settings);
   };

@@ -56,7 +56,8 @@ ProfileLookup Profiles::find(std::string_view id) {
 }
 
 ProfilePut Profiles::put(std::string_view id, std::string_view profile_json,
-                         std::string_view stylesheet) {
+                         std::string_view stylesheet,
+                         std::optional<std::string_view> dialect_json) {
   ProfilePut put;
   if (!store_->writable()) {
     put.outcome = PutOutcome::ReadOnlyStore;
@@ -66,7 +67,7 @@ ProfilePut Profiles::put(std::string_view id, std::string_view profile_json,
                                "--profiles DIR")});
     return put;
   }
-  profile::PutResult result = store_->put(id, profile_json, stylesheet);
+  profile::PutResult result = store_->put(id, profile_json, stylesheet, dialect_json);
   put.diagnostics = without_server_paths(std::move(result.diagnostics));
   put.profile = std::move(result.profile);
   if (put.profile)

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "gcode_support.hpp"
 #include "ncpost/canon/trace.hpp"
 
@@ -179,6 +181,33 @@ TEST(Convert, RotaryAxesEverywhereOrNowhere) {
   EXPECT_EQ(r.motions(),
             "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
             "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 90.0000, 0.0000, 0.0000)\n");
+}
+
+// Whether a program has rotary words is decided before it is read, by a scan over its bytes
+// (eight at a time where none is looked at): letters in comments, in names, in a macro call's
+// arguments, or not followed by a value are not axis words; one anywhere else is.
+TEST(Convert, RotaryWordsAreFoundWhereverTheyStand) {
+  const std::string padding = "G0 X1 (A1 B2 C3 in a comment) ; A4 after a remark\n";
+  const std::string none[] = {
+      padding + "G0 Y2\nM2\n",
+      padding + "#<_abc> = 1\nG0 X#<_abc>\nM2\n",
+      padding + "(unclosed A5\nG0 Y2\nM2\n",
+      "G0 X0\nM2\n",
+  };
+  for (const auto& text : none) {
+    const auto r = read(text);
+    const auto first = r.motions().substr(0, r.motions().find('\n'));
+    EXPECT_EQ(std::count(first.begin(), first.end(), ','), 2) << text << "\n" << r.motions();
+  }
+  // At every offset within eight bytes, and in lower case.
+  for (int shift = 0; shift < 9; ++shift) {
+    const std::string text = padding + std::string(static_cast<std::size_t>(shift), ' ') +
+                             (shift % 2 ? "G0 a90\n" : "G0 C-90\n") + "M2\n";
+    const auto r = read(text);
+    EXPECT_TRUE(r.result.ok()) << text << r.messages();
+    const auto first = r.motions().substr(0, r.motions().find('\n'));
+    EXPECT_EQ(std::count(first.begin(), first.end(), ','), 5) << text << "\n" << r.motions();
+  }
 }
 
 TEST(Convert, PolarCoordinates) {

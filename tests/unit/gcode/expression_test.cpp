@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <charconv>
+#include <random>
+
 #include "gcode_support.hpp"
 
 namespace ncpost::gcode {
@@ -118,6 +121,52 @@ TEST(Expressions, MachineValuesWarnAndRefuseMotion) {
   EXPECT_TRUE(c.has(diag::Code::GcodeMachineMotion)) << c.messages();
   const auto d = read("G0 X#<_hal[some.pin]>\nM2\n");
   EXPECT_TRUE(d.has(diag::Code::GcodeMachineMotion)) << d.messages();
+}
+
+// Numbers are read with a fast path for up to 15 digits; it must give exactly the double that
+// std::from_chars gives (the correctly rounded one), for every placement of the point, signs,
+// leading zeros and a leading '.', and beyond 15 digits (the slow path) too.
+TEST(Expressions, NumbersReadExactlyAsFromChars) {
+  std::mt19937_64 random(19);
+  std::vector<std::string> numbers = {"0",
+                                      "0.",
+                                      ".5",
+                                      "-.25",
+                                      "007.0700",
+                                      "1.1",
+                                      "0.1",
+                                      "-0.3",
+                                      "123456789012345",
+                                      "1.23456789012345",
+                                      "12345678901234567.5",
+                                      ".1234567890123456"};
+  for (int i = 0; i < 2000; ++i) {
+    const int digits = 1 + static_cast<int>(random() % 17);
+    std::string n;
+    for (int d = 0; d < digits; ++d) n += static_cast<char>('0' + random() % 10);
+    n.insert(random() % (n.size() + 1), ".");
+    if (random() % 2) n.insert(0, "-");
+    numbers.push_back(n);
+  }
+  std::string program = "G21 G90\n";
+  for (const auto& n : numbers) program += "G0 X" + n + "\n";
+  program += "M2\n";
+  const auto r = read(program);
+  ASSERT_TRUE(r.result.ok()) << r.messages();
+  std::vector<double> xs;
+  for (const auto& c : r.calls)
+    if (const auto* t = std::get_if<canon::StraightTraverse>(&c)) xs.push_back(t->to.x);
+  ASSERT_EQ(xs.size(), numbers.size());
+  for (std::size_t i = 0; i < numbers.size(); ++i) {
+    std::string n = numbers[i];
+    const bool negative = n.front() == '-';
+    if (negative) n.erase(0, 1);
+    if (n.front() == '.') n.insert(0, "0");
+    double expected = 0;
+    std::from_chars(n.data(), n.data() + n.size(), expected);
+    if (negative) expected = -expected;
+    EXPECT_EQ(xs[i], expected) << numbers[i];
+  }
 }
 
 }  // namespace

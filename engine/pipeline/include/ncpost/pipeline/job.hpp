@@ -19,6 +19,7 @@
 #include "ncpost/canon/sink.hpp"
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/express/registry.hpp"
+#include "ncpost/gcode/gcode.hpp"
 #include "ncpost/p21/stream_reader.hpp"
 #include "ncpost/parallel/pieces.hpp"
 #include "ncpost/pipeline/detect.hpp"
@@ -71,6 +72,9 @@ using parallel::spare_cores;
 using parallel::Task;
 using parallel::ThreadGroup;
 
+// A file that came with a G-code program, by its name (a subprogram file: docs/gcode.md).
+using SourceFile = gcode::SourceFile;
+
 // What one job may use. Cheap to copy: the schemas are shared by every job of a process.
 struct JobContext {
   const Schemas* schemas = nullptr;  // never null when a job runs
@@ -87,6 +91,10 @@ struct JobContext {
   // `dialect=`): one profile id names how a machine's programs are read and written. Null: a
   // G-code input is refused with IO-003, which names the way to read it.
   std::shared_ptr<const profile::LoadedProfile> gcode_dialect;
+  // Files that came with a G-code program (the upload's other `file` parts, `--subprograms
+  // DIR`): where M98 P, G65 P, CALL PGM, o<name> call and .SPF calls find a subprogram that is
+  // not in the program itself (docs/gcode.md, "Subprograms"). Null: none.
+  std::shared_ptr<const std::vector<SourceFile>> gcode_subprograms;
 };
 
 // Receives output text, piece by piece, in order.
@@ -153,6 +161,9 @@ struct InterpretSettings {
   // The post's profile: its `checks` section (the shop's pre-post checks) applies to CL input.
   // Null: no checks (a trace, or `--no-checks`).
   const profile::LoadedProfile* checks_of = nullptr;
+  // The post's (target) profile: its limits apply to G-code input as the reader's semantic
+  // checks, with the line and column of the block (GCODE-036). Null: no limits (a trace).
+  const profile::LoadedProfile* limits_of = nullptr;
 };
 
 // Program → canonical calls on `sink`, by the interpreter for the program's kind.

@@ -70,8 +70,10 @@ class Profiles {
   [[nodiscard]] ProfileList list() const;
   // A job keeps the version it got, even if the profile is replaced while it runs.
   [[nodiscard]] ProfileLookup find(std::string_view id);
+  // `dialect_json`: the profile's dialect.json (how its G-code is read), when it has one.
   [[nodiscard]] ProfilePut put(std::string_view id, std::string_view profile_json,
-                               std::string_view stylesheet);
+                               std::string_view stylesheet,
+                               std::optional<std::string_view> dialect_json = std::nullopt);
   [[nodiscard]] profile::RemoveOutcome remove(std::string_view id);
 
   [[nodiscard]] bool writable() const noexcept;
