@@ -427,15 +427,32 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
   }
 }
 
+// The diagnostics as JSON, each renderer diagnostic with the output line where the text of
+// the call behind it begins ("output_line"; an error's is the error marker's line). The
+// renderer's are the last `marks.size()` of `diagnostics`.
+json diagnostics_with_output_lines(const std::vector<diag::FileDiagnostic>& diagnostics,
+                                   std::string_view text, const std::vector<std::size_t>& marks) {
+  json listed = pipeline::diagnostics_json(diagnostics);
+  const std::vector<std::size_t> lines = pipeline::lines_at(text, marks);
+  const std::size_t first = diagnostics.size() - std::min(diagnostics.size(), marks.size());
+  for (std::size_t k = 0; k < lines.size() && first + k < listed.size(); ++k)
+    listed[first + k]["output_line"] = lines[k];
+  return listed;
+}
+
 // Accept: application/json: the whole program in one JSON document, with the map from its
-// blocks to the workingsteps they came from (the browser front end's view).
+// blocks to the workingsteps and the motions they came from (the browser front end's view).
 void post_json(Services& services, Exchange& exchange, pipeline::Input input,
                const pipeline::JobContext& context, const profile::LoadedProfile& profile,
                const std::string& filename, bool shop_checks) {
   std::string text;
   std::vector<pipeline::WorkingstepMark> marks;
+  std::vector<pipeline::MotionMark> motions;
+  std::vector<std::size_t> render_marks;
   pipeline::PostOptions options;
   options.workingstep_marks = &marks;
+  options.motion_marks = &motions;
+  options.render_diagnostic_marks = &render_marks;
   options.shop_checks = shop_checks;
   const pipeline::PostJobResult result = pipeline::post(
       std::move(input), context, profile, [&text](std::string_view piece) { text.append(piece); },
@@ -450,20 +467,27 @@ void post_json(Services& services, Exchange& exchange, pipeline::Input input,
     return;
   }
   if (!result.ok()) {
-    exchange.respond(problem(422, "post-failed", "The program could not be posted",
-                             "the post stopped at the first error; see diagnostics", diagnostics));
+    Response r = problem(422, "post-failed", "The program could not be posted",
+                         "the post stopped at the first error; see diagnostics", diagnostics);
+    auto body = json::parse(r.body());
+    body["diagnostics"] = diagnostics_with_output_lines(diagnostics, text, render_marks);
+    r.body() = to_text(body) + "\n";
+    exchange.respond(std::move(r));
     return;
   }
   json map = pipeline::block_map(text, marks, exchange.cancel_flag());
   if (stop_if_cancelled(exchange)) return;
+  json motion_map = pipeline::motion_lines(text, motions);
+  json listed = diagnostics_with_output_lines(diagnostics, text, render_marks);
   json body;
   body["profile"] = profile.profile.id;
   body["profile_version"] = profile.version;
   body["filename"] = filename;
   body["program"] = std::move(text);
-  body["diagnostics"] = pipeline::diagnostics_json(diagnostics);
+  body["diagnostics"] = std::move(listed);
   body["blocks"] = std::move(map["blocks"]);
   body["workingsteps"] = std::move(map["workingsteps"]);
+  body["motions"] = std::move(motion_map);
   exchange.respond(json_response(200, body));
 }
 
@@ -656,16 +680,58 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
   exchange.respond(json_response(200, info));
 }
 
-void handle_trace(Request& request, Services& services, Exchange& exchange) {
-  const std::string format = query_param(request.target(), "format").value_or("text");
-  if (format != "text" && format != "xml") {
-    exchange.respond(bad_request("the query parameter 'format' must be text or xml"));
+// The JSON trace, streamed as the interpreter goes: NDJSON (format=json, or Accept:
+// application/x-ndjson) or one JSON document (Accept: application/json). An input that cannot
+// be read is a 422 as for the text; once the first record went out, the end record says
+// whether the trace is whole (ok, diagnostics).
+void trace_json(Services& services, Exchange& exchange, pipeline::Input input,
+                const pipeline::JobContext& context, bool lines) {
+  StreamHead head{http::status::ok, 11};
+  head.set(http::field::content_type, lines ? "application/x-ndjson" : "application/json");
+  head.set("X-Content-Type-Options", "nosniff");
+  Coalescer out(exchange);
+  bool begun = false;
+  const pipeline::JobResult result =
+      pipeline::trace(std::move(input), context,
+                      lines ? pipeline::TraceFormat::Json : pipeline::TraceFormat::JsonDocument,
+                      [&](std::string_view piece) {
+                        if (!begun) {
+                          begun = true;
+                          if (!exchange.begin_stream(head)) return;
+                        }
+                        out(piece);
+                      });
+  record_read(*services.metrics, result);
+  services.metrics->stage("interpret", result.work_time);
+  if (!begun) {
+    if (stop_if_cancelled(exchange)) return;
+    exchange.respond(input_rejected(result.diagnostics));
     return;
   }
+  out.flush();
+  exchange.end_stream(out.alive() && !result.cancelled);
+}
+
+void handle_trace(Request& request, Services& services, Exchange& exchange) {
+  const auto format_param = query_param(request.target(), "format");
+  const std::string format = format_param.value_or("text");
+  if (format != "text" && format != "xml" && format != "json") {
+    exchange.respond(bad_request("the query parameter 'format' must be text, xml or json"));
+    return;
+  }
+  // Without format=, the Accept header may ask for a JSON form.
+  const auto accept = request[http::field::accept];
+  const bool ndjson = format == "json" || (!format_param && accept.find("application/x-ndjson") !=
+                                                                std::string_view::npos);
+  const bool document = !ndjson && !format_param && wants_json(request);
   const auto context = job_context(request, services, exchange);
   if (!context) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
+  if (ndjson || document) {
+    trace_json(services, exchange, job_input(*upload), *context, ndjson);
+    return;
+  }
   std::string text;
   const pipeline::JobResult result =
       pipeline::trace(job_input(*upload), *context,
