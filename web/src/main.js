@@ -40,7 +40,7 @@ async function readLines(stream, onLine, onProgress, onBytes) {
     }
     for (let i = 0; i < pending.length; i++) {
       onLine(pending[i]);
-      if ((i & 1023) === 1023) await yieldSometimes();
+      if ((i & 63) === 63) await yieldSometimes();
     }
     pending.length = 0;
     if (onProgress) onProgress();
