@@ -99,6 +99,36 @@ class Coalescer {
   bool alive_ = true;
 };
 
+// A streamed answer whose head goes out with the first piece, so that a job that fails before
+// any output is still an ordinary problem response; the pieces are coalesced.
+class LateStream {
+ public:
+  LateStream(Exchange& exchange, StreamHead head)
+      : exchange_(exchange), head_(std::move(head)), out_(exchange) {}
+  void operator()(std::string_view piece) {
+    if (!begun_) {
+      begun_ = true;
+      if (!exchange_.begin_stream(std::move(head_))) return;
+    }
+    out_(piece);
+  }
+  [[nodiscard]] bool begun() const { return begun_; }
+  // Ends a begun stream: whole (with the trailer) when `whole` and every piece went out.
+  void end(bool whole, http::fields trailer = {}) {
+    out_.flush();
+    if (whole && out_.alive())
+      exchange_.end_stream(true, std::move(trailer));
+    else
+      exchange_.end_stream(false);
+  }
+
+ private:
+  Exchange& exchange_;
+  StreamHead head_;
+  Coalescer out_;
+  bool begun_ = false;
+};
+
 std::string hex64(std::uint64_t v) {
   char buffer[17];
   std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
@@ -634,28 +664,17 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
                                          ? pipeline::ConvertTo::P28Early
                                          : pipeline::ConvertTo::P28Late;
   // The head goes out with the first piece, so that an input with errors is still a 422.
-  Coalescer out(exchange);
-  bool begun = false;
-  const pipeline::JobResult result =
-      pipeline::convert(job_input(*upload), *context, target, [&](std::string_view piece) {
-        if (!begun) {
-          begun = true;
-          if (!exchange.begin_stream(head)) return;
-        }
-        out(piece);
-      });
+  LateStream out(exchange, std::move(head));
+  const pipeline::JobResult result = pipeline::convert(
+      job_input(*upload), *context, target, [&out](std::string_view piece) { out(piece); });
   record_read(*services.metrics, result);
   services.metrics->stage("convert", result.work_time);
-  if (!begun) {
+  if (!out.begun()) {
     if (stop_if_cancelled(exchange)) return;
     exchange.respond(input_rejected(result.diagnostics));
     return;
   }
-  out.flush();
-  if (out.alive())
-    exchange.end_stream(true, diagnostics_trailer(result.diagnostics));
-  else
-    exchange.end_stream(false);
+  out.end(true, diagnostics_trailer(result.diagnostics));
 }
 
 void handle_inspection(Request& request, Services& services, Exchange& exchange) {
@@ -689,27 +708,19 @@ void trace_json(Services& services, Exchange& exchange, pipeline::Input input,
   StreamHead head{http::status::ok, 11};
   head.set(http::field::content_type, lines ? "application/x-ndjson" : "application/json");
   head.set("X-Content-Type-Options", "nosniff");
-  Coalescer out(exchange);
-  bool begun = false;
+  LateStream out(exchange, std::move(head));
   const pipeline::JobResult result =
       pipeline::trace(std::move(input), context,
                       lines ? pipeline::TraceFormat::Json : pipeline::TraceFormat::JsonDocument,
-                      [&](std::string_view piece) {
-                        if (!begun) {
-                          begun = true;
-                          if (!exchange.begin_stream(head)) return;
-                        }
-                        out(piece);
-                      });
+                      [&out](std::string_view piece) { out(piece); });
   record_read(*services.metrics, result);
   services.metrics->stage("interpret", result.work_time);
-  if (!begun) {
+  if (!out.begun()) {
     if (stop_if_cancelled(exchange)) return;
     exchange.respond(input_rejected(result.diagnostics));
     return;
   }
-  out.flush();
-  exchange.end_stream(out.alive() && !result.cancelled);
+  out.end(!result.cancelled);
 }
 
 void handle_trace(Request& request, Services& services, Exchange& exchange) {

@@ -16,13 +16,13 @@ class JsonPrinter {
  public:
   explicit JsonPrinter(std::string& out) : out_(out) {}
 
-  void operator()(const UseLengthUnits& c) { word("units", name(c.units)); }
+  void operator()(const UseLengthUnits& c) { text("units", name(c.units)); }
   void operator()(const SetOriginOffsets& c) {
     point(c.offset.x, c.offset.y, c.offset.z);
     rotary(c.rotary);
   }
-  void operator()(const SetFeedReference& c) { word("reference", name(c.reference)); }
-  void operator()(const SelectPlane& c) { word("plane", name(c.plane)); }
+  void operator()(const SetFeedReference& c) { text("reference", name(c.reference)); }
+  void operator()(const SelectPlane& c) { text("plane", name(c.plane)); }
   void operator()(const StraightTraverse& c) { pose(c.to); }
   void operator()(const StraightFeed& c) { pose(c.to); }
   // Always the 3D form (end, centre, normal, turns): a reader needs no selected plane.
@@ -36,23 +36,11 @@ class JsonPrinter {
     integer("degree", c.degree);
     key("points");
     out_ += '[';
-    for (std::size_t n = 0; n < c.points.size(); ++n) {
-      if (n > 0) out_ += ',';
-      const auto& p = c.points[n];
-      out_ += '[';
-      append_json_number(out_, p.x), out_ += ',';
-      append_json_number(out_, p.y), out_ += ',';
-      append_json_number(out_, p.z), out_ += ',';
-      append_json_number(out_, p.weight);
-      out_ += ']';
-    }
+    detail::append_control_points(out_, c.points, append_json_number, ",", '[', ']');
     out_ += ']';
     key("knots");
     out_ += '[';
-    for (std::size_t n = 0; n < c.knots.size(); ++n) {
-      if (n > 0) out_ += ',';
-      append_json_number(out_, c.knots[n]);
-    }
+    detail::append_values(out_, c.knots, append_json_number, ",");
     out_ += ']';
     rotary(c.rotary);
     tool_axis(c.tool_axis);
@@ -63,29 +51,12 @@ class JsonPrinter {
   void operator()(const ChangeTool& c) { integer("slot", c.slot); }
   void operator()(const UseToolLengthOffset& c) { number("length", c.length); }
   void operator()(const Dwell& c) { number("seconds", c.seconds); }
-  void operator()(const Comment& c) { string("text", c.text); }
-  void operator()(const Message& c) { string("text", c.text); }
+  void operator()(const Comment& c) { text("text", c.text); }
+  void operator()(const Message& c) { text("text", c.text); }
   void operator()(const Begin& c) { entity(c.entity); }
   void operator()(const End& c) { entity(c.entity); }
   void operator()(const Cycle& c) {
-    number("x", c.x), number("y", c.y), number("safe_z", c.safe_z), number("r_z", c.r_z);
-    number("bottom_z", c.bottom_z), number("feed", c.feed), number("dwell", c.dwell);
-    switch (c.kind) {
-      case CycleKind::PeckDrill:
-        number("peck", c.peck), number("peck_retract", c.peck_retract);
-        number("peck_clearance", c.peck_clearance);
-        break;
-      case CycleKind::Tap:
-        number("pitch", c.pitch), number("spindle_speed", c.spindle_speed);
-        boolean("left_hand", c.left_hand);
-        break;
-      case CycleKind::Bore:
-        boolean("spindle_stop", c.spindle_stop);
-        break;
-      case CycleKind::Drill:
-      case CycleKind::Ream:
-        break;
-    }
+    detail::cycle_arguments(*this, c);
     rotary(c.rotary);
     tool_axis(c.tool_axis);
   }
@@ -100,11 +71,14 @@ class JsonPrinter {
     out_ += k;
     out_ += "\":";
   }
+
+ public:  // what detail::cycle_arguments calls
   void number(std::string_view k, double v) { key(k), append_json_number(out_, v); }
   void integer(std::string_view k, long long v) { key(k), append_integer(out_, v); }
-  void boolean(std::string_view k, bool v) { key(k), out_ += v ? "true" : "false"; }
-  void word(std::string_view k, std::string_view v) { key(k), append_json_string(out_, v); }
-  void string(std::string_view k, std::string_view v) { key(k), append_json_string(out_, v); }
+  void flag(std::string_view k, bool v) { key(k), out_ += v ? "true" : "false"; }
+  void text(std::string_view k, std::string_view v) { key(k), append_json_string(out_, v); }
+
+ private:
   void point(double x, double y, double z) { number("x", x), number("y", y), number("z", z); }
   void triple(std::string_view k, double a, double b, double c) {
     key(k);
@@ -137,7 +111,7 @@ class JsonPrinter {
       out_ += "null";
     else
       append_json_string(out_, e.type);
-    string("name", e.name);
+    text("name", e.name);
   }
 
   std::string& out_;
@@ -166,26 +140,15 @@ void append_json_string(std::string& out, std::string_view text) {
       continue;
     }
     if (c < 0x20) {
-      switch (c) {
-        case '\b':
-          out += "\\b";
-          break;
-        case '\f':
-          out += "\\f";
-          break;
-        case '\n':
-          out += "\\n";
-          break;
-        case '\r':
-          out += "\\r";
-          break;
-        case '\t':
-          out += "\\t";
-          break;
-        default:
-          out += "\\u00";
-          out.push_back(kHex[c >> 4]);
-          out.push_back(kHex[c & 0x0Fu]);
+      // \b \t \n \f \r by name (0x08 to 0x0D but 0x0B), the rest as \u00XX.
+      constexpr char kNamed[] = "btnvfr";  // 0x0B (v) is not named in JSON
+      if (c >= '\b' && c <= '\r' && c != 0x0B) {
+        out += '\\';
+        out += kNamed[c - '\b'];
+      } else {
+        out += "\\u00";
+        out.push_back(kHex[c >> 4]);
+        out.push_back(kHex[c & 0x0Fu]);
       }
       ++i;
       continue;
