@@ -345,6 +345,8 @@ void handle_profile_get(Request& request, Services& services, Exchange& exchange
   body["mime_type"] = loaded->profile.mime_type;
   body["version"] = loaded->version;
   body["read_only"] = loaded->read_only;
+  // Whether its dialect.json can read this controller's G-code (from=ID, docs/gcode.md).
+  body["reads_gcode"] = loaded->dialect_json.has_value();
   body["profile"] = json::parse(loaded->json, nullptr, false);
   body["diagnostics"] = pipeline::diagnostics_json(lookup.diagnostics);
   Response r = json_response(200, body);

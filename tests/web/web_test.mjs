@@ -261,6 +261,27 @@ try {
   console.log(`ok: renderer diagnostic jumps to output line ${warning.output_line}`);
   await page.screenshot({ path: path.join(out, "render-diagnostic.png") });
 
+  // -- the other readers: a G-code program read with fanuc-0i's dialect, and a CL file, each
+  // posted for linuxcnc: the lines of `ncpost post`, the motions of `ncpost trace`
+  const motionCount = (text) => text.split("\n").filter((l) => MOTION.test(l)).length;
+  const lineCount = (text) => text.replace(/\n$/, "").split("\n").length;
+  const gcode = path.join(source, "tests", "golden", "gcode", "fanuc-0i", "zigzag-pocket.nc");
+  const cl = corpusFile(source, "cls/steptools_STEPNode_simple_block.cls");
+  for (const [file, dialect, cliArgs] of [[gcode, "fanuc-0i", ["--dialect", "fanuc-0i"]], [cl, "", []]]) {
+    const expectedLines = lineCount(run(args.ncpost, ["post", "--profile", "linuxcnc", ...(dialect ? ["--from", dialect] : []), file]));
+    const expectedMotions = motionCount(run(args.ncpost, ["trace", ...cliArgs, file]));
+    await page.setInputFiles("#file", file);
+    await page.selectOption("#profile", "linuxcnc");
+    await page.selectOption("#dialect", dialect);
+    await page.click("button[type=submit]");
+    await page.waitForSelector("#view3d[data-complete=true]");
+    assert.equal(await page.$eval("#output", (e) => Number(e.dataset.lines)), expectedLines, `${file}: the lines of ncpost post`);
+    assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.segments)), expectedMotions, `${file}: the motions of ncpost trace`);
+    console.log(`ok: ${path.basename(file)}${dialect ? ` (${dialect} G-code)` : ""}: ${expectedLines} lines, ${expectedMotions} motions drawn`);
+  }
+  await page.screenshot({ path: path.join(out, "cl.png") });
+  await page.selectOption("#dialect", "");
+
   // -- accessibility: axe-core's rules (WCAG 2 A and AA: labels, contrast, roles) in the page
   const axeSource = readFileSync(createRequire(path.resolve(source, "tests", "package.json")).resolve("axe-core/axe.min.js"), "utf8");
   await page.evaluate(axeSource);

@@ -95,6 +95,15 @@ async function loadProfiles() {
   }
   if (body.profiles.length > 1) $("diff-b").selectedIndex = 1;
   await showProfileTable(body.profiles);
+  // The profiles whose dialect.json reads their controller's G-code (from=ID).
+  for (const p of body.profiles) {
+    const detail = await profileDetail(p.id);
+    if (!detail || !detail.reads_gcode) continue;
+    const option = document.createElement("option");
+    option.value = p.id;
+    option.textContent = `${p.id} G-code`;
+    $("dialect").append(option);
+  }
 }
 
 const profileDetails = new Map();
@@ -131,10 +140,16 @@ async function showProfileTable(profiles) {
   }
 }
 
+// A G-code upload is read with the chosen profile's dialect: `from=` on every job route.
+function jobQuery(first) {
+  const dialect = $("dialect").value;
+  return dialect ? `${first ? "?" : "&"}from=${encodeURIComponent(dialect)}` : "";
+}
+
 async function postText(profile) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}`, { method: "POST", body: form });
+  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}${jobQuery(false)}`, { method: "POST", body: form });
   if (!response.ok) throw new Error(`${profile}: ${response.status} ${(await response.json()).detail}`);
   return (await response.text()).split("\n");
 }
@@ -328,7 +343,7 @@ function outputLineClicked(line) {
 async function streamOutput(run, profile) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}`, { method: "POST", body: form });
+  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}${jobQuery(false)}`, { method: "POST", body: form });
   if (!response.ok) {
     const problem = await response.json();
     showDiagnostics(problem.diagnostics);
@@ -358,7 +373,7 @@ async function streamOutput(run, profile) {
 async function drawTrace(run) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch("/v1/traces?format=json", { method: "POST", body: form,
+  const response = await fetch(`/v1/traces?format=json${jobQuery(false)}`, { method: "POST", body: form,
     headers: { Accept: "application/x-ndjson" } });
   if (!response.ok) return { motions: 0, drawn: 0, stride: 1, failed: true };
   const stride = Math.max(1, Math.ceil(state.file.size / DRAW_BUDGET_UPLOAD_BYTES));
@@ -425,7 +440,7 @@ async function drawTrace(run) {
 async function fetchBlockMap(profile) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}`, {
+  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}${jobQuery(false)}`, {
     method: "POST", body: form, headers: { Accept: "application/json" } });
   // A post that failed in rendering answers 422 with its diagnostics, each renderer one with
   // the output line where it arose: shown so that they can be followed.
@@ -537,7 +552,7 @@ async function verify() {
   setStatus("Verifying…");
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch("/v1/verifications", { method: "POST", body: form });
+  const response = await fetch(`/v1/verifications${jobQuery(true)}`, { method: "POST", body: form });
   const report = await response.json();
   const findings = report.diagnostics || [];
   const list = $("findings");
