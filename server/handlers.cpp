@@ -476,15 +476,18 @@ json diagnostics_with_output_lines(const std::vector<diag::FileDiagnostic>& diag
 // blocks to the workingsteps and the motions they came from (the browser front end's view).
 void post_json(Services& services, Exchange& exchange, pipeline::Input input,
                const pipeline::JobContext& context, const profile::LoadedProfile& profile,
-               const std::string& filename, bool shop_checks) {
+               const std::string& filename, bool shop_checks, bool motion_lines) {
   std::string text;
   std::vector<pipeline::WorkingstepMark> marks;
   std::vector<pipeline::MotionMark> motions;
   std::vector<std::size_t> render_marks;
   pipeline::PostOptions options;
   options.workingstep_marks = &marks;
-  options.motion_marks = &motions;
-  options.render_diagnostic_marks = &render_marks;
+  // motions=true: each call rendered on its own, a transform each (docs/server.md).
+  if (motion_lines) {
+    options.motion_marks = &motions;
+    options.render_diagnostic_marks = &render_marks;
+  }
   options.shop_checks = shop_checks;
   const pipeline::PostJobResult result = pipeline::post(
       std::move(input), context, profile, [&text](std::string_view piece) { text.append(piece); },
@@ -519,7 +522,7 @@ void post_json(Services& services, Exchange& exchange, pipeline::Input input,
   body["diagnostics"] = std::move(listed);
   body["blocks"] = std::move(map["blocks"]);
   body["workingsteps"] = std::move(map["workingsteps"]);
-  body["motions"] = std::move(motion_map);
+  if (motion_lines) body["motions"] = std::move(motion_map);
   exchange.respond(json_response(200, body));
 }
 
@@ -541,6 +544,9 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   // checks=false: without the profile's pre-post checks of CL input (docs/cls.md).
   const auto shop_checks = bool_query(request, "checks", true, exchange);
   if (!shop_checks) return;
+  // motions=true (JSON form): each motion's output lines, renderer diagnostics' output_line.
+  const auto motion_lines = bool_query(request, "motions", false, exchange);
+  if (!motion_lines) return;
   auto upload = take_upload_or_respond(request, exchange);
   if (!upload) return;
   // The same input, profile version and engine give the same program. A large upload was
@@ -562,7 +568,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   const std::string filename = file_stem(upload->name) + loaded_profile->profile.extension;
   if (as_json) {
     post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename,
-              *shop_checks);
+              *shop_checks, *motion_lines);
     return;
   }
 

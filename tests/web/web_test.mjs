@@ -162,7 +162,7 @@ try {
   // -- click a workingstep: highlight and code scroll
   const form = new FormData();
   form.append("file", new Blob([readFileSync(ex1e)]), "ex1E.stp");
-  const mapped = await (await fetch(`${server.url}/v1/posts?profile=${PROFILE}`, {
+  const mapped = await (await fetch(`${server.url}/v1/posts?profile=${PROFILE}&motions=true`, {
     method: "POST", body: form, headers: { Accept: "application/json" } })).json();
   // The first workingstep after the first with several motions (a real cut, visible in 3D).
   const pick = workingsteps.findIndex((w, i) => i > 0 && w.motions >= 5);
@@ -246,7 +246,7 @@ try {
   // -- a renderer diagnostic (a spindle speed above linuxcnc's limit) jumps to its output line
   const fastForm = new FormData();
   fastForm.append("file", new Blob([readFileSync(fastFile)]), "fast-ex1E.stp");
-  const fastMap = await (await fetch(`${server.url}/v1/posts?profile=linuxcnc`, {
+  const fastMap = await (await fetch(`${server.url}/v1/posts?profile=linuxcnc&motions=true`, {
     method: "POST", body: fastForm, headers: { Accept: "application/json" } })).json();
   const warning = fastMap.diagnostics.find((d) => d.code === "RENDER-001" && d.output_line > 0);
   assert.ok(warning, "the server names the output line of the renderer's warning");

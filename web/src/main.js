@@ -440,7 +440,7 @@ async function drawTrace(run) {
 async function fetchBlockMap(profile) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}${jobQuery(false)}`, {
+  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}&motions=true${jobQuery(false)}`, {
     method: "POST", body: form, headers: { Accept: "application/json" } });
   // A post that failed in rendering answers 422 with its diagnostics, each renderer one with
   // the output line where it arose: shown so that they can be followed.

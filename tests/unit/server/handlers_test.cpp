@@ -212,10 +212,17 @@ TEST_F(Handlers, PostAsJsonMapsBlocksToWorkingsteps) {
 // Each motion's lines in the JSON post: as many entries as the trace has motions, in order,
 // each [first, last] within the program, never going back.
 TEST_F(Handlers, PostAsJsonGivesEachMotionsLines) {
-  const auto posted = run(http::verb::post, "/v1/posts?profile=linuxcnc", example(),
+  const auto posted = run(http::verb::post, "/v1/posts?profile=linuxcnc&motions=true", example(),
                           {{"Accept", "application/json"}});
   ASSERT_EQ(posted.status, 200u) << posted.body;
   const json body = json::parse(posted.body);
+  // Only when asked: it costs a transform per call.
+  EXPECT_FALSE(json::parse(run(http::verb::post, "/v1/posts?profile=linuxcnc", example(),
+                               {{"Accept", "application/json"}})
+                               .body)
+                   .contains("motions"));
+  EXPECT_EQ(run(http::verb::post, "/v1/posts?profile=linuxcnc&motions=maybe", example()).status,
+            400u);
   const auto trace = run(http::verb::post, "/v1/traces?format=json", example());
   std::size_t motions = 0;
   for (std::size_t at = 0; (at = trace.body.find("\"call\":\"", at)) != std::string::npos; ++at) {
@@ -225,8 +232,9 @@ TEST_F(Handlers, PostAsJsonGivesEachMotionsLines) {
   }
   ASSERT_GT(motions, 3u);
   ASSERT_EQ(body["motions"].size(), motions);
-  const auto program_lines = static_cast<std::size_t>(std::count(
-      body["program"].get<std::string>().begin(), body["program"].get<std::string>().end(), '\n'));
+  const std::string program = body["program"];
+  const auto program_lines =
+      static_cast<std::size_t>(std::count(program.begin(), program.end(), '\n'));
   std::size_t previous = 0;
   for (const auto& m : body["motions"]) {
     if (m.is_null()) continue;
