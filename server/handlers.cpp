@@ -100,6 +100,36 @@ class Coalescer {
   bool alive_ = true;
 };
 
+// A streamed answer whose head goes out with the first piece, so that a job that fails before
+// any output is still an ordinary problem response; the pieces are coalesced.
+class LateStream {
+ public:
+  LateStream(Exchange& exchange, StreamHead head)
+      : exchange_(exchange), head_(std::move(head)), out_(exchange) {}
+  void operator()(std::string_view piece) {
+    if (!begun_) {
+      begun_ = true;
+      if (!exchange_.begin_stream(std::move(head_))) return;
+    }
+    out_(piece);
+  }
+  [[nodiscard]] bool begun() const { return begun_; }
+  // Ends a begun stream: whole (with the trailer) when `whole` and every piece went out.
+  void end(bool whole, http::fields trailer = {}) {
+    out_.flush();
+    if (whole && out_.alive())
+      exchange_.end_stream(true, std::move(trailer));
+    else
+      exchange_.end_stream(false);
+  }
+
+ private:
+  Exchange& exchange_;
+  StreamHead head_;
+  Coalescer out_;
+  bool begun_ = false;
+};
+
 std::string hex64(std::uint64_t v) {
   char buffer[17];
   std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
@@ -345,6 +375,8 @@ void handle_profile_get(Request& request, Services& services, Exchange& exchange
   body["mime_type"] = loaded->profile.mime_type;
   body["version"] = loaded->version;
   body["read_only"] = loaded->read_only;
+  // Whether its dialect.json can read this controller's G-code (from=ID, docs/gcode.md).
+  body["reads_gcode"] = loaded->dialect_json.has_value();
   body["profile"] = json::parse(loaded->json, nullptr, false);
   body["diagnostics"] = pipeline::diagnostics_json(lookup.diagnostics);
   Response r = json_response(200, body);
@@ -489,15 +521,36 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
   }
 }
 
+// The diagnostics as JSON, each renderer diagnostic with the output line where the text of
+// the call behind it begins ("output_line"; an error's is the error marker's line). The
+// renderer's are the last `marks.size()` of `diagnostics`.
+json diagnostics_with_output_lines(const std::vector<diag::FileDiagnostic>& diagnostics,
+                                   std::string_view text, const std::vector<std::size_t>& marks) {
+  json listed = pipeline::diagnostics_json(diagnostics);
+  const std::vector<std::size_t> lines = pipeline::lines_at(text, marks);
+  const std::size_t first = diagnostics.size() - std::min(diagnostics.size(), marks.size());
+  for (std::size_t k = 0; k < lines.size() && first + k < listed.size(); ++k)
+    listed[first + k]["output_line"] = lines[k];
+  return listed;
+}
+
 // Accept: application/json: the whole program in one JSON document, with the map from its
-// blocks to the workingsteps they came from (the browser front end's view).
+// blocks to the workingsteps and the motions they came from (the browser front end's view).
 void post_json(Services& services, Exchange& exchange, pipeline::Input input,
                const pipeline::JobContext& context, const profile::LoadedProfile& profile,
-               const std::string& filename, const std::string& etag, bool shop_checks) {
+               const std::string& filename, const std::string& etag, bool shop_checks,
+               bool motion_lines) {
   std::string text;
   std::vector<pipeline::WorkingstepMark> marks;
+  std::vector<pipeline::MotionMark> motions;
+  std::vector<std::size_t> render_marks;
   pipeline::PostOptions options;
   options.workingstep_marks = &marks;
+  // motions=true: each call rendered on its own, a transform each (docs/server.md).
+  if (motion_lines) {
+    options.motion_marks = &motions;
+    options.render_diagnostic_marks = &render_marks;
+  }
   options.shop_checks = shop_checks;
   const pipeline::PostJobResult result = pipeline::post(
       std::move(input), context, profile, [&text](std::string_view piece) { text.append(piece); },
@@ -512,20 +565,27 @@ void post_json(Services& services, Exchange& exchange, pipeline::Input input,
     return;
   }
   if (!result.ok()) {
-    exchange.respond(problem(422, "post-failed", "The program could not be posted",
-                             "the post stopped at the first error; see diagnostics", diagnostics));
+    Response r = problem(422, "post-failed", "The program could not be posted",
+                         "the post stopped at the first error; see diagnostics", diagnostics);
+    auto body = json::parse(r.body());
+    body["diagnostics"] = diagnostics_with_output_lines(diagnostics, text, render_marks);
+    r.body() = to_text(body) + "\n";
+    exchange.respond(std::move(r));
     return;
   }
   json map = pipeline::block_map(text, marks, exchange.cancel_flag());
   if (stop_if_cancelled(exchange)) return;
+  json motion_map = pipeline::motion_lines(text, motions);
+  json listed = diagnostics_with_output_lines(diagnostics, text, render_marks);
   json body;
   body["profile"] = profile.profile.id;
   body["profile_version"] = profile.version;
   body["filename"] = filename;
   body["program"] = std::move(text);
-  body["diagnostics"] = pipeline::diagnostics_json(diagnostics);
+  body["diagnostics"] = std::move(listed);
   body["blocks"] = std::move(map["blocks"]);
   body["workingsteps"] = std::move(map["workingsteps"]);
+  if (motion_lines) body["motions"] = std::move(motion_map);
   // The streamed form's headers that describe the program; its name is in the body, and its
   // diagnostics, which the streamed form sends as trailer fields.
   Response r = json_response(200, body);
@@ -553,6 +613,9 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   // checks=false: without the profile's pre-post checks of CL input (docs/cls.md).
   const auto shop_checks = bool_query(request, "checks", true, exchange);
   if (!shop_checks) return;
+  // motions=true (JSON form): each motion's output lines, renderer diagnostics' output_line.
+  const auto motion_lines = bool_query(request, "motions", false, exchange);
+  if (!motion_lines) return;
   // A G-code post (from=) may bring its subprogram files as further `file` parts.
   auto upload = take_upload_or_respond(
       request, exchange, context->gcode_dialect ? FileParts::Several : FileParts::One);
@@ -578,7 +641,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   const std::string filename = ascii_file_stem(upload->name) + loaded_profile->profile.extension;
   if (as_json) {
     post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename, etag,
-              *shop_checks);
+              *shop_checks, *motion_lines);
     return;
   }
 
@@ -697,28 +760,17 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
                                          ? pipeline::ConvertTo::P28Early
                                          : pipeline::ConvertTo::P28Late;
   // The head goes out with the first piece, so that an input with errors is still a 422.
-  Coalescer out(exchange);
-  bool begun = false;
-  const pipeline::JobResult result =
-      pipeline::convert(job_input(*upload), *context, target, [&](std::string_view piece) {
-        if (!begun) {
-          begun = true;
-          if (!exchange.begin_stream(head)) return;
-        }
-        out(piece);
-      });
+  LateStream out(exchange, std::move(head));
+  const pipeline::JobResult result = pipeline::convert(
+      job_input(*upload), *context, target, [&out](std::string_view piece) { out(piece); });
   record_read(*services.metrics, result);
   services.metrics->stage("convert", result.work_time);
-  if (!begun) {
+  if (!out.begun()) {
     if (stop_if_cancelled(exchange)) return;
     exchange.respond(input_rejected(result.diagnostics));
     return;
   }
-  out.flush();
-  if (out.alive())
-    exchange.end_stream(true, diagnostics_trailer(result.diagnostics));
-  else
-    exchange.end_stream(false);
+  out.end(true, diagnostics_trailer(result.diagnostics));
 }
 
 void handle_inspection(Request& request, Services& services, Exchange& exchange) {
@@ -743,19 +795,53 @@ void handle_inspection(Request& request, Services& services, Exchange& exchange)
   exchange.respond(json_response(200, info));
 }
 
+// The JSON trace, streamed as the interpreter goes: NDJSON (format=json, or Accept:
+// application/x-ndjson) or one JSON document (Accept: application/json). An input that cannot
+// be read is a 422 as for the text; once the first record went out, the end record says
+// whether the trace is whole (ok, diagnostics).
+void trace_json(Services& services, Exchange& exchange, pipeline::Input input,
+                const pipeline::JobContext& context, bool lines) {
+  StreamHead head{http::status::ok, 11};
+  head.set(http::field::content_type, lines ? "application/x-ndjson" : "application/json");
+  head.set("X-Content-Type-Options", "nosniff");
+  LateStream out(exchange, std::move(head));
+  const pipeline::JobResult result =
+      pipeline::trace(std::move(input), context,
+                      lines ? pipeline::TraceFormat::Json : pipeline::TraceFormat::JsonDocument,
+                      [&out](std::string_view piece) { out(piece); });
+  record_read(*services.metrics, result);
+  services.metrics->stage("interpret", result.work_time);
+  if (!out.begun()) {
+    if (stop_if_cancelled(exchange)) return;
+    exchange.respond(input_rejected(result.diagnostics));
+    return;
+  }
+  out.end(!result.cancelled);
+}
+
 // A trace; `file_parts`: Several when it is nc parse's (a G-code program and its subprogram
 // files).
 void trace_job(Request& request, Services& services, Exchange& exchange, FileParts file_parts) {
-  const std::string format = query_param(request.target(), "format").value_or("text");
-  if (format != "text" && format != "xml") {
-    exchange.respond(bad_request("the query parameter 'format' must be text or xml"));
+  const auto format_param = query_param(request.target(), "format");
+  const std::string format = format_param.value_or("text");
+  if (format != "text" && format != "xml" && format != "json") {
+    exchange.respond(bad_request("the query parameter 'format' must be text, xml or json"));
     return;
   }
+  // Without format=, the Accept header may ask for a JSON form.
+  const auto accept = request[http::field::accept];
+  const bool ndjson = format == "json" || (!format_param && accept.find("application/x-ndjson") !=
+                                                                std::string_view::npos);
+  const bool document = !ndjson && !format_param && wants_json(request);
   auto context = job_context(request, services, exchange);
   if (!context) return;
   auto upload = take_upload_or_respond(request, exchange, file_parts);
   if (!upload) return;
   add_subprograms(*context, *upload);
+  if (ndjson || document) {
+    trace_json(services, exchange, job_input(*upload), *context, ndjson);
+    return;
+  }
   std::string text;
   const pipeline::JobResult result =
       pipeline::trace(job_input(*upload), *context,

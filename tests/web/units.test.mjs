@@ -2,10 +2,10 @@
 // and helices in each plane, cycles, workingsteps) and the bounded line diff.
 import assert from "node:assert/strict";
 import test from "node:test";
-import { LineSplitter, TraceReader } from "../../web/src/trace.js";
+import { LineSplitter, MotionLines, TraceReader } from "../../web/src/trace.js";
 import { MAX_EDITS, lineDiff } from "../../web/src/diff.js";
 
-function read(lines) {
+function read(lines, how = "line") {
   const pieces = [];
   const segments = [];
   const workingsteps = [];
@@ -14,7 +14,7 @@ function read(lines) {
     onSegment: (s) => segments.push(s),
     onWorkingstep: (w) => workingsteps.push(w),
   });
-  for (const line of lines) reader.line(line);
+  for (const line of lines) reader[how](line);
   return { pieces, segments, workingsteps };
 }
 
@@ -114,4 +114,49 @@ test("line diff stays bounded when every line differs", () => {
   const rows = lineDiff(a, b);
   assert.ok(Date.now() - started < 5000);
   assert.equal(rows.filter((r) => r.kind === "changed").length, n);
+});
+
+// The page reads the JSON trace; the same program as text lines gives the same drawing.
+test("JSON records draw what the text trace draws", () => {
+  const text = [
+    "    1 WORKINGSTEP_BEGIN(#10, MACHINING_WORKINGSTEP, \"WS 1\")",
+    "    2 STRAIGHT_TRAVERSE(10.0000, 0.0000, 5.0000)",
+    "    3 STRAIGHT_FEED(10.0000, 0.0000, 0.0000)",
+    "    4 ARC_FEED(0.0000, 10.0000, 0.0000, 0.0000, -1, -2.0000)",
+    "    5 SELECT_PLANE(CANON_PLANE_XZ)",
+    "    6 ARC_FEED(10.0000, 0.0000, 0.0000, 0.0000, 1, 10.0000)",
+    "    7 ARC_FEED_3D(0.0000, 10.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.7071, 0.7071, 1)",
+    "    8 NURBS_FEED(2, [(0.0000, 10.0000, 0.0000, 1.0000), (5.0000, 12.0000, 0.0000, 0.5000), (9.0000, 9.0000, 1.0000, 1.0000)], [0.0000, 0.0000, 0.0000, 1.0000, 1.0000, 1.0000])",
+    "    9 WORKINGSTEP_END(#10, MACHINING_WORKINGSTEP, \"WS\")",
+    "   10 PECK_DRILL_CYCLE(5.0000, 5.0000, 20.0000, 2.0000, -8.0000, 100.0000, 0.0000, 3.0000, 0.0000, 0.5000)",
+  ];
+  // ncpost trace --format json of the same calls: an arc always in its 3D form.
+  const records = [
+    { n: 1, call: "WORKINGSTEP_BEGIN", id: 10, type: "MACHINING_WORKINGSTEP", name: "WS 1" },
+    { n: 2, call: "STRAIGHT_TRAVERSE", x: 10, y: 0, z: 5 },
+    { n: 3, call: "STRAIGHT_FEED", x: 10, y: 0, z: 0 },
+    { n: 4, call: "ARC_FEED", x: 0, y: 10, z: -2, centre: [0, 0, -2], normal: [0, 0, 1], turns: -1 },
+    { n: 5, call: "SELECT_PLANE", plane: "CANON_PLANE_XZ" },
+    { n: 6, call: "ARC_FEED", x: 0, y: 10, z: 10, centre: [0, 10, 0], normal: [0, 1, 0], turns: 1 },
+    { n: 7, call: "ARC_FEED", x: 0, y: 10, z: 0, centre: [0, 0, 0], normal: [0, 0.7071, 0.7071], turns: 1 },
+    { n: 8, call: "NURBS_FEED", degree: 2, points: [[0, 10, 0, 1], [5, 12, 0, 0.5], [9, 9, 1, 1]], knots: [0, 0, 0, 1, 1, 1] },
+    { n: 9, call: "WORKINGSTEP_END", id: 10, type: "MACHINING_WORKINGSTEP", name: "WS" },
+    { n: 10, call: "PECK_DRILL_CYCLE", x: 5, y: 5, safe_z: 20, r_z: 2, bottom_z: -8, feed: 100, dwell: 0, peck: 3, peck_retract: 0, peck_clearance: 0.5 },
+  ];
+  const fromText = read(text);
+  const fromJson = read(records, "record");
+  assert.equal(fromJson.segments.length, 7);
+  assert.deepEqual(fromJson.segments, fromText.segments);
+  assert.deepEqual(fromJson.workingsteps, fromText.workingsteps);
+  assert.equal(fromJson.pieces.length, fromText.pieces.length);
+  fromJson.pieces.forEach((p, k) => p.slice(0, 6).forEach((v, i) => close(v, fromText.pieces[k][i])));
+  // Header and end records are not calls.
+  const none = read([{ format: "ncpost-trace", version: 1, stock: [] }, { end: true, ok: true }], "record");
+  assert.equal(none.segments.length + none.pieces.length, 0);
+});
+
+test("a block's line gives the motion whose text holds it", () => {
+  const lines = new MotionLines([[3, 3], null, [4, 6], [7, 7], null, [10, 10]]);
+  assert.deepEqual([1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11].map((l) => lines.at(l)), [-1, -1, 0, 2, 2, 2, 3, -1, -1, 5, -1]);
+  assert.equal(new MotionLines([]).at(1), -1);
 });

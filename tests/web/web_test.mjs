@@ -4,6 +4,7 @@
 //   node web_test.mjs --ncpostd BIN --ncpost BIN --source DIR --out DIR
 import assert from "node:assert/strict";
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { createRequire } from "node:module";
 import os from "node:os";
 import path from "node:path";
 import {
@@ -29,6 +30,17 @@ mkdirSync(out, { recursive: true });
 const postLines = run(args.ncpost, ["post", "--profile", PROFILE, ex1e]).replace(/\n$/, "").split("\n").length;
 const traceLines = run(args.ncpost, ["trace", ex1e]).split("\n");
 const motions = traceLines.filter((l) => MOTION.test(l)).length;
+// The JSON form of the same trace (what the page draws): the same motions, in the same order.
+const MOTION_CALLS = new Set(["STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "NURBS_FEED", "DRILL_CYCLE",
+  "PECK_DRILL_CYCLE", "TAP_CYCLE", "BORE_CYCLE", "REAM_CYCLE"]);
+function jsonTrace(file) {
+  const records = run(args.ncpost, ["trace", "--format", "json", file]).trim().split("\n").map((l) => JSON.parse(l));
+  return { header: records[0], end: records[records.length - 1],
+    motions: records.filter((r) => MOTION_CALLS.has(r.call)) };
+}
+const ex1eJson = jsonTrace(ex1e);
+assert.equal(ex1eJson.motions.length, motions, "the JSON trace has the text trace's motions");
+assert.equal(ex1eJson.end.ok, true);
 // Motions per workingstep, and how many motions come before each.
 const workingsteps = [];
 let current = null;
@@ -54,6 +66,13 @@ text[victim] = text[victim].slice(0, Math.floor(text[victim].length / 2)) + "((;
 const scratch = mkdtempSync(path.join(os.tmpdir(), "ncpost-web-"));
 const broken = path.join(scratch, "broken-ex1E.stp");
 writeFileSync(broken, text.join("\n"), "latin1");
+
+// A copy of ex1E whose first milling technology asks for a spindle speed above linuxcnc's
+// limit (24,000 rpm; a warning there): a renderer diagnostic that names an output block.
+const fast = readFileSync(ex1e, "latin1").replace(/(MILLING_TECHNOLOGY\([^,]*,[^,]*,[^,]*,)-?[0-9.]+/, "$1-500.");
+assert.notEqual(fast, readFileSync(ex1e, "latin1"));
+const fastFile = path.join(scratch, "fast-ex1E.stp");
+writeFileSync(fastFile, fast, "latin1");
 
 // Waits until line `line` of a code view is its current line and lies wholly inside the view's
 // visible box. Checked in one evaluation in the page: the view re-renders its rows as it
@@ -143,7 +162,7 @@ try {
   // -- click a workingstep: highlight and code scroll
   const form = new FormData();
   form.append("file", new Blob([readFileSync(ex1e)]), "ex1E.stp");
-  const mapped = await (await fetch(`${server.url}/v1/posts?profile=${PROFILE}`, {
+  const mapped = await (await fetch(`${server.url}/v1/posts?profile=${PROFILE}&motions=true`, {
     method: "POST", body: form, headers: { Accept: "application/json" } })).json();
   // The first workingstep after the first with several motions (a real cut, visible in 3D).
   const pick = workingsteps.findIndex((w, i) => i > 0 && w.motions >= 5);
@@ -156,14 +175,37 @@ try {
   console.log(`ok: workingstep ${pick} highlights ${workingsteps[pick].motions} motions, code at line ${firstLine}`);
   await page.screenshot({ path: path.join(out, "workingstep.png") });
 
-  // -- click a block in the code: its segment is marked in 3D, inside that workingstep
+  // -- click blocks in the code: each marks its own motion in 3D. Expected: the motion whose
+  // lines the server's block map gives for that block, inside the workingstep, and whose end
+  // point (JSON trace) is where the block's X, Y, Z words go (fanuc-0i has no setup transform;
+  // a word left out is modal).
   const lines = await page.$$eval("#output .code-line", (rows) => rows.map((r) => [Number(r.dataset.line), r.textContent]));
-  const block = lines.find(([n, t]) => n > firstLine && / [XYZ]-?[0-9.]/.test(t));
-  await page.click(`#output .code-line[data-line="${block[0]}"]`);
-  const marked = await page.$eval("#view3d", (e) => Number(e.dataset.marked));
+  const blocks = lines.filter(([n, t]) => n > firstLine && / [XYZ]-?[0-9.]/.test(t)).slice(0, 6);
+  assert.ok(blocks.length >= 3, "blocks with coordinates after the workingstep's first line");
   const ws = workingsteps[pick];
-  assert.ok(marked >= ws.before && marked < ws.before + ws.motions, `block ${block[0]} marks a segment of its workingstep (${marked})`);
-  console.log(`ok: block at line ${block[0]} marks segment ${marked}`);
+  for (const [n, textOfBlock] of blocks) {
+    await page.click(`#output .code-line[data-line="${n}"]`);
+    const marked = await page.$eval("#view3d", (e) => Number(e.dataset.marked));
+    const expected = mapped.motions.findIndex((m) => m && m[0] <= n && n <= m[1]);
+    assert.equal(marked, expected, `block ${n} marks the motion the block map gives (${expected})`);
+    assert.ok(marked >= ws.before && marked < ws.before + ws.motions, `block ${n} lies in its workingstep`);
+    const end = ex1eJson.motions[marked];
+    for (const [, axis, value] of textOfBlock.matchAll(/ ([XYZ])(-?[0-9.]+)/g)) {
+      assert.ok(Math.abs(Number(value) - end[axis.toLowerCase()]) < 1e-3,
+        `block ${n}: ${axis}${value} is motion ${marked}'s end (${end[axis.toLowerCase()]})`);
+    }
+  }
+  console.log(`ok: ${blocks.length} blocks (lines ${blocks[0][0]}–${blocks[blocks.length - 1][0]}) each mark their own motion`);
+  await page.screenshot({ path: path.join(out, "block.png") });
+
+  // -- the tabs: arrow keys move between them (WAI-ARIA tab pattern)
+  await page.focus("#tab-output");
+  await page.keyboard.press("ArrowRight");
+  assert.equal(await page.$eval("#tab-input", (t) => t.getAttribute("aria-selected")), "true");
+  assert.equal(await page.evaluate(() => document.activeElement.id), "tab-input");
+  await page.keyboard.press("ArrowLeft");
+  assert.equal(await page.$eval("#tab-output", (t) => t.getAttribute("aria-selected")), "true");
+  console.log("ok: arrow keys move between the Output and Input tabs");
 
   // -- verify a program of the project's own golden cases that gouges and leaves floor uncut:
   // every finding with a position, and every uncovered sample, gets its marker in 3D
@@ -175,6 +217,10 @@ try {
   await page.setInputFiles("#file", faulty);
   await page.click("button[type=submit]");
   await page.waitForSelector("#view3d[data-complete=true]");
+  // Its workpiece has a BLOCK: the stock the JSON trace gives is drawn.
+  const stock = jsonTrace(faulty).header.stock;
+  assert.ok(stock.length >= 1, "the case's workpiece has a BLOCK");
+  assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.stock)), stock.length, "the stock boxes are drawn");
   await page.click("#verify");
   await page.waitForSelector("#findings-section:not([hidden])");
   const verifyStatus = await page.textContent("#status");
@@ -197,6 +243,59 @@ try {
   console.log(`ok: diagnostic jumps to input line ${diagnosticLine}`);
   await page.screenshot({ path: path.join(out, "diagnostic.png") });
 
+  // -- a renderer diagnostic (a spindle speed above linuxcnc's limit) jumps to its output line
+  const fastForm = new FormData();
+  fastForm.append("file", new Blob([readFileSync(fastFile)]), "fast-ex1E.stp");
+  const fastMap = await (await fetch(`${server.url}/v1/posts?profile=linuxcnc&motions=true`, {
+    method: "POST", body: fastForm, headers: { Accept: "application/json" } })).json();
+  const warning = fastMap.diagnostics.find((d) => d.code === "RENDER-001" && d.output_line > 0);
+  assert.ok(warning, "the server names the output line of the renderer's warning");
+  const fastLines = fastMap.program.split("\n");
+  assert.match(fastLines[warning.output_line - 1], /S30000/, "that line holds the spindle speed");
+  await page.setInputFiles("#file", fastFile);
+  await page.selectOption("#profile", "linuxcnc");
+  await page.click("button[type=submit]");
+  await page.waitForSelector("#view3d[data-complete=true]");
+  await (await page.waitForSelector(`#diagnostics button[data-output-line="${warning.output_line}"]`)).click();
+  await currentLineShown(page, "#output", warning.output_line, "the output view shows the renderer diagnostic's line");
+  console.log(`ok: renderer diagnostic jumps to output line ${warning.output_line}`);
+  await page.screenshot({ path: path.join(out, "render-diagnostic.png") });
+
+  // -- the other readers: a G-code program read with fanuc-0i's dialect, and a CL file, each
+  // posted for linuxcnc: the lines of `ncpost post`, the motions of `ncpost trace`
+  const motionCount = (text) => text.split("\n").filter((l) => MOTION.test(l)).length;
+  const lineCount = (text) => text.replace(/\n$/, "").split("\n").length;
+  const gcode = path.join(source, "tests", "golden", "gcode", "fanuc-0i", "zigzag-pocket.nc");
+  const cl = corpusFile(source, "cls/steptools_STEPNode_simple_block.cls");
+  for (const [file, dialect, cliArgs] of [[gcode, "fanuc-0i", ["--dialect", "fanuc-0i"]], [cl, "", []]]) {
+    const expectedLines = lineCount(run(args.ncpost, ["post", "--profile", "linuxcnc", ...(dialect ? ["--from", dialect] : []), file]));
+    const expectedMotions = motionCount(run(args.ncpost, ["trace", ...cliArgs, file]));
+    await page.setInputFiles("#file", file);
+    await page.selectOption("#profile", "linuxcnc");
+    await page.selectOption("#dialect", dialect);
+    await page.click("button[type=submit]");
+    await page.waitForSelector("#view3d[data-complete=true]");
+    assert.equal(await page.$eval("#output", (e) => Number(e.dataset.lines)), expectedLines, `${file}: the lines of ncpost post`);
+    assert.equal(await page.$eval("#view3d", (e) => Number(e.dataset.segments)), expectedMotions, `${file}: the motions of ncpost trace`);
+    console.log(`ok: ${path.basename(file)}${dialect ? ` (${dialect} G-code)` : ""}: ${expectedLines} lines, ${expectedMotions} motions drawn`);
+  }
+  await page.screenshot({ path: path.join(out, "cl.png") });
+  await page.selectOption("#dialect", "");
+
+  // -- accessibility: axe-core's rules (WCAG 2 A and AA: labels, contrast, roles) in the page
+  const axeSource = readFileSync(createRequire(path.resolve(source, "tests", "package.json")).resolve("axe-core/axe.min.js"), "utf8");
+  await page.evaluate(axeSource);
+  const axeOptions = { runOnly: { type: "tag", values: ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"] } };
+  // Violations as "rule: nodes (first node)", and how many rules passed (so that a run that
+  // checked nothing cannot pass).
+  const axeRun = (o) => window.axe.run(document, o).then((r) => ({
+    violations: r.violations.map((v) => `${v.id}: ${v.nodes.length} (${v.nodes[0].target})`),
+    passes: r.passes.length,
+  }));
+  const postAxe = await page.evaluate(axeRun, axeOptions);
+  assert.deepEqual(postAxe.violations, [], "axe-core: no violations on the Post page");
+  assert.ok(postAxe.passes >= 10, `axe-core checked the Post page (${postAxe.passes} rules passed)`);
+
   // -- profiles: the table and a side-by-side diff
   await page.setInputFiles("#file", ex1e);
   await page.click("#nav-page-profiles");
@@ -212,6 +311,9 @@ try {
   assert.ok(diffRows >= Math.max(postLines, haasLines) && diffRows <= postLines + haasLines,
     `the diff shows every line (${diffRows} rows)`);
   await page.screenshot({ path: path.join(out, "profiles.png") });
+  const profilesAxe = await page.evaluate(axeRun, axeOptions);
+  assert.deepEqual(profilesAxe.violations, [], "axe-core: no violations on the Profiles page");
+  console.log(`ok: axe-core (WCAG 2.1 A/AA) finds no violation on either page (${postAxe.passes} and ${profilesAxe.passes} rules passed)`);
   await page.$eval("#diff-status", (e) => e.scrollIntoView());
   await page.screenshot({ path: path.join(out, "diff.png") });
   console.log(`ok: ${profiles} profiles listed, diff of ${diffRows} rows`);

@@ -2,18 +2,20 @@
 // diagnostic to its block, run verify, compare profiles. Everything it loads comes from
 // ncpostd's own routes; the page is one self-contained file (web/build.mjs).
 import { CodeView } from "./codeview.js";
-import { LineSplitter, TraceReader } from "./trace.js";
+import { LineSplitter, MotionLines, TraceReader } from "./trace.js";
 import { ToolpathView } from "./view3d.js";
 import { lineDiff } from "./diff.js";
 
 const $ = (id) => document.getElementById(id);
 
-// Above this many bytes of trace the 3D view draws one feed segment in k (decimation): about
-// 100,000 motions, which a software-rendered WebGL still redraws in well under a second.
-const TRACE_DRAW_BUDGET_BYTES = 6 << 20;
+// Above this many bytes of upload the 3D view draws one feed segment in k (decimation), k =
+// upload bytes / this, rounded up: about 90,000 motions of a STEP-NC program with explicit
+// toolpaths (NIST's ex1E: 200 bytes a motion), which a software-rendered WebGL still redraws
+// in well under a second. The JSON trace is streamed, so its own size is not known in advance.
+const DRAW_BUDGET_UPLOAD_BYTES = 16 << 20;
 // Above this many bytes of upload the block map (the JSON post) is skipped: it is one JSON
 // document that the browser can only parse in one long task.
-const BLOCK_MAP_MAX_UPLOAD_BYTES = 8 << 20;
+const BLOCK_MAP_MAX_UPLOAD_BYTES = 2 << 20;
 // Longest stretch of work between two yields to the event loop.
 const SLICE_MS = 8;
 
@@ -38,7 +40,7 @@ async function readLines(stream, onLine, onProgress, onBytes) {
     }
     for (let i = 0; i < pending.length; i++) {
       onLine(pending[i]);
-      if ((i & 1023) === 1023) await yieldSometimes();
+      if ((i & 63) === 63) await yieldSometimes();
     }
     pending.length = 0;
     if (onProgress) onProgress();
@@ -51,7 +53,8 @@ const state = {
   file: null,
   profiles: [],
   workingsteps: [], // from the trace: {index, id, name, traceLine, firstLine?, lastLine?, segments: []}
-  blockMap: null,
+  motionSegment: [], // motion k (trace order) → its drawn segment, -1 when decimated away
+  motionLines: null, // MotionLines from the block map: output line ↔ motion
   inputLoaded: null,
   run: 0, // increases with every post; a stale async step sees the difference and stops
 };
@@ -92,6 +95,15 @@ async function loadProfiles() {
   }
   if (body.profiles.length > 1) $("diff-b").selectedIndex = 1;
   await showProfileTable(body.profiles);
+  // The profiles whose dialect.json reads their controller's G-code (from=ID).
+  for (const p of body.profiles) {
+    const detail = await profileDetail(p.id);
+    if (!detail || !detail.reads_gcode) continue;
+    const option = document.createElement("option");
+    option.value = p.id;
+    option.textContent = `${p.id} G-code`;
+    $("dialect").append(option);
+  }
 }
 
 const profileDetails = new Map();
@@ -128,10 +140,16 @@ async function showProfileTable(profiles) {
   }
 }
 
+// A G-code upload is read with the chosen profile's dialect: `from=` on every job route.
+function jobQuery(first) {
+  const dialect = $("dialect").value;
+  return dialect ? `${first ? "?" : "&"}from=${encodeURIComponent(dialect)}` : "";
+}
+
 async function postText(profile) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}`, { method: "POST", body: form });
+  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}${jobQuery(false)}`, { method: "POST", body: form });
   if (!response.ok) throw new Error(`${profile}: ${response.status} ${(await response.json()).detail}`);
   return (await response.text()).split("\n");
 }
@@ -196,12 +214,20 @@ function diagnosticButton(d, onClick) {
   return item;
 }
 
+// Diagnostics name lines of the uploaded file; the renderer's (line 0) carry the output line
+// of the block they are about (`output_line`, from the block map), the error marker's for an
+// error that cut the program.
 function showDiagnostics(list) {
   const target = $("diagnostics");
   target.replaceChildren();
   for (const d of list || []) {
-    // Diagnostics name lines of the uploaded file (the renderer's have line 0).
-    target.append(diagnosticButton(d, () => jumpTo("input", d.line)));
+    const button = diagnosticButton(d, () => (d.output_line ? jumpTo("output", d.output_line) : jumpTo("input", d.line)));
+    if (d.output_line) {
+      const b = button.querySelector("button");
+      b.dataset.outputLine = String(d.output_line);
+      b.textContent = `output ${d.output_line}: ${b.textContent.trim()}`;
+    }
+    target.append(button);
   }
   $("diagnostics-section").hidden = !list || list.length === 0;
 }
@@ -298,24 +324,18 @@ function range(first, last) {
   return lines;
 }
 
-// A block in the output → its workingstep (block map) → the k-th motion block there is taken
-// as the workingstep's k-th motion segment (an approximation: docs/web.md).
-const MOTION_BLOCK = /(^|[^A-Z])[XYZ] ?[-+]?[0-9.]/;
+// A block in the output → the motion whose text holds it (the block map's `motions`: the
+// server rendered each motion on its own and noted its lines) → that motion's segment.
 function outputLineClicked(line) {
-  const ws = state.workingsteps.find((w) => w.firstLine && line >= w.firstLine && line <= w.lastLine);
-  if (!ws) {
-    view.markSegment(-1);
-    $("view3d").dataset.marked = "-1";
-    return;
-  }
-  let ordinal = -1;
-  for (let l = ws.firstLine; l <= line; l++) {
-    if (MOTION_BLOCK.test(output.lines[l - 1])) ordinal++;
-  }
-  const segment = ws.segmentList[Math.max(0, Math.min(ordinal, ws.segmentList.length - 1))];
-  view.markSegment(segment ?? -1);
-  $("view3d").dataset.marked = String(segment ?? -1);
-  setStatus(`Line ${line}: workingstep #${ws.id} ${ws.name}, motion ${(segment ?? -1) + 1}`);
+  const motion = state.motionLines ? state.motionLines.at(line) : -1;
+  const segment = motion >= 0 ? state.motionSegment[motion] ?? -1 : -1;
+  view.markSegment(segment);
+  $("view3d").dataset.marked = String(segment);
+  $("view3d").dataset.markedMotion = String(motion);
+  if (!state.motionLines) setStatus(`Line ${line}: no block map (large upload), no motion marked`);
+  else if (motion < 0) setStatus(`Line ${line} is not a motion's block`);
+  else if (segment < 0) setStatus(`Line ${line}: motion ${motion + 1}, not drawn (decimated for display)`);
+  else setStatus(`Line ${line}: motion ${motion + 1}`);
 }
 
 // ---- posting --------------------------------------------------------------------------------
@@ -323,7 +343,7 @@ function outputLineClicked(line) {
 async function streamOutput(run, profile) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}`, { method: "POST", body: form });
+  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}${jobQuery(false)}`, { method: "POST", body: form });
   if (!response.ok) {
     const problem = await response.json();
     showDiagnostics(problem.diagnostics);
@@ -348,16 +368,19 @@ async function streamOutput(run, profile) {
   return new Blob(pieces, { type: "text/plain" });
 }
 
+// The toolpath from the JSON trace (POST /v1/traces?format=json: NDJSON, a header with the
+// stock, one record per call, an end record), drawn as it arrives.
 async function drawTrace(run) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch("/v1/traces", { method: "POST", body: form });
+  const response = await fetch(`/v1/traces?format=json${jobQuery(false)}`, { method: "POST", body: form,
+    headers: { Accept: "application/x-ndjson" } });
   if (!response.ok) return { motions: 0, drawn: 0, stride: 1, failed: true };
-  const bytes = Number(response.headers.get("Content-Length") || 0);
-  const stride = Math.max(1, Math.ceil(bytes / TRACE_DRAW_BUDGET_BYTES));
+  const stride = Math.max(1, Math.ceil(state.file.size / DRAW_BUDGET_UPLOAD_BYTES));
   let pieces = [];
   let motions = 0;
   let pendingEnd = null;
+  let end = null;
   const reader = new TraceReader({
     emit: (x0, y0, z0, x1, y1, z1, rapid) => pieces.push(x0, y0, z0, x1, y1, z1, rapid ? 1 : 0),
     onWorkingstep: (ws) => {
@@ -372,6 +395,7 @@ async function drawTrace(run) {
       if (stride > 1 && !segment.rapid && motions % stride !== 0) {
         pendingEnd = pendingEnd || pieces.slice(0, 3);
         pieces = [];
+        state.motionSegment.push(-1);
         return;
       }
       if (pendingEnd && pieces.length) {
@@ -379,6 +403,7 @@ async function drawTrace(run) {
         pendingEnd = null;
       }
       const index = view.segments;
+      state.motionSegment.push(index);
       view.addSegment(pieces, segment.rapid, segment.workingstep, segment.end);
       const ws = state.workingsteps[segment.workingstep];
       if (ws) {
@@ -391,7 +416,13 @@ async function drawTrace(run) {
   let lastFlush = performance.now();
   let fitted = false;
   await readLines(response.body, (line) => {
-    if (run === state.run) reader.line(line);
+    if (run !== state.run || !line) return;
+    const record = JSON.parse(line);
+    if (record.call) reader.record(record);
+    else if (record.format) {
+      view.showStock(record.stock || []);
+      $("view3d").dataset.stock = String((record.stock || []).length);
+    } else if (record.end) end = record;
   }, () => {
     if (performance.now() - lastFlush > 1000) {
       lastFlush = performance.now();
@@ -403,17 +434,18 @@ async function drawTrace(run) {
   });
   view.flush();
   view.fit();
-  return { motions, drawn: view.segments, stride };
+  return { motions, drawn: view.segments, stride, whole: Boolean(end && end.ok) };
 }
 
 async function fetchBlockMap(profile) {
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}`, {
+  const response = await fetch(`/v1/posts?profile=${encodeURIComponent(profile)}&motions=true${jobQuery(false)}`, {
     method: "POST", body: form, headers: { Accept: "application/json" } });
-  if (!response.ok) return null;
+  // A post that failed in rendering answers 422 with its diagnostics, each renderer one with
+  // the output line where it arose: shown so that they can be followed.
   const body = await response.json();
-  return body.workingsteps;
+  return response.ok || response.status === 422 ? body : null;
 }
 
 // Trace workingsteps and block-map workingsteps come in the same order; the k-th occurrence of
@@ -436,6 +468,12 @@ function attachBlockMap(mapped) {
   }
 }
 
+function attachMap(map) {
+  if (map.workingsteps) attachBlockMap(map.workingsteps);
+  if (map.motions) state.motionLines = new MotionLines(map.motions);
+  if (map.diagnostics && map.diagnostics.length) showDiagnostics(map.diagnostics);
+}
+
 async function post(event) {
   event.preventDefault();
   if (!state.file) {
@@ -445,6 +483,8 @@ async function post(event) {
   const run = ++state.run;
   const profile = $("profile").value;
   state.workingsteps = [];
+  state.motionSegment = [];
+  state.motionLines = null;
   state.inputLoaded = null;
   output.clear();
   input.clear();
@@ -454,7 +494,7 @@ async function post(event) {
   $("workingsteps").replaceChildren();
   $("download").hidden = true;
   delete $("output").dataset.complete;
-  for (const key of ["segments", "motions", "highlighted", "marked", "complete"]) delete $("view3d").dataset[key];
+  for (const key of ["segments", "motions", "highlighted", "marked", "markedMotion", "complete", "stock"]) delete $("view3d").dataset[key];
   showTab("output");
   setStatus(`Posting ${state.file.name} for ${profile}…`);
   const started = performance.now();
@@ -467,6 +507,11 @@ async function post(event) {
     // started (the profile's error marker is the last line shown).
     setStatus(String(error.message || error), true);
     await trace.catch(() => null);
+    // Cut after output started (an error in rendering): the JSON post names the error's line.
+    if (output.lineCount > 0 && state.file.size <= BLOCK_MAP_MAX_UPLOAD_BYTES) {
+      const mapped = await fetchBlockMap(profile);
+      if (mapped && run === state.run) attachMap(mapped);
+    }
     $("output").dataset.lines = String(output.lineCount);
     output.render();
     $("view3d").dataset.complete = "failed";
@@ -483,14 +528,14 @@ async function post(event) {
   link.hidden = false;
   if (state.file.size <= BLOCK_MAP_MAX_UPLOAD_BYTES) {
     const mapped = await fetchBlockMap(profile);
-    if (mapped) attachBlockMap(mapped);
+    if (mapped && run === state.run) attachMap(mapped);
   }
   await renderWorkingsteps();
   const v = $("view3d");
   v.dataset.segments = String(drawn.drawn);
   v.dataset.motions = String(drawn.motions);
   v.dataset.stride = String(drawn.stride);
-  v.dataset.complete = "true";
+  v.dataset.complete = drawn.whole ? "true" : "partial";
   const seconds = ((performance.now() - started) / 1000).toFixed(1);
   const decimated = drawn.stride > 1
     ? ` Decimated for display: ${drawn.drawn} of ${drawn.motions} motions drawn (one feed in ${drawn.stride}).`
@@ -507,7 +552,7 @@ async function verify() {
   setStatus("Verifying…");
   const form = new FormData();
   form.append("file", state.file, state.file.name);
-  const response = await fetch("/v1/verifications", { method: "POST", body: form });
+  const response = await fetch(`/v1/verifications${jobQuery(true)}`, { method: "POST", body: form });
   const report = await response.json();
   const findings = report.diagnostics || [];
   const list = $("findings");
@@ -564,10 +609,22 @@ $("post").addEventListener("submit", post);
 $("verify").addEventListener("click", verify);
 $("fit").addEventListener("click", () => view.fit());
 $("compare").addEventListener("click", compareProfiles);
-for (const tab of ["output", "input"]) {
-  $(`tab-${tab}`).addEventListener("click", async () => {
-    if (tab === "input" && state.file) await loadInput();
-    showTab(tab);
+const TABS = ["output", "input"];
+async function openTab(tab) {
+  if (tab === "input" && state.file) await loadInput();
+  showTab(tab);
+}
+for (const tab of TABS) {
+  $(`tab-${tab}`).addEventListener("click", () => openTab(tab));
+  // The tab pattern of WAI-ARIA: arrow keys move between the tabs, Home and End to the ends.
+  $(`tab-${tab}`).addEventListener("keydown", async (event) => {
+    const at = TABS.indexOf(tab);
+    const next = { ArrowRight: at + 1, ArrowLeft: at - 1, Home: 0, End: TABS.length - 1 }[event.key];
+    if (next === undefined) return;
+    event.preventDefault();
+    const target = TABS[(next + TABS.length) % TABS.length];
+    await openTab(target);
+    $(`tab-${target}`).focus();
   });
 }
 for (const page of ["page-post", "page-profiles"]) {

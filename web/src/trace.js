@@ -1,5 +1,6 @@
-// Reads the canonical trace (docs/canon.md, "The text trace") line by line into motion
-// segments for the 3D view. Pure: no DOM, no three.js, so that a worker or a test can use it.
+// Reads the canonical trace into motion segments for the 3D view: the JSON trace (docs/canon.md,
+// "The JSON trace"; POST /v1/traces?format=json), one record at a time, which is what the page
+// uses, or the text trace line by line. Pure: no DOM, no three.js, so that a test can use it.
 //
 // A segment is one motion call (STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, ARC_FEED_3D,
 // NURBS_FEED or a cycle); an arc or cycle is drawn as several line pieces but stays one segment,
@@ -36,6 +37,45 @@ export class TraceReader {
     this.workingsteps = 0;
     this.segments = 0;
     this.calls = 0;
+  }
+
+  // One record of the JSON trace: the header ({format, version, stock}) and the end record
+  // ({end, ok, diagnostics}) are the caller's; a call ({n, call, ...}) is read here.
+  record(r) {
+    const name = r.call;
+    if (!name) return;
+    this.calls += 1;
+    const traceLine = r.n;
+    if (name === "WORKINGSTEP_BEGIN") {
+      this.workingstep = this.workingsteps++;
+      this.onWorkingstep({ index: this.workingstep, id: r.id ?? 0, type: r.type ?? "", name: r.name, traceLine });
+      return;
+    }
+    if (name === "WORKINGSTEP_END") {
+      this.workingstep = -1;
+      return;
+    }
+    if (name === "SELECT_PLANE") {
+      this.plane = r.plane;
+      return;
+    }
+    if (!MOTION_CALLS.has(name)) return;
+    const rapid = name === "STRAIGHT_TRAVERSE";
+    if (name === "STRAIGHT_TRAVERSE" || name === "STRAIGHT_FEED") this.straight(r.x, r.y, r.z, rapid);
+    else if (name === "ARC_FEED") this.arc([r.x, r.y, r.z], r.centre, r.normal, r.turns);
+    else if (name === "NURBS_FEED") for (const p of r.points) this.straight(p[0], p[1], p[2], false);
+    else this.cycle([r.x, r.y, r.safe_z, r.r_z, r.bottom_z]);
+    this.segmentDone(rapid, traceLine);
+  }
+
+  segmentDone(rapid, traceLine) {
+    this.onSegment({
+      index: this.segments++,
+      rapid,
+      workingstep: this.workingstep,
+      traceLine,
+      end: this.position.slice(),
+    });
   }
 
   line(text) {
@@ -88,13 +128,7 @@ export class TraceReader {
       default:
         this.cycle(numbers(args));
     }
-    this.onSegment({
-      index: this.segments++,
-      rapid,
-      workingstep: this.workingstep,
-      traceLine,
-      end: this.position.slice(),
-    });
+    this.segmentDone(rapid, traceLine);
   }
 
   straight(x, y, z, rapid) {
@@ -216,5 +250,42 @@ export class LineSplitter {
     this.text(this.decoder.decode());
     if (this.rest.length) this.onLine(this.rest);
     this.rest = "";
+  }
+}
+
+// The motions' output lines from the block map of POST /v1/posts (Accept: application/json):
+// `motions[k]` is [first, last] for motion k, or null when it wrote no text. at(line) gives the
+// motion whose text holds that line, or -1 (a line between motions: a feed, a tool change).
+export class MotionLines {
+  constructor(motions) {
+    this.first = [];
+    this.last = [];
+    this.index = [];
+    motions.forEach((m, k) => {
+      if (!m) return;
+      this.first.push(m[0]);
+      this.last.push(m[1]);
+      this.index.push(k);
+    });
+  }
+  at(line) {
+    // The last motion whose first line is at or before `line` (first lines do not decrease).
+    let lo = 0;
+    let hi = this.first.length - 1;
+    let found = -1;
+    while (lo <= hi) {
+      const mid = (lo + hi) >> 1;
+      if (this.first[mid] <= line) {
+        found = mid;
+        lo = mid + 1;
+      } else {
+        hi = mid - 1;
+      }
+    }
+    return found >= 0 && this.last[found] >= line ? this.index[found] : -1;
+  }
+  firstLine(k) {
+    const i = this.index.indexOf(k);
+    return i >= 0 ? this.first[i] : 0;
   }
 }

@@ -10,6 +10,7 @@ export const WORKINGSTEP_COLORS = [
   0x1f77b4, 0x2ca02c, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f, 0xff7f0e, 0x393b79,
 ];
 const DIMMED = new THREE.Color(0xd0d0d0);
+export const STOCK_COLOR = 0x6b6b6b; // the workpiece's BLOCK, thin grey edges
 const OUTSIDE_WORKINGSTEP = 0x555555;
 
 // A growable buffer of line pieces (2 vertices each) that goes to the GPU piece by piece: a
@@ -110,6 +111,9 @@ export class ToolpathView {
     this.feedMaterial = new THREE.LineBasicMaterial({ vertexColors: true });
     this.highlightMaterial = new THREE.LineBasicMaterial({ color: 0x000000 });
     this.markerMaterial = new THREE.MeshBasicMaterial({ color: 0xff00ff });
+    this.stockMaterial = new THREE.LineBasicMaterial({ color: STOCK_COLOR });
+    this.stock = new THREE.Group();
+    this.scene.add(this.stock);
     this.tool = this.makeTool();
     this.scene.add(this.tool);
     this.markers = new THREE.Group();
@@ -127,7 +131,7 @@ export class ToolpathView {
     geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(6), 3));
     geometry.setAttribute("color", new THREE.BufferAttribute(new Float32Array(6), 3));
     geometry.setAttribute("lineDistance", new THREE.BufferAttribute(new Float32Array(2), 1));
-    const probes = [this.rapidMaterial, this.feedMaterial, this.highlightMaterial].map((material) => new THREE.LineSegments(geometry, material));
+    const probes = [this.rapidMaterial, this.feedMaterial, this.highlightMaterial, this.stockMaterial].map((material) => new THREE.LineSegments(geometry, material));
     const sphere = new THREE.Mesh(new THREE.SphereGeometry(1), this.markerMaterial);
     const group = new THREE.Group();
     group.add(...probes, sphere);
@@ -169,6 +173,8 @@ export class ToolpathView {
     this.rapidLines = this.feedLines = this.highlightLines = this.workingstepLines = null;
     this.tool.visible = false;
     this.markers.clear();
+    for (const box of this.stock.children) box.geometry.dispose();
+    this.stock.clear();
     this.selectedWorkingstep = -1;
     this.requestRender();
   }
@@ -307,6 +313,26 @@ export class ToolpathView {
     const end = this.segmentEnd[s];
     this.tool.position.set(end[0], end[1], end[2]);
     this.tool.visible = true;
+    this.requestRender();
+  }
+
+  // The stock: each box's twelve edges from its eight corners (corner k is the origin plus x if
+  // k & 1, y if k & 2, z if k & 4: the JSON trace's "stock"). Part of what Fit frames.
+  showStock(boxes) {
+    for (const box of boxes) {
+      const c = box.corners;
+      const positions = [];
+      for (let k = 0; k < 8; k++) {
+        for (const bit of [1, 2, 4]) {
+          if (k & bit) continue;
+          positions.push(...c[k], ...c[k | bit]);
+        }
+      }
+      for (const p of c) this.box.expandByPoint(new THREE.Vector3(p[0], p[1], p[2]));
+      const geometry = new THREE.BufferGeometry();
+      geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
+      this.stock.add(new THREE.LineSegments(geometry, this.stockMaterial));
+    }
     this.requestRender();
   }
 

@@ -77,21 +77,9 @@ class Printer {
     integer(c.degree);
     separate();
     out_ += '[';
-    for (std::size_t n = 0; n < c.points.size(); ++n) {
-      if (n > 0) out_ += ", ";
-      const auto& p = c.points[n];
-      out_ += '(';
-      append_number(out_, p.x), out_ += ", ";
-      append_number(out_, p.y), out_ += ", ";
-      append_number(out_, p.z), out_ += ", ";
-      append_number(out_, p.weight);
-      out_ += ')';
-    }
+    detail::append_control_points(out_, c.points, append_number, ", ", '(', ')');
     out_ += "], [";
-    for (std::size_t n = 0; n < c.knots.size(); ++n) {
-      if (n > 0) out_ += ", ";
-      append_number(out_, c.knots[n]);
-    }
+    detail::append_values(out_, c.knots, append_number, ", ");
     out_ += ']';
     rotary(c.rotary);
     tool_axis(c.tool_axis);

@@ -145,25 +145,7 @@ class ElementWriter {
   void operator()(const End& c) { open(c), entity(c.entity), empty(c); }
   void operator()(const Cycle& c) {
     open(c);
-    number("x", c.x), number("y", c.y);
-    number("safe_z", c.safe_z), number("r_z", c.r_z), number("bottom_z", c.bottom_z);
-    number("feed", c.feed), number("dwell", c.dwell);
-    switch (c.kind) {
-      case CycleKind::PeckDrill:
-        number("peck", c.peck), number("peck_retract", c.peck_retract);
-        number("peck_clearance", c.peck_clearance);
-        break;
-      case CycleKind::Tap:
-        number("pitch", c.pitch), number("spindle_speed", c.spindle_speed);
-        text("hand", c.left_hand ? "left" : "right");
-        break;
-      case CycleKind::Bore:
-        text("spindle_stop", c.spindle_stop ? "true" : "false");
-        break;
-      case CycleKind::Drill:
-      case CycleKind::Ream:
-        break;
-    }
+    detail::cycle_arguments(*this, c);
     rotary(c.rotary);
     tool_axis(c.tool_axis);
     empty(c);
@@ -199,6 +181,8 @@ class ElementWriter {
     out_.text(content);
     empty(c);
   }
+
+ public:  // what detail::cycle_arguments calls
   void number(std::string_view attribute, double v) {
     char buffer[32];
     out_.attribute(attribute, xml_number(v, buffer));
@@ -208,6 +192,7 @@ class ElementWriter {
     out_.attribute(attribute, xml_integer(v, buffer));
   }
   void text(std::string_view attribute, std::string_view v) { out_.attribute(attribute, v); }
+  void flag(std::string_view attribute, bool v) { text(attribute, v ? "true" : "false"); }
   void rotary(const std::optional<Rotary>& r) {
     if (r) number("a", r->a), number("b", r->b), number("c", r->c);
   }
@@ -220,6 +205,7 @@ class ElementWriter {
     tool_axis(p.tool_axis);
   }
 
+ private:
   XmlEvents& out_;
   int indent_;
   std::string_view name_;

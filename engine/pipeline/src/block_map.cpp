@@ -1,5 +1,6 @@
 #include "ncpost/pipeline/block_map.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <unordered_map>
 
@@ -64,6 +65,38 @@ nlohmann::ordered_json block_map(std::string_view text, const std::vector<Workin
   json out;
   out["blocks"] = std::move(blocks);
   out["workingsteps"] = std::move(workingsteps);
+  return out;
+}
+
+std::vector<std::size_t> lines_at(std::string_view text, const std::vector<std::size_t>& offsets) {
+  std::vector<std::size_t> newlines;  // offsets of the '\n's
+  for (std::size_t at = text.find('\n'); at != std::string_view::npos; at = text.find('\n', at + 1))
+    newlines.push_back(at);
+  std::vector<std::size_t> lines;
+  lines.reserve(offsets.size());
+  for (const std::size_t offset : offsets) {
+    // Line k (1-based) holds the offsets after the (k-1)-th newline up to the k-th.
+    const auto before = std::lower_bound(newlines.begin(), newlines.end(), offset);
+    lines.push_back(static_cast<std::size_t>(before - newlines.begin()) + 1);
+  }
+  return lines;
+}
+
+nlohmann::ordered_json motion_lines(std::string_view text, const std::vector<MotionMark>& marks) {
+  std::vector<std::size_t> offsets;
+  offsets.reserve(2 * marks.size());
+  for (const MotionMark& m : marks) {
+    offsets.push_back(m.begin);
+    offsets.push_back(m.end > m.begin ? m.end - 1 : m.begin);
+  }
+  const std::vector<std::size_t> lines = lines_at(text, offsets);
+  json out = json::array();
+  for (std::size_t k = 0; k < marks.size(); ++k) {
+    if (marks[k].end > marks[k].begin)
+      out.push_back(json::array({lines[2 * k], lines[2 * k + 1]}));
+    else
+      out.push_back(nullptr);
+  }
   return out;
 }
 

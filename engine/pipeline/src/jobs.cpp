@@ -1,6 +1,7 @@
 #include "ncpost/pipeline/jobs.hpp"
 
 #include "ncpost/ap238/ap238.hpp"
+#include "ncpost/canon/json_trace.hpp"
 #include "ncpost/canon/trace.hpp"
 #include "ncpost/canon/xml.hpp"
 #include "ncpost/express/express_x.hpp"
@@ -334,6 +335,22 @@ JobResult trace(Input input, const JobContext& context, TraceFormat format, cons
   if (format == TraceFormat::Text) {
     canon::TraceWriter trace(sink);
     interpreted = interpret(program, trace, context);
+  } else if (format == TraceFormat::Json || format == TraceFormat::JsonDocument) {
+    const std::string stock =
+        "\"stock\":" +
+        stock_json(program).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    canon::JsonTraceWriter json(
+        sink, format == TraceFormat::Json ? canon::JsonLayout::Lines : canon::JsonLayout::Document,
+        stock);
+    interpreted = interpret(program, json, context);
+    // The end record says whether the trace is whole, with every diagnostic so far.
+    std::vector<diag::FileDiagnostic> all = result.diagnostics;
+    all.insert(all.end(), interpreted.diagnostics.begin(), interpreted.diagnostics.end());
+    const bool ok = interpreted.ok && !cancelled(context);
+    json.finish("\"ok\":" + std::string(ok ? "true" : "false") +
+                ",\"call_count\":" + std::to_string(interpreted.calls) + ",\"diagnostics\":" +
+                diagnostics_json(all).dump(-1, ' ', false,
+                                           nlohmann::ordered_json::error_handler_t::replace));
   } else {
     canon::XmlDocumentWriter xml(sink);
     canon::Chunker chunker(xml);
@@ -346,6 +363,23 @@ JobResult trace(Input input, const JobContext& context, TraceFormat format, cons
   result.ok = interpreted.ok && !result.cancelled;
   append(result.diagnostics, std::move(interpreted.diagnostics));
   return result;
+}
+
+nlohmann::ordered_json stock_json(const Program& program) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  if (program.loaded.schema == nullptr || !program.text.empty()) return out;
+  const stepnc::AttributeReader attributes(program.loaded.model, *program.loaded.schema);
+  for (const verify::StockBox& box : verify::stock_boxes(program.loaded.model, attributes)) {
+    nlohmann::ordered_json corners = nlohmann::ordered_json::array();
+    for (const verify::Position& c : box.corners) corners.push_back({c.x, c.y, c.z});
+    nlohmann::ordered_json entry;
+    entry["workpiece"] = box.workpiece;
+    entry["name"] = box.name;
+    entry["setup"] = box.setup == 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(box.setup);
+    entry["corners"] = std::move(corners);
+    out.push_back(std::move(entry));
+  }
+  return out;
 }
 
 VerifyOutcome verify(Input input, const JobContext& context, const VerifySettings& settings) {

@@ -169,27 +169,46 @@ namespace {
 // Passes calls to the renderer and notes, at each workingstep's Begin and End, how much
 // program text exists. With one transform per chunk (RenderOptions::batch_bytes = 0) the
 // renderer emits a chunk's text when the chunker closes it, so the text of workingstep k starts
-// at the mark taken right after its Begin was passed on. The renderer does not expose per-block
-// origins: blocks between workingsteps belong to the one before.
-class WorkingstepTracker final : public canon::Sink {
+// at the mark taken right after its Begin was passed on; blocks between workingsteps belong to
+// the one before. With `per_call` every call is flushed as a chunk of its own before and after
+// it is passed on, so each motion's text (and the text where a renderer diagnostic arose) is
+// known exactly.
+class TextTracker final : public canon::Sink {
  public:
-  WorkingstepTracker(canon::Sink& next, const std::string& text,
-                     std::vector<WorkingstepMark>& marks)
-      : next_(next), text_(text), marks_(marks) {}
+  TextTracker(canon::Sink& next, render::Renderer& renderer, const std::string& text,
+              const PostOptions& options)
+      : next_(next),
+        renderer_(renderer),
+        text_(text),
+        options_(options),
+        per_call_(options.motion_marks != nullptr || options.render_diagnostic_marks != nullptr) {}
   void call(const canon::Call& call) override {
+    const std::size_t diagnostics = renderer_.diagnostics().size();
+    if (per_call_) renderer_.flush();
+    const std::size_t begin = text_.size();
     next_.call(call);
-    if (const auto* begin = std::get_if<canon::Begin>(&call);
-        begin != nullptr && begin->scope == canon::Scope::Workingstep)
-      marks_.push_back({text_.size(), begin->entity.id, begin->entity.name});
-    else if (const auto* end = std::get_if<canon::End>(&call);
-             end != nullptr && end->scope == canon::Scope::Workingstep)
-      marks_.push_back({text_.size(), 0, {}});
+    if (per_call_) renderer_.flush();
+    if (options_.motion_marks != nullptr && canon::is_motion(call))
+      options_.motion_marks->push_back({begin, text_.size()});
+    if (options_.render_diagnostic_marks != nullptr)
+      for (std::size_t d = diagnostics; d < renderer_.diagnostics().size(); ++d)
+        options_.render_diagnostic_marks->push_back(begin);
+    if (options_.workingstep_marks == nullptr) return;
+    if (const auto* b = std::get_if<canon::Begin>(&call);
+        b != nullptr && b->scope == canon::Scope::Workingstep)
+      options_.workingstep_marks->push_back(
+          {per_call_ ? begin : text_.size(), b->entity.id, b->entity.name});
+    else if (const auto* e = std::get_if<canon::End>(&call);
+             e != nullptr && e->scope == canon::Scope::Workingstep)
+      options_.workingstep_marks->push_back({text_.size(), 0, {}});
   }
 
  private:
   canon::Sink& next_;
+  render::Renderer& renderer_;
   const std::string& text_;
-  std::vector<WorkingstepMark>& marks_;
+  const PostOptions& options_;
+  bool per_call_;
 };
 
 // Runs an interpreter into the sink it is given; the post does not care which one.
@@ -203,7 +222,8 @@ PostResult post_calls(const InterpretInto& interpret_into, std::size_t instances
   render::RenderOptions render_options = options.render;
   // The marks need the text as it grows: it is gathered here and handed on at the end.
   std::string marked_text;
-  const bool marking = options.workingstep_marks != nullptr;
+  const bool marking = options.workingstep_marks != nullptr || options.motion_marks != nullptr ||
+                       options.render_diagnostic_marks != nullptr;
   if (marking) render_options.batch_bytes = 0;
   const render::TextSink renderer_out =
       marking ? render::TextSink([&marked_text](std::string_view piece) { marked_text += piece; })
@@ -215,8 +235,8 @@ PostResult post_calls(const InterpretInto& interpret_into, std::size_t instances
   if (two_threads) render_thread.emplace(renderer, options.cancel, options.render_thread_batch);
   canon::Sink& rendering =
       two_threads ? static_cast<canon::Sink&>(*render_thread) : static_cast<canon::Sink&>(renderer);
-  std::optional<WorkingstepTracker> tracker;
-  if (marking) tracker.emplace(renderer, marked_text, *options.workingstep_marks);
+  std::optional<TextTracker> tracker;
+  if (marking) tracker.emplace(renderer, renderer, marked_text, options);
   CancellableSink sink(marking ? static_cast<canon::Sink&>(*tracker) : rendering, options.cancel);
   const auto interpret_began = std::chrono::steady_clock::now();
   Interpretation interpreted = interpret_into(sink);

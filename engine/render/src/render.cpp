@@ -444,6 +444,12 @@ void Renderer::finish() {
   finished_ = true;
 }
 
+void Renderer::flush() {
+  if (finished_ || failed_ || single_chunk_) return;
+  chunker_->finish();
+  if (!failed_) render_batch();
+}
+
 std::string render_program(const profile::LoadedProfile& profile,
                            std::span<const canon::Call> calls,
                            std::vector<diag::FileDiagnostic>& diagnostics, RenderOptions options) {

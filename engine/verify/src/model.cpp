@@ -574,8 +574,9 @@ Extent feature_extent(const Feature& f) {
   return e;
 }
 
-std::optional<Extent> workpiece_block(const Reader& r, const p21::Instance& workpiece,
-                                      const Frame& workpiece_frame) {
+std::optional<std::array<Vec3, 8>> workpiece_block_corners(const Reader& r,
+                                                           const p21::Instance& workpiece,
+                                                           const Frame& workpiece_frame) {
   const p21::Instance* block = r.ref(workpiece, "its_bounding_geometry");
   if (block == nullptr || !r.is_a(*block, "block")) return std::nullopt;
   const auto frame = r.placement(r.ref(*block, "position"));
@@ -584,13 +585,39 @@ std::optional<Extent> workpiece_block(const Reader& r, const p21::Instance& work
   const auto z = r.number(*block, "z");
   if (!frame || !x || !y || !z) return std::nullopt;
   const Frame machine = workpiece_frame.then(*frame);
+  std::array<Vec3, 8> corners;
+  for (std::size_t k = 0; k < corners.size(); ++k)
+    corners[k] = machine.point({(k & 1) ? *x : 0, (k & 2) ? *y : 0, (k & 4) ? *z : 0});
+  return corners;
+}
+
+std::optional<Extent> workpiece_block(const Reader& r, const p21::Instance& workpiece,
+                                      const Frame& workpiece_frame) {
+  const auto corners = workpiece_block_corners(r, workpiece, workpiece_frame);
+  if (!corners) return std::nullopt;
   Extent e;
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 corner = machine.point({(k & 1) ? *x : 0, (k & 2) ? *y : 0, (k & 4) ? *z : 0});
+  for (const Vec3& corner : *corners) {
     e.add(corner);
     e.top = std::max(e.top, corner.z);
   }
   return e;
+}
+
+SetupFrames setup_frames(const Reader& r, const p21::Instance& setup) {
+  SetupFrames out;
+  if (const auto f = r.placement(r.ref(setup, "its_origin"))) out.setup = *f;
+  out.default_workpiece = out.setup;
+  if (const auto list = r.get(setup, "its_workpiece_setup"); list && list->is_list()) {
+    for (p21::Value v : r.model().items(*list)) {
+      const p21::Instance* wps = v.is_reference() ? r.model().find(v.id()) : nullptr;
+      if (wps == nullptr) continue;
+      const Frame f = out.setup.then(r.placement(r.ref(*wps, "its_origin")).value_or(Frame{}));
+      const auto wp = r.get(*wps, "its_workpiece");
+      if (out.workpieces.empty()) out.default_workpiece = f;
+      out.workpieces.emplace_back(wp && wp->is_reference() ? wp->id() : 0, f);
+    }
+  }
+  return out;
 }
 
 }  // namespace ncpost::verify::detail

@@ -3,11 +3,13 @@
 // own small readers (through the schema, by attribute name), independent of the interpreter's
 // and the generator's, so a misreading there is not repeated here.
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ncpost/p21/model.hpp"
@@ -187,5 +189,19 @@ Extent feature_extent(const Feature& f);
 // BLOCK bounding geometry of a workpiece, in machine coordinates; nullopt when it has none.
 std::optional<Extent> workpiece_block(const Reader& r, const p21::Instance& workpiece,
                                       const Frame& workpiece_frame);
+// The same BLOCK's eight corners in machine coordinates (corner k is x if k & 1, y if k & 2,
+// z if k & 4 along the block's own axes).
+std::optional<std::array<Vec3, 8>> workpiece_block_corners(const Reader& r,
+                                                           const p21::Instance& workpiece,
+                                                           const Frame& workpiece_frame);
+
+// Where a SETUP puts its workpieces: machine <- setup (its_origin), and machine <- each
+// workpiece of its_workpiece_setup (the setup's origin, then the workpiece set-up's).
+struct SetupFrames {
+  Frame setup;
+  Frame default_workpiece;  // the first workpiece's, else the setup's
+  std::vector<std::pair<std::uint64_t, Frame>> workpieces;  // workpiece id (0: unset) -> frame
+};
+SetupFrames setup_frames(const Reader& r, const p21::Instance& setup);
 
 }  // namespace ncpost::verify::detail

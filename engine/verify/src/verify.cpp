@@ -290,18 +290,10 @@ void Verifier::begin_setup(std::uint64_t id) {
   stock_built_ = false;
   stock_ = Stock{};
   if (setup_ == nullptr) return;
-  if (const auto f = r_.placement(r_.ref(*setup_, "its_origin"))) setup_frame_ = *f;
-  default_workpiece_ = setup_frame_;
-  if (const auto list = r_.get(*setup_, "its_workpiece_setup"); list && list->is_list()) {
-    for (p21::Value v : r_.model().items(*list)) {
-      const Instance* wps = v.is_reference() ? r_.model().find(v.id()) : nullptr;
-      if (wps == nullptr) continue;
-      const Frame f = setup_frame_.then(r_.placement(r_.ref(*wps, "its_origin")).value_or(Frame{}));
-      const auto wp = r_.get(*wps, "its_workpiece");
-      if (workpieces_.empty()) default_workpiece_ = f;
-      workpieces_.emplace_back(wp && wp->is_reference() ? wp->id() : 0, f);
-    }
-  }
+  detail::SetupFrames frames = detail::setup_frames(r_, *setup_);
+  setup_frame_ = frames.setup;
+  default_workpiece_ = frames.default_workpiece;
+  workpieces_ = std::move(frames.workpieces);
   if (const Instance* plane = r_.ref(*setup_, "its_secplane"))
     if (const auto f = r_.placement(r_.ref(*plane, "position")))
       setup_secplane_ = default_workpiece_.point(f->origin).z;
@@ -1030,6 +1022,29 @@ VerifyResult verify_calls(const p21::Model& model, const stepnc::AttributeReader
   for (const canon::Call& c : calls) verifier.call(c);
   verifier.finish();
   return result;
+}
+
+std::vector<StockBox> stock_boxes(const p21::Model& model,
+                                  const stepnc::AttributeReader& attributes) {
+  const detail::Reader r(model, attributes);
+  std::vector<StockBox> out;
+  const auto add = [&](const Instance& workpiece, const Frame& frame, std::uint64_t setup) {
+    const auto corners = detail::workpiece_block_corners(r, workpiece, frame);
+    if (!corners) return;
+    StockBox box{workpiece.id, r.name(workpiece), setup, {}};
+    for (const Vec3& c : *corners) box.corners.push_back({c.x, c.y, c.z});
+    out.push_back(std::move(box));
+  };
+  const auto setups = model.instances_of("SETUP");
+  if (setups.empty()) {
+    for (const Instance* w : model.instances_of("WORKPIECE")) add(*w, Frame{}, 0);
+    return out;
+  }
+  for (const Instance* setup : setups) {
+    for (const auto& [id, frame] : detail::setup_frames(r, *setup).workpieces)
+      if (const Instance* w = id != 0 ? model.find(id) : nullptr) add(*w, frame, setup->id);
+  }
+  return out;
 }
 
 }  // namespace ncpost::verify

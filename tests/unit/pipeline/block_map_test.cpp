@@ -7,6 +7,22 @@
 namespace ncpost::pipeline {
 namespace {
 
+// Offsets into "G0 X1\nG1 X2\nG1 X3\n": lines 1 (0-5), 2 (6-11), 3 (12-17), the end (18) on 4.
+TEST(BlockMap, LinesAtOffsets) {
+  const std::string text = "G0 X1\nG1 X2\nG1 X3\n";
+  EXPECT_EQ(lines_at(text, {0, 5, 6, 11, 12, 17, 18, 3}),
+            (std::vector<std::size_t>{1, 1, 2, 2, 3, 3, 4, 1}));
+  EXPECT_EQ(lines_at("", {0}), (std::vector<std::size_t>{1}));
+}
+
+// A motion's [begin, end) text: its first and last line; none for an empty one.
+TEST(BlockMap, MotionLines) {
+  const std::string text = "(WS 1)\nG0 X1\nG81 X1 Y1\nG80\nG1 X2\n";
+  // Lines start at 0, 7, 13, 23, 27; the cycle wrote lines 3 and 4, one motion wrote nothing.
+  const auto lines = motion_lines(text, {{7, 13}, {13, 27}, {27, 27}, {27, 32}});
+  EXPECT_EQ(lines, nlohmann::ordered_json::parse("[[2, 2], [3, 4], null, [5, 5]]"));
+}
+
 TEST(BlockMap, BlocksBelongToTheWorkingstepWhoseTextTheyAreIn) {
   const std::string text = "%\nO0001\nN10 G0 X0\nN20 G1 X1\n(comment)\nN30 G1 X2\nN40 M30\n%\n";
   // Workingstep 7 starts at "N10", workingstep 9 at "N30"; the end marker before "N40".

@@ -89,6 +89,53 @@ TEST_F(PostJobTest, SameTextAsTheGoldenPost) {
                                          "linuxcnc" / "curves.nc"));
 }
 
+// The motion marks of the JSON post (each call rendered on its own): the same text as the
+// streamed post for every profile whose stylesheet does not look ahead within a transform, one
+// mark per motion of the trace, in order, each inside the text, most with text of their own.
+TEST_F(PostJobTest, MotionMarksKeepTheTextAndFollowTheMotions) {
+  std::size_t profiles = 0;
+  for (const auto& entry : fs::directory_iterator(test::source_dir() / "stylesheets")) {
+    const std::string id = entry.path().filename().string();
+    if (!fs::exists(entry.path() / "profile.json") || id == "heidenhain-tnc640") continue;
+    const auto p = builtin(id);
+    if (!p || p->profile.mode == profile::Mode::Raw) continue;
+    ++profiles;
+    for (const char* name : {"curves", "executables", "placement-rotated-setup"}) {
+      SCOPED_TRACE(id + " " + name);
+      const auto loaded = load_case(name);
+      std::vector<MotionMark> motions;
+      std::vector<WorkingstepMark> workingsteps;
+      PostOptions options;
+      options.motion_marks = &motions;
+      options.workingstep_marks = &workingsteps;
+      const Posted marked = run(loaded, *p, options);
+      const Posted plain = run(loaded, *p);
+      ASSERT_TRUE(plain.result.ok);
+      EXPECT_EQ(marked.text, plain.text);
+      const std::string trace = test::read_file(test::source_dir() / "tests" / "golden" / "trace" /
+                                                "cases" / (std::string(name) + ".trace"));
+      std::size_t expected = 0;
+      for (const char* call : {" STRAIGHT_TRAVERSE(", " STRAIGHT_FEED(", " ARC_FEED(",
+                               " ARC_FEED_3D(", " NURBS_FEED(", "_CYCLE("})
+        for (auto at = trace.find(call); at != std::string::npos; at = trace.find(call, at + 1))
+          ++expected;
+      ASSERT_EQ(motions.size(), expected);
+      std::size_t previous = 0;
+      std::size_t with_text = 0;
+      for (const MotionMark& m : motions) {
+        EXPECT_LE(previous, m.begin);
+        EXPECT_LE(m.begin, m.end);
+        EXPECT_LE(m.end, marked.text.size());
+        if (m.end > m.begin) ++with_text;
+        previous = m.end;
+      }
+      EXPECT_GT(with_text, expected / 2);
+      EXPECT_FALSE(workingsteps.empty());
+    }
+  }
+  EXPECT_GE(profiles, 8u);
+}
+
 // errors.stp fails part-way: what went out must end with the marker, never with M2/M30.
 TEST_F(PostJobTest, FailureAfterOutputEndsWithTheMarker) {
   const auto p = builtin("linuxcnc");

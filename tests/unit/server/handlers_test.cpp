@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "corpus.hpp"
 #include "ncpost/pipeline/process.hpp"
@@ -318,6 +320,84 @@ TEST_F(Handlers, PostAsJsonMapsBlocksToWorkingsteps) {
   EXPECT_FALSE(body["program"].get<std::string>().empty());
   EXPECT_FALSE(body["workingsteps"].empty());
   EXPECT_FALSE(body["blocks"].empty());
+}
+
+// Each motion's lines in the JSON post: as many entries as the trace has motions, in order,
+// each [first, last] within the program, never going back.
+TEST_F(Handlers, PostAsJsonGivesEachMotionsLines) {
+  const auto posted = run(http::verb::post, "/v1/posts?profile=linuxcnc&motions=true", example(),
+                          {{"Accept", "application/json"}});
+  ASSERT_EQ(posted.status, 200u) << posted.body;
+  const json body = json::parse(posted.body);
+  // Only when asked: it costs a transform per call.
+  EXPECT_FALSE(json::parse(run(http::verb::post, "/v1/posts?profile=linuxcnc", example(),
+                               {{"Accept", "application/json"}})
+                               .body)
+                   .contains("motions"));
+  EXPECT_EQ(run(http::verb::post, "/v1/posts?profile=linuxcnc&motions=maybe", example()).status,
+            400u);
+  const auto trace = run(http::verb::post, "/v1/traces?format=json", example());
+  std::size_t motions = 0;
+  for (std::size_t at = 0; (at = trace.body.find("\"call\":\"", at)) != std::string::npos; ++at) {
+    const std::string_view rest = std::string_view(trace.body).substr(at + 8);
+    for (const char* m : {"STRAIGHT_", "ARC_FEED", "NURBS_FEED", "DRILL_CYCLE", "BORE_CYCLE"})
+      if (rest.substr(0, std::string_view(m).size()) == m) ++motions;
+  }
+  ASSERT_GT(motions, 3u);
+  ASSERT_EQ(body["motions"].size(), motions);
+  const std::string program = body["program"];
+  const auto program_lines =
+      static_cast<std::size_t>(std::count(program.begin(), program.end(), '\n'));
+  std::size_t previous = 0;
+  for (const auto& m : body["motions"]) {
+    if (m.is_null()) continue;
+    EXPECT_LE(previous, m[0].get<std::size_t>());
+    EXPECT_LE(m[0].get<std::size_t>(), m[1].get<std::size_t>());
+    EXPECT_LE(m[1].get<std::size_t>(), program_lines);
+    previous = m[1];
+  }
+  // The streamed program is the same text.
+  EXPECT_EQ(run(http::verb::post, "/v1/posts?profile=linuxcnc", example()).body, body["program"]);
+}
+
+TEST_F(Handlers, TraceAsJson) {
+  const auto lines = run(http::verb::post, "/v1/traces?format=json", example());
+  ASSERT_EQ(lines.status, 200u) << lines.body;
+  EXPECT_TRUE(lines.streamed && lines.complete);
+  EXPECT_EQ(lines.headers.at("Content-Type"), "application/x-ndjson");
+  std::vector<json> records;
+  std::istringstream in(lines.body);
+  for (std::string line; std::getline(in, line);) records.push_back(json::parse(line));
+  ASSERT_GE(records.size(), 3u);
+  EXPECT_EQ(records.front()["format"], "ncpost-trace");
+  EXPECT_TRUE(records.front()["stock"].is_array());
+  EXPECT_EQ(records.back()["end"], true);
+  EXPECT_EQ(records.back()["ok"], true);
+  EXPECT_EQ(records.back()["call_count"], records.size() - 2);
+  EXPECT_EQ(records[1]["call"], "PROJECT_BEGIN");
+  // The text trace has the same calls, line for line.
+  const auto text = run(http::verb::post, "/v1/traces", example());
+  EXPECT_EQ(static_cast<std::size_t>(std::count(text.body.begin(), text.body.end(), '\n')),
+            records.size() - 2);
+  // Accept chooses the form when format= is absent; format= wins.
+  const auto ndjson =
+      run(http::verb::post, "/v1/traces", example(), {{"Accept", "application/x-ndjson"}});
+  EXPECT_EQ(ndjson.body, lines.body);
+  const auto document =
+      run(http::verb::post, "/v1/traces", example(), {{"Accept", "application/json"}});
+  EXPECT_EQ(document.headers.at("Content-Type"), "application/json");
+  const json whole = json::parse(document.body);
+  EXPECT_EQ(whole["calls"].size(), records.size() - 2);
+  EXPECT_EQ(whole["calls"][0], records[1]);
+  EXPECT_EQ(whole["ok"], true);
+  EXPECT_EQ(
+      run(http::verb::post, "/v1/traces?format=text", example(), {{"Accept", "application/json"}})
+          .body,
+      text.body);
+  // Unreadable: a problem, not a stream.
+  const auto unreadable = run(http::verb::post, "/v1/traces?format=json", "hello\n");
+  EXPECT_EQ(unreadable.status, 422u);
+  EXPECT_FALSE(unreadable.streamed);
 }
 
 TEST_F(Handlers, PostRefusals) {

@@ -122,6 +122,41 @@ std::pair<std::size_t, std::size_t> workingstep(const std::vector<canon::Call>& 
   return {0, 0};
 }
 
+// The stock as a viewer draws it: the BLOCK's corners in machine coordinates, through the
+// setup's origin (here moved by (10, 20, 5) in a copy of the case).
+TEST(Verify, StockBoxesAreTheBlockInMachineCoordinates) {
+  const Program p = load(cases() / "good.stp");
+  const auto boxes = stock_boxes(p.loaded.model, *p.attributes);
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes[0].workpiece, 900u);
+  EXPECT_EQ(boxes[0].name, "PART");
+  EXPECT_EQ(boxes[0].setup, 8u);
+  ASSERT_EQ(boxes[0].corners.size(), 8u);
+  // BLOCK('STOCK', corner at (0, 0, -30), 100 x 80 x 32): corner k adds x, y, z by its bits.
+  for (std::size_t k = 0; k < 8; ++k) {
+    EXPECT_DOUBLE_EQ(boxes[0].corners[k].x, (k & 1) ? 100 : 0) << k;
+    EXPECT_DOUBLE_EQ(boxes[0].corners[k].y, (k & 2) ? 80 : 0) << k;
+    EXPECT_DOUBLE_EQ(boxes[0].corners[k].z, (k & 4) ? 2 : -30) << k;
+  }
+
+  std::string text = test::read_file(cases() / "good.stp");
+  const std::string setup = "#8=SETUP('SETUP1',#923,";
+  ASSERT_NE(text.find(setup), std::string::npos);
+  text.replace(text.find(setup), setup.size(), "#8=SETUP('SETUP1',#999,");
+  text.replace(text.find("#900="), 0,
+               "#998=CARTESIAN_POINT('',(10.,20.,5.));\n#999=AXIS2_PLACEMENT_3D('',#998,$,$);\n");
+  const auto moved = pipeline::load(text, registry());
+  ASSERT_TRUE(moved.ok());
+  const stepnc::AttributeReader attributes(moved.model, *moved.schema);
+  const auto shifted = stock_boxes(moved.model, attributes);
+  ASSERT_EQ(shifted.size(), 1u);
+  for (std::size_t k = 0; k < 8; ++k) {
+    EXPECT_DOUBLE_EQ(shifted[0].corners[k].x, boxes[0].corners[k].x + 10) << k;
+    EXPECT_DOUBLE_EQ(shifted[0].corners[k].y, boxes[0].corners[k].y + 20) << k;
+    EXPECT_DOUBLE_EQ(shifted[0].corners[k].z, boxes[0].corners[k].z + 5) << k;
+  }
+}
+
 TEST(Verify, GoodProgramPasses) {
   const Program p = load(cases() / "good.stp");
   const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);

@@ -19,6 +19,23 @@ struct WorkingstepMark {
   std::string name;
 };
 
+// Where one canonical motion's text lies in the program: [begin, end) offsets, empty when the
+// motion wrote nothing (a zero-length move the profile drops, say).
+struct MotionMark {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+};
+
+// The 1-based line of `text` that holds each offset (an offset at the end of the text: the
+// line after the last). Offsets in any order; O(lines + offsets log lines).
+[[nodiscard]] std::vector<std::size_t> lines_at(std::string_view text,
+                                                const std::vector<std::size_t>& offsets);
+
+// Per motion, in program order: [first line, last line] of its text, or null when it wrote
+// none.
+[[nodiscard]] nlohmann::ordered_json motion_lines(std::string_view text,
+                                                  const std::vector<MotionMark>& marks);
+
 // From the lines of a posted program and the marks of its workingsteps:
 // {"blocks": {block number (or "L" + line) → workingstep id}, "workingsteps": [{id, name,
 // first_line, last_line}]}. A block number seen again (the numbering wrapped) is keyed "N#2",

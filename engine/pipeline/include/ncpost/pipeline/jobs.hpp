@@ -22,13 +22,21 @@ namespace ncpost::pipeline {
 
 // ---- trace --------------------------------------------------------------------------------
 
-enum class TraceFormat : std::uint8_t { Text, Xml };
+// Text: one call per line (rs274 style). Xml: the form that stylesheets read (canon.rng).
+// Json: NDJSON, a header line then one JSON object per call (canon/json_trace.hpp);
+// JsonDocument: the same records as one JSON document. Both JSON forms carry the program's
+// stock boxes in their header ("stock", see stock_json).
+enum class TraceFormat : std::uint8_t { Text, Xml, Json, JsonDocument };
 
-// The canonical program of the input: one call per line (rs274 style) or the XML form that
-// stylesheets read (canon.rng), streamed chunk by chunk. A trace goes on after an error, to
-// show everything it can; `ok` is false then.
+// The canonical program of the input, streamed chunk by chunk. A trace goes on after an
+// error, to show everything it can; `ok` is false then.
 [[nodiscard]] JobResult trace(Input input, const JobContext& context, TraceFormat format,
                               const TextSink& out);
+
+// The stock of a STEP-NC program, as the JSON trace's header member "stock": an array of
+// {"workpiece", "name", "setup", "corners": [[x, y, z] x 8]} (verify::stock_boxes), empty for
+// a program without a model (CL, G-code) or without a BLOCK.
+[[nodiscard]] nlohmann::ordered_json stock_json(const Program& program);
 
 // ---- verify -------------------------------------------------------------------------------
 

@@ -38,6 +38,14 @@ struct PostOptions {
   // (block_map.hpp). Needs one transform per chunk, so the renderer's batching is turned off
   // and the post runs on one thread.
   std::vector<WorkingstepMark>* workingstep_marks = nullptr;
+  // Non-null: where each canonical motion's text lies (in program order: the motions of
+  // `ncpost trace`), and where the text of the call behind each renderer diagnostic begins
+  // (one offset per renderer diagnostic, in order; an error's is where the error marker goes).
+  // Every call is then rendered as a chunk of its own, one transform each: slower, and the one
+  // profile whose stylesheet looks ahead (heidenhain-tnc640) may write equivalent but other
+  // text. Implies the one thread of workingstep_marks.
+  std::vector<MotionMark>* motion_marks = nullptr;
+  std::vector<std::size_t>* render_diagnostic_marks = nullptr;
   // The profile's pre-post checks on CL input (docs/cls.md); false: `--no-checks`,
   // `checks=false`.
   bool shop_checks = true;

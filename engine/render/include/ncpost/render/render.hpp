@@ -65,6 +65,10 @@ class Renderer final : public canon::Sink {
   void call(const canon::Call& call) override;
   // Renders what is left (the end chunk). Once.
   void finish();
+  // Renders the calls gathered so far now, as a chunk of their own (with batch_bytes 0: one
+  // transform), so that a caller can tell which text came from which calls. Stylesheets that
+  // look ahead within a transform may then write other (equivalent) text (docs/render.md).
+  void flush();
 
   // Limit violations (RENDER-001), conversions (RENDER-003/004/005), transform failures
   // (RENDER-002 + the XSLT diagnostics, with the stylesheet's file).

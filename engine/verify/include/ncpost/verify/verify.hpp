@@ -109,6 +109,21 @@ struct VerifyResult {
                                         std::span<const canon::Call> calls,
                                         const VerifyOptions& options = {});
 
+// The stock as a viewer draws it: each workpiece whose its_bounding_geometry is a BLOCK, with
+// the block's eight corners in machine coordinates, placed as the checks place it (the setup's
+// its_origin, then the workpiece set-up's). A workpiece is listed once per SETUP that holds it
+// (`setup` its id); a program without a SETUP lists every workpiece in its own coordinates
+// (`setup` 0). Workpieces without a BLOCK are left out.
+struct StockBox {
+  std::uint64_t workpiece = 0;  // P21 id
+  std::string name;
+  std::uint64_t setup = 0;  // P21 id; 0: none
+  // Corner k is the block's origin plus x if k & 1, y if k & 2, z if k & 4.
+  std::vector<Position> corners;
+};
+[[nodiscard]] std::vector<StockBox> stock_boxes(const p21::Model& model,
+                                                const stepnc::AttributeReader& attributes);
+
 // The report: one line per feature, the rapids summary, the result. Diagnostics are not in it
 // (the CLI prints them to stderr as `file:line:column: severity: CODE: message`).
 [[nodiscard]] std::string format_text(const VerifyResult& result, std::string_view file);
