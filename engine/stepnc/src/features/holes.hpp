@@ -12,6 +12,27 @@
 namespace ncpost::stepnc::features {
 
 class Reader;
+struct RegionSpec;
+
+// A ROUND_HOLE's change_in_diameter: its radius at the top and at the depth plane (both the
+// diameter's when it has none). DIAMETER_TAPER gives the final diameter; ANGLE_TAPER the angle
+// between wall and axis (positive: narrowing downwards).
+struct Taper {
+  double top = 0;
+  double bottom = 0;
+  Subject subject;  // the taper; empty: none
+  [[nodiscard]] double smallest() const { return top < bottom ? top : bottom; }
+};
+// Diagnostics: STEPNC-103 a taper without a positive final diameter, an angle outside (-90, 90)
+// or one that closes the hole above its depth.
+[[nodiscard]] std::optional<Taper> read_taper(Reader& reader, const p21::Instance& hole,
+                                              double diameter, double depth);
+
+// A ROUND_HOLE milled rather than drilled (bottom-and-side or side milling): the circle of its
+// diameter cleared as a region, helix down, full circles at each level. Diagnostics (and
+// read_region's): STEPNC-101 a taper (a conical wall), a conical or spherical bottom;
+// STEPNC-103 no diameter or bottom condition, a bad taper.
+[[nodiscard]] bool read_milled_hole(Reader& reader, RegionSpec& spec);
 
 // DRILLING_TYPE_STRATEGY: feed and speed as shares of the technology's near the top and near the
 // bottom of the hole.
@@ -70,10 +91,12 @@ struct HoleSpec {
 
 // Diagnostics (and Reader::read_depth's, read_tool's):
 // - STEPNC-101: an operation that is not drilling-type, or one of them the generator does not
-//   know; a taper (change_in_diameter); a bottom condition other than through, conical or blind;
+//   know; a bottom condition other than through, conical or blind;
 //   a test cut or waiting position (boring, reaming); a drilling strategy or feed_on_retract
 //   with a tap, reamer or boring cycle.
-// - STEPNC-102: a tool larger than the hole (+ tolerance); a reamer or tap smaller than it
+// - STEPNC-102: a tool larger than the hole (+ tolerance), or than a tapered hole's smallest
+//   diameter (a drill makes a cylinder; a note says the taper is left to another operation); a
+//   reamer or tap smaller than it
 //   (- tolerance); a point angle that is not a conical bottom's; a cutting edge shorter than the
 //   depth; a tap whose hand is not the spindle's direction.
 // - STEPNC-103: no diameter or bottom condition; no feed rate; a cutting_depth outside the hole;
