@@ -164,7 +164,7 @@ TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
   for (const char* name : {"thread-drilling", "slot-circular", "pocket-retract",
                            // geometry other systems write (issue 17)
                            "slot-placed-travel", "pocket-placed-profile", "hole-milled",
-                           "hole-bottoms-taper", "pocket-rough-corners"}) {
+                           "hole-bottoms-taper", "pocket-rough-corners", "geometry-combined"}) {
     SCOPED_TRACE(name);
     const auto o = compare_with_rs274(cases / (std::string(name) + ".stp"), name, "linuxcnc");
     EXPECT_GT(o.compared, 0u);

@@ -231,18 +231,17 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, FeatureGolden,
-    ::testing::Values("face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
-                      "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet",
-                      "pocket-raster", "pocket-side-finish", "outside-profile", "holes-cycles",
-                      "holes-pointed-bottoms", "holes-strategy", "slots", "wrong-tools",
-                      "unsupported", "hostile", "pocket-polyline-l", "pocket-composite",
-                      "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
-                      "pocket-radiused-bottom", "wrong-tools-general", "hostile-general",
-                      "slot-vee", "slot-partial-circular", "slot-ends-mixed", "slot-woodruff",
-                      "slot-circular", "step", "thread-drilling", "pocket-retract",
-                      "wrong-tools-shapes", "hostile-shapes", "retract-refused",
-                      "slot-placed-travel", "pocket-placed-profile", "hole-milled",
-                      "hole-bottoms-taper", "pocket-rough-corners", "geometry-refused"),
+    ::testing::Values(
+        "face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
+        "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet", "pocket-raster",
+        "pocket-side-finish", "outside-profile", "holes-cycles", "holes-pointed-bottoms",
+        "holes-strategy", "slots", "wrong-tools", "unsupported", "hostile", "pocket-polyline-l",
+        "pocket-composite", "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
+        "pocket-radiused-bottom", "wrong-tools-general", "hostile-general", "slot-vee",
+        "slot-partial-circular", "slot-ends-mixed", "slot-woodruff", "slot-circular", "step",
+        "thread-drilling", "pocket-retract", "wrong-tools-shapes", "hostile-shapes",
+        "retract-refused", "slot-placed-travel", "pocket-placed-profile", "hole-milled",
+        "hole-bottoms-taper", "pocket-rough-corners", "geometry-refused", "geometry-combined"),
     [](const auto& param_info) {
       std::string n = param_info.param;
       for (char& c : n)

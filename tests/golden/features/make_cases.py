@@ -987,6 +987,38 @@ def interop_geometry_cases():
              ("SLOT SPLINE", sslot, bs(p, "ROUGH", "SPLINE", t, tech, cp, 3.0, None, 0.0, 0.0)),
              ("FREEFORM", region, ff)])
 
+    # Every kind above in one program, as a CAPP system writes a part: a ring groove along a
+    # circular path placed off the feature origin and turned, a pocket with a placed profile
+    # roughed into its corners then finished, a milled hole, a drilling depth into a cone, a
+    # tapered hole drilled at its narrowest diameter.
+    p = program("geometry-combined", "issue 17 geometry in one part: placed circular course of travel, placed pocket profile roughed into tight corners and finished, milled hole, drilling into a cone, tapered hole")
+    big, small, tech = mill(p, 16, 25), mill(p, 8, 20), p.tech(0.03, -40.0)
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    drill = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
+    drill8 = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
+    loop = p.add("LOOP_SLOT_END_TYPE()")
+    ring = p.add(f"COMPLETE_CIRCULAR_PATH({p.placement(20, 0, 0, ref=rot(60))},{p.length(25)})")
+    groove = slot_feature(p, "RING GROOVE", 0, 0, ring, p.add(f"ROUNDED_U_PROFILE($,{p.length(6)})"), [loop], 3)
+    prof = p.add(f"RECTANGULAR_CLOSED_PROFILE({p.placement(10, 5, 0, ref=rot(-20))},{p.length(36)},{p.length(56)})")
+    b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
+    pocket = p.add(f"CLOSED_POCKET('POCKET',#4,(),{p.placement(100, 0, 0)},{p.plane('POCKET DEPTH', -6)},(),$,{b},$,{p.length(5)},{prof})")
+    milled = hole(p, 0, 80, 26, 10, "FLAT_HOLE_BOTTOM()")
+    cone = hole(p, 50, 80, 10, 12, "CONICAL_HOLE_BOTTOM(118.0,$)")
+    dtaper = p.add(f"DIAMETER_TAPER({p.length(8, 0.02)})")
+    through = p.add("THROUGH_BOTTOM_CONDITION()")
+    taper = p.add(f"ROUND_HOLE('TAPER D10-8',#4,(),{p.placement(80, 80, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(10, 0.02)},{dtaper},{through})")
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    centre = p.add("CENTER_MILLING($,.T.)")
+    ramp = p.add("PLUNGE_RAMP($,5.0)")
+    hx = p.add("PLUNGE_HELIX($,4.0,5.0)")
+    dtech = p.tech(0.01, -20.0)
+    p.write([("RING GROOVE", groove, bs(p, "FINISH", "GROOVE", ball6, tech, centre, 1.5, None, None, None, ramp)),
+             ("POCKET ROUGH", pocket, bs(p, "ROUGH", "POCKET ROUGH", big, tech, cp, 3.0, None, 0.5, 0.0)),
+             ("POCKET FINISH", pocket, bs(p, "FINISH", "POCKET FINISH", small, tech, cp, 6.0, None, None, None)),
+             ("MILLED HOLE", milled, bs(p, "ROUGH", "HOLE", small, tech, cp, 5.0, None, 0.0, 0.0, hx)),
+             ("DRILL INTO CONE", cone, drill_op(p, "DRILLING", "DRILL CONE", drill, dtech, cutting_depth="14.800")),
+             ("DRILL TAPER", taper, drill_op(p, "DRILLING", "DRILL TAPER", drill8, dtech))])
+
 
 if __name__ == "__main__":
     main()
