@@ -176,23 +176,22 @@ std::optional<double> read_bottom(Reader& reader, const Instance& bottom, double
 
 // A tapered hole: a drill (a cylinder) no wider than its narrowest diameter drills it, and the
 // taper is left to another operation (a note); a wider one would cut into the taper.
-bool check_taper(Reader& reader, const Tool& tool, const Toleranced& diameter, double depth) {
+bool check_taper(Reader& reader, const Tool& tool, const Toleranced& diameter, double depth,
+                 const Taper& taper) {
   const Instance& hole = reader.feature();
-  const auto taper = read_taper(reader, hole, diameter.size, depth);
-  if (!taper) return false;
-  if (!taper->subject) return true;
-  const std::string shape = reader.name(hole) + " with " + taper->subject.name() + " (diameter " +
-                            fmt(2 * taper->top) + " at the top, " + fmt(2 * taper->bottom) +
+  if (!taper.subject) return true;
+  const std::string shape = reader.name(hole) + " with " + taper.subject.name() + " (diameter " +
+                            fmt(2 * taper.top) + " at the top, " + fmt(2 * taper.bottom) +
                             " at its depth " + fmt(depth) + ")";
-  if (2 * tool.radius > 2 * taper->smallest() + diameter.upper + kEps)
+  if (2 * tool.radius > 2 * taper.smallest() + diameter.upper + kEps)
     return reader.report().unfit(tool.subject, tool.subject.name() + " diameter " +
                                                    fmt(2 * tool.radius) + " cuts into " + shape +
                                                    ": a drill makes a cylinder no wider than " +
-                                                   fmt(2 * taper->smallest()) + " here");
-  reader.report().note(taper->subject, reader.name(reader.operation()) + " drills a cylinder of " +
-                                           tool.subject.name() + "'s diameter " +
-                                           fmt(2 * tool.radius) + " in " + shape +
-                                           "; another operation has to cut the taper");
+                                                   fmt(2 * taper.smallest()) + " here");
+  reader.report().note(taper.subject, reader.name(reader.operation()) + " drills a cylinder of " +
+                                          tool.subject.name() + "'s diameter " +
+                                          fmt(2 * tool.radius) + " in " + shape +
+                                          "; another operation has to cut the taper");
   return true;
 }
 
@@ -255,11 +254,13 @@ bool read_hole(Reader& reader, HoleSpec& spec) {
   if (!depth || !tool) return false;
   if (!reader.feed() || !(*reader.feed() > 0))
     return report.bad(reader.subject(op), reader.name(op) + " has no feed rate in its technology");
-  if (!check_size(reader, *tool, *diameter, *kind) ||
-      !check_taper(reader, *tool, *diameter, *depth))
+  // A taper: the cone of a conical bottom has the taper's final diameter.
+  const auto taper = read_taper(reader, hole, diameter->size, *depth);
+  if (!taper || !check_size(reader, *tool, *diameter, *kind) ||
+      !check_taper(reader, *tool, *diameter, *depth, *taper))
     return false;
   const bool pointed = *kind == HoleKind::Drill || *kind == HoleKind::Peck;
-  const auto bottom_z = read_bottom(reader, *bottom, *depth, diameter->size / 2, *tool, pointed);
+  const auto bottom_z = read_bottom(reader, *bottom, *depth, taper->bottom, *tool, pointed);
   if (!bottom_z || !check_drill_edge(reader, *tool, *bottom_z, hole)) return false;
   spec.bottom_z = *bottom_z;
   spec.retract_z = reader.number(op, "retract_plane").value_or(reader.options().clearance);
