@@ -455,6 +455,35 @@ bool plain_slot(const Reader& r, const p21::Instance& feature) {
   return true;
 }
 
+// A ROUND_HOLE with a taper, as a cavity about its axis (f has its radius, floor, through and
+// cone depth read already).
+Feature& tapered_hole(const Reader& r, const p21::Instance& taper, Feature& f) {
+  double bottom_radius = 0;
+  if (r.is_a(taper, "diameter_taper")) {
+    bottom_radius = r.length(taper, "final_diameter").value_or(0) / 2;
+  } else if (const auto angle = r.number(taper, "angle");
+             angle && r.is_a(taper, "angle_taper") && std::abs(*angle) < 90) {
+    bottom_radius = f.hole_radius + f.floor * std::tan(*angle * std::numbers::pi / 180);
+  }
+  if (!(bottom_radius > 0) || !(f.floor < 0)) {
+    f.reason = "its change_in_diameter cannot be read";
+    return f;
+  }
+  // The cone of a conical bottom has the taper's final radius.
+  const double cone = f.hole_radius > 0 ? f.cone_depth * bottom_radius / f.hole_radius : 0;
+  auto cavity = std::make_shared<Cavity>();
+  cavity->taper(f.hole_radius, bottom_radius, -f.floor, f.through ? 0 : cone, f.through);
+  cavity->point({0, 0});
+  f.kind = Feature::Kind::Profiled;
+  f.cavity = std::move(cavity);
+  f.coverage = false;
+  f.notes.push_back("its " + r.type(taper) +
+                    " is checked as the cone of its wall; its floor is not measured for "
+                    "coverage");
+  f.checked = true;
+  return f;
+}
+
 }  // namespace
 
 Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame& workpiece_frame) {
@@ -566,28 +595,6 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
       return f;
     }
     f.hole_radius = *d / 2;
-    // A taper (ISO 14649-10 change_in_diameter): the hole is checked as the cylinder of its
-    // narrowest diameter, stricter than the cone (no gouge of the cone is missed).
-    if (const p21::Instance* taper = r.ref(feature, "change_in_diameter")) {
-      double bottom_radius = f.hole_radius;
-      if (r.is_a(*taper, "diameter_taper")) {
-        bottom_radius = r.length(*taper, "final_diameter").value_or(0) / 2;
-      } else if (const auto angle = r.number(*taper, "angle");
-                 angle && r.is_a(*taper, "angle_taper") && std::abs(*angle) < 90) {
-        bottom_radius = f.hole_radius + f.floor * std::tan(*angle * std::numbers::pi / 180);
-      } else {
-        bottom_radius = 0;
-      }
-      if (!(bottom_radius > 0)) {
-        f.reason = "its change_in_diameter cannot be read";
-        return f;
-      }
-      f.hole_radius = std::min(f.hole_radius, bottom_radius);
-      char narrowest[32];
-      std::snprintf(narrowest, sizeof narrowest, "%.4f", 2 * f.hole_radius);
-      f.notes.push_back("its " + r.type(*taper) +
-                        " is checked as the cylinder of its narrowest diameter " + narrowest);
-    }
     f.region = Region::circle({0, 0}, f.hole_radius);
     if (const p21::Instance* bottom = r.ref(feature, "bottom_condition")) {
       f.through = r.is_a(*bottom, "through_bottom_condition");
@@ -599,6 +606,11 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
         f.notes.push_back("its " + r.type(*bottom) + " is checked as a flat bottom at the depth");
       }
     }
+    // A taper (ISO 14649-10 change_in_diameter: DIAMETER_TAPER's final diameter at the depth
+    // plane, or ANGLE_TAPER's angle between wall and axis, positive narrowing downwards): the
+    // hole is a cavity about its axis, its wall the cone between the two radii (cavity.hpp).
+    if (const p21::Instance* taper = r.ref(feature, "change_in_diameter"))
+      return tapered_hole(r, *taper, f);
   }
   if (f.region.empty()) {
     f.reason = "its outline is empty";

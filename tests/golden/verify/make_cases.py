@@ -410,8 +410,8 @@ def geometry_cases():
     shape_program("slot-placed-travel-ignored", "the placement of the course of travel ignored",
                   placed_slot_feature, endmill10,
                   [(0, 0, 5), (0, 0, -5), (40, 0, -5), (40, 0, 5)])
-    # A tapered hole (10 to 8): an 8 mm tool down its axis passes; a 10 mm one gouges the
-    # narrowest cylinder the verifier holds it to.
+    # A tapered hole (10 to 8): an 8 mm tool down its axis passes; a 10 mm one cuts 1 mm into
+    # the cone of its wall at the bottom.
     shape_program("taper-good", "a tapered hole cut at its narrowest diameter",
                   tapered_hole_feature, endmill8, [(0, 0, 5), (0, 0, -15), (0, 0, 5)])
     shape_program("taper-too-wide", "a tapered hole cut at its top diameter",

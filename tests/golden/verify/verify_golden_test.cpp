@@ -141,10 +141,11 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"slot-placed-travel-ignored",
                  {Code::VerifyGouge, Code::VerifyDepth, Code::VerifyCoverage},
                  Position{60, 40, -5}},
-        // A hole tapering from 10 to 8 is held to its narrowest cylinder: an 8 mm tool down its
-        // axis passes, a 10 mm one is 1 mm into it from the top.
+        // A hole tapering from 10 to 8, 15 deep: its wall is the cone between them. An 8 mm
+        // tool down its axis passes; a 10 mm one is 1 mm (0.9978 along the cone's normal) into
+        // it at the bottom.
         Expected{"taper-good", {}},
-        Expected{"taper-too-wide", {Code::VerifyGouge}, Position{30, 30, -0.1}},
+        Expected{"taper-too-wide", {Code::VerifyGouge}, Position{30, 30, -15}},
         // General outlines. An L-shaped polyline pocket with orthogonal_radius 5 = the tool
         // radius: its boundary at 5 from the walls and lines between pass.
         Expected{"l-pocket", {}},
