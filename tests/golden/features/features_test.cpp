@@ -609,15 +609,15 @@ TEST(FeaturesOwn, CuttingDepthIntoAConeAndTapers) {
   ASSERT_EQ(cuts.at("DRILL INTO CONE").size(), 1u);
   EXPECT_NEAR(cuts.at("DRILL INTO CONE")[0].z, -14.8, 1e-9);
   const Generated refused = run(cases() / "geometry-refused.stp");
-  EXPECT_EQ(refused.count("STEPNC-101"), 4u);  // taper, tilted path, section, region
+  EXPECT_EQ(refused.count("STEPNC-101"), 4u);  // undercut, tilted path, section, region
   EXPECT_EQ(refused.count("STEPNC-102"), 1u);
   EXPECT_EQ(refused.count("STEPNC-103"), 1u);
   const std::string text = refused.text("geometry-refused");
   for (const char* named :
-       {"(DIAMETER_TAPER) (diameter 30 at the top, 8 at the depth)", "at most 15.0043",
-        "a drill makes a cylinder no wider than 8", "(LINEAR_PATH) placed out of the slot's plane",
-        "(B_SPLINE_CURVE_WITH_KNOTS) is a B-spline", "(REGION_SURFACE_LIST) (#",
-        "(BEZIER_SURFACE)), free-form region milling"})
+       {"(DIAMETER_TAPER) (diameter 30 at the top, 36 at the depth), which widens downwards",
+        "at most 15.0043", "a drill makes a cylinder no wider than 8",
+        "(LINEAR_PATH) placed out of the slot's plane", "(B_SPLINE_CURVE_WITH_KNOTS) is a B-spline",
+        "(REGION_SURFACE_LIST) (#", "(BEZIER_SURFACE)), free-form region milling"})
     EXPECT_NE(text.find(named), std::string::npos) << named;
 }
 

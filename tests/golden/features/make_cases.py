@@ -918,19 +918,22 @@ def interop_geometry_cases():
              ("CIRCLE", circle, bs(p, "ROUGH", "CIRCLE", t, tech, s, 2.0, None, 0.0, 0.0)),
              ("L", lpocket, bs(p, "FINISH", "L", t, tech, s, 2.0, None, None, None))])
 
-    p = program("hole-milled", "round holes milled rather than drilled: a blind flat hole roughed and finished (helix down, circles round), a through hole, a flat-with-radius bottom with a bull nose")
+    p = program("hole-milled", "round holes milled rather than drilled: a blind flat hole roughed and finished (helix down, circles round), a through hole, a flat-with-radius bottom with a bull nose, a taper from 20 to 19 in circles down its cone")
     t, tech = mill(p, 10, 30), p.tech(0.03, -40.0)
     bull = p.tool("BULLNOSE 8 R1", "BULLNOSE_ENDMILL", 8, edge_length=25.0, edge_radius=1.0)
     h1 = hole(p, 0, 0, 30, 12, "FLAT_HOLE_BOTTOM()")
     h2 = hole(p, 50, 0, 24, 10)
     h3 = hole(p, 90, 0, 20, 6, "FLAT_WITH_RADIUS_HOLE_BOTTOM(" + p.length(1.0, 0.05) + ")")
+    taper = p.add(f"DIAMETER_TAPER({p.length(19, 0.02)})")
+    h4 = p.add(f"ROUND_HOLE('TAPER D20-19',#4,(),{p.placement(130, 0, 0)},{p.plane('HOLE DEPTH', -8)},{p.length(20, 0.02)},{taper},{p.add('FLAT_HOLE_BOTTOM()')})")
     cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
     hx = p.add("PLUNGE_HELIX($,4.0,5.0)")
     hx2 = p.add("PLUNGE_HELIX($,3.0,5.0)")
     p.write([("HOLE ROUGH", h1, bs(p, "ROUGH", "ROUGH", t, tech, cp, 4.0, None, 0.5, 0.2, hx)),
              ("HOLE FINISH", h1, bs(p, "FINISH", "FINISH", t, tech, cp, 12.0, None, None, None, hx)),
              ("THROUGH HOLE", h2, bs(p, "ROUGH", "THROUGH", t, tech, cp, 5.0, None, 0.0, 0.0, hx)),
-             ("RADIUS BOTTOM", h3, bs(p, "FINISH", "RADIUS", bull, tech, cp, 3.0, None, None, None, hx2))])
+             ("RADIUS BOTTOM", h3, bs(p, "FINISH", "RADIUS", bull, tech, cp, 3.0, None, None, None, hx2)),
+             ("TAPER", h4, bs(p, "FINISH", "TAPER", bull, tech, cp, 4.0, None, None, None, hx2))])
 
     p = program("hole-bottoms-taper", "drilling depths into a conical bottom with a drill whose point is not given; tapered holes (diameter and angle tapers) drilled at their narrowest diameter")
     plain = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
@@ -957,12 +960,13 @@ def interop_geometry_cases():
              ("L ROUGH", lpocket, bs(p, "ROUGH", "L ROUGH", big, tech, cp, 2.5, None, 0.5, 0.0)),
              ("L FINISH", lpocket, bs(p, "FINISH", "L FINISH", small, tech, cp, 5.0, None, None, None))])
 
-    p = program("geometry-refused", "geometry the generator refuses, each naming the instance: a milled tapered hole, a drill wider than a taper, a cutting depth past the point of a cone, a course of travel placed out of the slot plane, a B-spline slot section, free-form region milling")
+    p = program("geometry-refused", "geometry the generator refuses, each naming the instance: a milled taper that widens downwards, a drill wider than a taper, a cutting depth past the point of a cone, a course of travel placed out of the slot plane, a B-spline slot section, free-form region milling")
     t, tech = mill(p, 10, 30), p.tech(0.03, -40.0)
     drill10 = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
     dtaper = p.add(f"DIAMETER_TAPER({p.length(8, 0.02)})")
     b1 = p.add("FLAT_HOLE_BOTTOM()")
-    taper = p.add(f"ROUND_HOLE('TAPER',#4,(),{p.placement(0, 0, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(30, 0.02)},{dtaper},{b1})")
+    wider = p.add(f"DIAMETER_TAPER({p.length(36, 0.02)})")
+    taper = p.add(f"ROUND_HOLE('UNDERCUT TAPER',#4,(),{p.placement(0, 0, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(30, 0.02)},{wider},{b1})")
     taper10 = p.add(f"ROUND_HOLE('TAPER D10-8',#4,(),{p.placement(40, 0, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(10, 0.02)},{dtaper},{b1})")
     cone = hole(p, 60, 0, 10, 12, "CONICAL_HOLE_BOTTOM(118.0,$)")
     square = p.add(f"SQUARE_U_PROFILE($,{p.length(16)},{p.length(0)},90.0,{p.length(0)},90.0)")

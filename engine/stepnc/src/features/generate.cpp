@@ -114,8 +114,11 @@ bool generate_kind(Reader& reader, Draft& draft) {
   if (reader.is(&feature, "round_hole")) {
     // Milled (bottom-and-side or side milling: helix down, circles round), else drilled.
     if (reader.is(&reader.operation(), "bottom_and_side_milling") ||
-        reader.is(&reader.operation(), "side_milling"))
+        reader.is(&reader.operation(), "side_milling")) {
+      if (reader.set(feature, "change_in_diameter"))
+        return read_then_plan(reader, draft, read_milled_taper, plan_milled_taper);
       return read_then_plan(reader, draft, read_milled_hole, plan_region);
+    }
     return read_then_plan(reader, draft, read_hole, plan_hole);
   }
   if (reader.is(&reader.operation(), "freeform_operation") || reader.is(&feature, "region"))

@@ -5,14 +5,15 @@
 // feed). Coordinates are the hole's: its axis is z, its top z = 0 (docs/features.md).
 
 #include <optional>
+#include <vector>
 
 #include "draft.hpp"
+#include "region.hpp"
 #include "spec.hpp"
 
 namespace ncpost::stepnc::features {
 
 class Reader;
-struct RegionSpec;
 
 // A ROUND_HOLE's change_in_diameter: its radius at the top and at the depth plane (both the
 // diameter's when it has none). DIAMETER_TAPER gives the final diameter; ANGLE_TAPER the angle
@@ -30,9 +31,28 @@ struct Taper {
 
 // A ROUND_HOLE milled rather than drilled (bottom-and-side or side milling): the circle of its
 // diameter cleared as a region, helix down, full circles at each level. Diagnostics (and
-// read_region's): STEPNC-101 a taper (a conical wall), a conical or spherical bottom;
-// STEPNC-103 no diameter or bottom condition, a bad taper.
+// read_region's): STEPNC-101 a conical or spherical bottom; STEPNC-103 no diameter or bottom
+// condition.
 [[nodiscard]] bool read_milled_hole(Reader& reader, RegionSpec& spec);
+
+// A tapered ROUND_HOLE milled, narrowing downwards: the cylinder of its narrowest diameter
+// cleared as a region (`core`), then the cone of its wall in full circles, one per level, each
+// at the cone's radius at its own height less the inset (the wall above a level is wider, so no
+// circle reaches into it), the levels close enough that the steps they leave on the cone stay
+// within FeatureOptions::profile_tolerance.
+struct MilledTaperSpec {
+  RegionSpec core;
+  double top = 0;     // the wall's radius at the top
+  double bottom = 0;  // at the depth plane
+  double depth = 0;
+  std::vector<double> levels;  // of the circles, from the top down
+};
+// Diagnostics (and read_region's, read_taper's): STEPNC-101 a taper that widens downwards (an
+// undercut), a bottom other than flat or through; STEPNC-103 more circles than the motion
+// limit.
+[[nodiscard]] bool read_milled_taper(Reader& reader, MilledTaperSpec& spec);
+// Diagnostics: plan_region's; STEPNC-103 more motions than the motion limit.
+[[nodiscard]] bool plan_milled_taper(const MilledTaperSpec& spec, Draft& draft);
 
 // DRILLING_TYPE_STRATEGY: feed and speed as shares of the technology's near the top and near the
 // bottom of the hole.

@@ -2,6 +2,7 @@
 // (region.hpp): the planner goes down by a helix (the default approach: helical interpolation)
 // and cuts each level in full circles (circular interpolation), as for a circular pocket.
 
+#include <algorithm>
 #include <cmath>
 
 #include "holes.hpp"
@@ -46,16 +47,6 @@ bool read_milled_hole(Reader& reader, RegionSpec& spec) {
   if (!diameter || !(diameter->size > 0) || bottom == nullptr)
     return report.bad(reader.subject(hole),
                       reader.name(hole) + " needs a positive diameter and a bottom_condition");
-  const auto depth = reader.read_depth();
-  if (!depth) return false;
-  const auto taper = read_taper(reader, hole, diameter->size, *depth);
-  if (!taper) return false;
-  if (taper->subject)
-    return report.not_implemented(
-        reader.name(op) + " on " + reader.name(hole) + " with " + taper->subject.name() +
-        " (diameter " + fmt(2 * taper->top) + " at the top, " + fmt(2 * taper->bottom) +
-        " at the depth), a conical wall (an end mill cuts a cylinder; it needs a helical-conical "
-        "or 3D toolpath),");
   Region region;
   region.shape = Shape::circle(diameter->size / 2);
   region.walls_only = reader.is(&op, "side_milling");
@@ -70,6 +61,53 @@ bool read_milled_hole(Reader& reader, RegionSpec& spec) {
         "drill's, a spherical one a ball's plunge)");
   }
   return read_region(reader, region, spec);
+}
+
+bool read_milled_taper(Reader& reader, MilledTaperSpec& spec) {
+  Report& report = reader.report();
+  const Instance& hole = reader.feature();
+  const Instance& op = reader.operation();
+  const auto diameter = reader.toleranced(hole, "diameter");
+  const Instance* bottom = reader.ref(hole, "bottom_condition", "hole_bottom_condition");
+  if (!diameter || !(diameter->size > 0) || bottom == nullptr)
+    return report.bad(reader.subject(hole),
+                      reader.name(hole) + " needs a positive diameter and a bottom_condition");
+  const auto depth = reader.read_depth();
+  if (!depth) return false;
+  const auto taper = read_taper(reader, hole, diameter->size, *depth);
+  if (!taper) return false;
+  const auto shape = [&] {
+    return reader.name(hole) + " with " + taper->subject.name() + " (diameter " +
+           fmt(2 * taper->top) + " at the top, " + fmt(2 * taper->bottom) + " at the depth)";
+  };
+  if (!(taper->bottom < taper->top))
+    return report.not_implemented(reader.name(op) + " on " + shape() +
+                                  ", which widens downwards (an undercut no tool reaches from "
+                                  "above),");
+  const bool through = reader.is(bottom, "through_bottom_condition");
+  if (!through && !reader.is(bottom, "flat_hole_bottom"))
+    return report.not_implemented(reader.name(op) + " on " + shape() + " and " +
+                                  reader.name(bottom) +
+                                  " (a milled taper has a flat or through "
+                                  "bottom),");
+  Region region;
+  region.shape = Shape::circle(taper->bottom);
+  region.through = through;
+  region.walls_only = reader.is(&op, "side_milling");
+  if (!read_region(reader, region, spec.core)) return false;
+  spec.top = taper->top;
+  spec.bottom = taper->bottom;
+  spec.depth = *depth;
+  // Steps of at most profile_tolerance across the cone: dz · slope <= tolerance.
+  const double last = std::min(spec.core.finish, *depth);
+  const double slope = (taper->top - taper->bottom) / *depth;
+  const double n = std::ceil(last * slope / reader.options().profile_tolerance);
+  if (!(n * 4 < static_cast<double>(reader.options().max_moves)))
+    return reader.report().limit_reached(reader.options().max_moves);
+  const auto count = static_cast<std::size_t>(std::max(1.0, n));
+  for (std::size_t k = 1; k <= count; ++k)
+    spec.levels.push_back(-last * static_cast<double>(k) / static_cast<double>(count));
+  return true;
 }
 
 }  // namespace ncpost::stepnc::features

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "features/holes.hpp"
 #include "features/region.hpp"
 #include "plan_support.hpp"
 
@@ -183,6 +184,41 @@ TEST_F(RegionPlan, PlaceFromCarriesMovesIntoTheFeaturesFrame) {
   EXPECT_EQ(moves()[2].turns, -1);
   EXPECT_EQ(moves()[3].value, 300);
   EXPECT_NEAR(moves()[3].to.x, 0, 1e-12);
+}
+
+// A milled taper (holes.hpp) from radius 10 at the top to 8 at its depth 8, an R4 tool: the
+// core cylinder of radius 8, then a circle at each level at the cone's radius there less the
+// inset, 10 - z/4 - 4: 5.5, 5, 4.5, 4. No circle reaches past the cone at its own height, and
+// the wall above a level is wider still.
+TEST_F(RegionPlan, AMilledTaperFollowsTheConeLevelByLevel) {
+  MilledTaperSpec spec;
+  spec.core = ex1_pocket();
+  spec.core.shape = Shape::circle(8);
+  spec.core.inset = 4;
+  spec.core.stepover = 3;
+  spec.core.levels = {-4, -8};
+  spec.core.entry.radius = 2;
+  spec.top = 10;
+  spec.bottom = 8;
+  spec.depth = 8;
+  spec.levels = {-2, -4, -6, -8};
+  ASSERT_TRUE(plan_milled_taper(spec, draft_));
+  std::vector<double> radii;
+  bool core_done = false;
+  for (const Move& m : moves()) {
+    if (m.kind == Move::Kind::Rapid && std::abs(m.to.x) < 1e-12 && std::abs(m.to.y) < 1e-12)
+      core_done = true;
+    if (m.kind == Move::Kind::Feed || m.kind == Move::Kind::Arc) {
+      EXPECT_LE(std::hypot(m.to.x, m.to.y), 10 + 0.25 * m.to.z - 4 + 1e-9) << m.to.z;
+    }
+    if (core_done && m.kind == Move::Kind::Arc) radii.push_back(std::hypot(m.to.x, m.to.y));
+  }
+  ASSERT_EQ(radii.size(), 4u);
+  EXPECT_NEAR(radii[0], 5.5, 1e-12);
+  EXPECT_NEAR(radii[1], 5.0, 1e-12);
+  EXPECT_NEAR(radii[2], 4.5, 1e-12);
+  EXPECT_NEAR(radii[3], 4.0, 1e-12);
+  EXPECT_NEAR(moves().back().to.z, options_.clearance, 1e-12);
 }
 
 }  // namespace
