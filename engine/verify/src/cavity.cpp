@@ -226,6 +226,26 @@ void Cavity::thread(double major, double length, double hole, double depth, bool
   top_ = major;
 }
 
+void Cavity::taper(double top, double bottom, double depth, double cone, bool through) {
+  Builder b;
+  b.start({-top, 0});
+  b.line({-bottom, -depth});
+  if (through) {
+    b.line({-bottom, -depth - kFar});
+    b.line({bottom, -depth - kFar});
+  } else if (cone > 0) {
+    b.line({0, -depth - cone});
+  }
+  b.line({bottom, -depth});
+  b.line({top, 0});
+  b.close({});
+  section_ = b.region;
+  lower_ = b.lower;
+  build_open();
+  floor_ = -depth;
+  top_ = std::max(top, bottom);
+}
+
 // ---- spines ------------------------------------------------------------------------------
 
 void Cavity::segment(Vec2 from, Vec2 to, bool open0, bool open1, double woodruff0,

@@ -33,6 +33,9 @@ class Cavity {
   // A thread in its hole: radius `major` down to `length`, then the hole's radius down to
   // `depth` (through: far below).
   void thread(double major, double length, double hole, double depth, bool through);
+  // A tapered ROUND_HOLE: radius `top` at the top to `bottom` at the depth plane (a cone), then
+  // its bottom: flat, a cone of `cone` below the plane, or through (far below).
+  void taper(double top, double bottom, double depth, double cone, bool through);
 
   // The spine in the feature's plane.
   void segment(Vec2 from, Vec2 to, bool open0, bool open1, double woodruff0, double woodruff1);

@@ -123,10 +123,7 @@ bool read_profiled_slot(const Reader& r, const p21::Instance& feature, Feature& 
       woodruff[1] = woodruff[0];
     }
   }
-  if (r.ref(*travel, "placement") != nullptr) {
-    f.reason = "its course of travel has a placement";
-    return false;
-  }
+  // A placed course of travel is in f.frame already (model.cpp, place_travel).
   if (r.is_a(*travel, "complete_circular_path")) {
     const auto radius = r.length(*travel, "radius");
     if (!radius || *radius <= 0 || (count > 0 && ends[0] != End::Loop)) {

@@ -1,6 +1,8 @@
 #include "model.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "cavity.hpp"
@@ -413,6 +415,26 @@ bool straight_slot(const Reader& r, const p21::Instance& feature, Feature& f) {
   return true;
 }
 
+// A course of travel with a placement of its own (ISO 14649-10 travel_path.placement): the slot
+// is read in that placement, which must lie in the feature's xy plane (turned about its z, moved
+// along it).
+bool place_travel(const Reader& r, const p21::Instance& feature, Feature& f) {
+  const p21::Instance* travel = r.ref(feature, "course_of_travel");
+  const p21::Instance* placed = travel ? r.ref(*travel, "placement") : nullptr;
+  if (placed == nullptr) return true;
+  const auto frame = r.placement(placed);
+  if (!frame) {
+    f.reason = "its course of travel's placement cannot be read";
+    return false;
+  }
+  if (std::abs(frame->z.z - 1) > 1e-9 || std::abs(frame->origin.z) > 1e-9) {
+    f.reason = "its course of travel is placed out of the slot's plane";
+    return false;
+  }
+  f.frame = f.frame.then(*frame);
+  return true;
+}
+
 // A straight slot with vertical walls meeting a flat floor in sharp corners and radiused, flat
 // or open ends: the outline model above. Every other slot is a profiled one (cavity.hpp).
 bool plain_slot(const Reader& r, const p21::Instance& feature) {
@@ -431,6 +453,35 @@ bool plain_slot(const Reader& r, const p21::Instance& feature) {
       return false;
   }
   return true;
+}
+
+// A ROUND_HOLE with a taper, as a cavity about its axis (f has its radius, floor, through and
+// cone depth read already).
+Feature& tapered_hole(const Reader& r, const p21::Instance& taper, Feature& f) {
+  double bottom_radius = 0;
+  if (r.is_a(taper, "diameter_taper")) {
+    bottom_radius = r.length(taper, "final_diameter").value_or(0) / 2;
+  } else if (const auto angle = r.number(taper, "angle");
+             angle && r.is_a(taper, "angle_taper") && std::abs(*angle) < 90) {
+    bottom_radius = f.hole_radius + f.floor * std::tan(*angle * std::numbers::pi / 180);
+  }
+  if (!(bottom_radius > 0) || !(f.floor < 0)) {
+    f.reason = "its change_in_diameter cannot be read";
+    return f;
+  }
+  // The cone of a conical bottom has the taper's final radius.
+  const double cone = f.hole_radius > 0 ? f.cone_depth * bottom_radius / f.hole_radius : 0;
+  auto cavity = std::make_shared<Cavity>();
+  cavity->taper(f.hole_radius, bottom_radius, -f.floor, f.through ? 0 : cone, f.through);
+  cavity->point({0, 0});
+  f.kind = Feature::Kind::Profiled;
+  f.cavity = std::move(cavity);
+  f.coverage = false;
+  f.notes.push_back("its " + r.type(taper) +
+                    " is checked as the cone of its wall; its floor is not measured for "
+                    "coverage");
+  f.checked = true;
+  return f;
 }
 
 }  // namespace
@@ -494,6 +545,8 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
       const double l = across.length();
       f.region = Region::parallelogram({0, 0}, along * *distance, across * (*width / l));
     }
+  } else if (slot && !place_travel(r, feature, f)) {
+    return f;
   } else if (slot && plain_slot(r, feature)) {
     f.kind = Feature::Kind::Slot;
     if (!straight_slot(r, feature, f)) return f;
@@ -553,8 +606,11 @@ Feature read_feature(const Reader& r, const p21::Instance& feature, const Frame&
         f.notes.push_back("its " + r.type(*bottom) + " is checked as a flat bottom at the depth");
       }
     }
-    if (const auto taper = r.get(feature, "change_in_diameter"); taper && !taper->is_omitted())
-      f.notes.push_back("its change_in_diameter is not modelled (checked as a cylinder)");
+    // A taper (ISO 14649-10 change_in_diameter: DIAMETER_TAPER's final diameter at the depth
+    // plane, or ANGLE_TAPER's angle between wall and axis, positive narrowing downwards): the
+    // hole is a cavity about its axis, its wall the cone between the two radii (cavity.hpp).
+    if (const p21::Instance* taper = r.ref(feature, "change_in_diameter"))
+      return tapered_hole(r, *taper, f);
   }
   if (f.region.empty()) {
     f.reason = "its outline is empty";

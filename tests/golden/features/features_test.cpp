@@ -222,7 +222,7 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
   if (GetParam() != "wrong-tools" && GetParam() != "unsupported" && GetParam() != "hostile" &&
       GetParam() != "wrong-tools-general" && GetParam() != "hostile-general" &&
       GetParam() != "wrong-tools-shapes" && GetParam() != "hostile-shapes" &&
-      GetParam() != "retract-refused") {
+      GetParam() != "retract-refused" && GetParam() != "geometry-refused") {
     for (const auto& d : r.diagnostics)
       EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, GetParam());
     expect_verified(cases() / (GetParam() + ".stp"), r.calls);
@@ -231,16 +231,17 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, FeatureGolden,
-    ::testing::Values("face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
-                      "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet",
-                      "pocket-raster", "pocket-side-finish", "outside-profile", "holes-cycles",
-                      "holes-pointed-bottoms", "holes-strategy", "slots", "wrong-tools",
-                      "unsupported", "hostile", "pocket-polyline-l", "pocket-composite",
-                      "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
-                      "pocket-radiused-bottom", "wrong-tools-general", "hostile-general",
-                      "slot-vee", "slot-partial-circular", "slot-ends-mixed", "slot-woodruff",
-                      "slot-circular", "step", "thread-drilling", "pocket-retract",
-                      "wrong-tools-shapes", "hostile-shapes", "retract-refused"),
+    ::testing::Values(
+        "face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
+        "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet", "pocket-raster",
+        "pocket-side-finish", "outside-profile", "holes-cycles", "holes-pointed-bottoms",
+        "holes-strategy", "slots", "wrong-tools", "unsupported", "hostile", "pocket-polyline-l",
+        "pocket-composite", "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
+        "pocket-radiused-bottom", "wrong-tools-general", "hostile-general", "slot-vee",
+        "slot-partial-circular", "slot-ends-mixed", "slot-woodruff", "slot-circular", "step",
+        "thread-drilling", "pocket-retract", "wrong-tools-shapes", "hostile-shapes",
+        "retract-refused", "slot-placed-travel", "pocket-placed-profile", "hole-milled",
+        "hole-bottoms-taper", "pocket-rough-corners", "geometry-refused", "geometry-combined"),
     [](const auto& param_info) {
       std::string n = param_info.param;
       for (char& c : n)
@@ -498,26 +499,126 @@ TEST(FeaturesOwn, WrongToolsNameBothInstances) {
   std::vector<std::string> unfit;
   for (const auto& d : r.diagnostics)
     if (d.code_id() == "STEPNC-102") unfit.push_back(d.message);
-  ASSERT_EQ(unfit.size(), 11u) << r.text("wrong-tools");
+  ASSERT_EQ(unfit.size(), 10u) << r.text("wrong-tools");
   EXPECT_EQ(r.count("STEPNC-103"), 0u);
   // Every message names a tool (or strategy/approach) and the feature.
   for (const auto& m : unfit) {
     EXPECT_NE(m.find("#"), std::string::npos);
     EXPECT_NE(m.find("_POCKET)"), m.find("ROUND_HOLE)")) << m;
   }
-  EXPECT_NE(unfit[0].find("radius 10 + allowance 0.5 of"), std::string::npos) << unfit[0];
-  EXPECT_NE(unfit[0].find("> corner radius 8 of"), std::string::npos) << unfit[0];
+  // The roughing pass whose tool (R10 + 0.5) is larger than the corner radius 8 is generated
+  // with a warning (issue 17): (10.5 - 8)(√2 - 1) = 1.0355 more stock in the corners.
+  ASSERT_EQ(r.count("STEPNC-120"), 1u);
+  for (const auto& d : r.diagnostics) {
+    if (d.code_id() != "STEPNC-120") continue;
+    EXPECT_EQ(d.severity, diag::Severity::Warning);
+    EXPECT_NE(d.message.find("radius 10 + allowance 0.5 of"), std::string::npos) << d.message;
+    EXPECT_NE(d.message.find("> corner radius 8 of"), std::string::npos) << d.message;
+    EXPECT_NE(d.message.find("leaves up to 1.0355 mm more stock"), std::string::npos) << d.message;
+  }
   // Nothing is generated for the refused workingsteps: no motion between their markers.
   bool inside = false;
   std::size_t motions = 0;
   for (const auto& c : r.calls) {
     if (const auto* b = std::get_if<canon::Begin>(&c))
-      inside = b->scope == canon::Scope::Workingstep;
+      inside = b->scope == canon::Scope::Workingstep && b->entity.name != "CORNER TOO SMALL";
     if (std::holds_alternative<canon::End>(c)) inside = false;
     if (inside && canon::is_motion(c) && !std::holds_alternative<canon::StraightTraverse>(c))
       ++motions;
   }
   EXPECT_EQ(motions, 0u);
+}
+
+// ---- Geometry other systems write (issue 17, parts 4 and 5) ----
+
+// The end points of the cutting moves (feeds, arcs; cycles at their bottom) of each workingstep,
+// by its name.
+std::map<std::string, std::vector<canon::Point>> cuts_by_workingstep(
+    const std::vector<canon::Call>& calls) {
+  std::map<std::string, std::vector<canon::Point>> out;
+  std::vector<canon::Point>* current = nullptr;
+  for (const canon::Call& c : calls) {
+    if (const auto* b = std::get_if<canon::Begin>(&c); b && b->scope == canon::Scope::Workingstep)
+      current = &out[b->entity.name];
+    else if (const auto* f = std::get_if<canon::StraightFeed>(&c); f && current)
+      current->push_back({f->to.x, f->to.y, f->to.z});
+    else if (const auto* a = std::get_if<canon::ArcFeed>(&c); a && current)
+      current->push_back({a->end.x, a->end.y, a->end.z});
+    else if (const auto* cy = std::get_if<canon::Cycle>(&c); cy && current)
+      current->push_back({cy->x, cy->y, cy->bottom_z});
+  }
+  return out;
+}
+
+// The U slot's course of travel starts at (20, 10) of its own placement, turned 30 degrees, and
+// runs 40 along that placement's x: with width 16 and an R5 tool the tool centres stay within 3
+// of the centre line and 3 past its ends (radiused ends), and reach both.
+TEST(FeaturesOwn, SlotAlongAPlacedCourseOfTravel) {
+  const Generated r = run(cases() / "slot-placed-travel.stp");
+  ASSERT_EQ(r.count("STEPNC-101") + r.count("STEPNC-102") + r.count("STEPNC-103"), 0u);
+  const auto cuts = cuts_by_workingstep(r.calls);
+  const double c = std::cos(std::numbers::pi / 6), s = std::sin(std::numbers::pi / 6);
+  double s_min = 1e9, s_max = -1e9, t_max = 0;
+  for (const canon::Point& p : cuts.at("U SLOT")) {
+    const double along = (p.x - 20) * c + (p.y - 10) * s;
+    const double across = -(p.x - 20) * s + (p.y - 10) * c;
+    s_min = std::min(s_min, along), s_max = std::max(s_max, along);
+    t_max = std::max(t_max, std::abs(across));
+  }
+  EXPECT_NEAR(s_min, -3, 1e-3);
+  EXPECT_NEAR(s_max, 43, 1e-3);
+  EXPECT_NEAR(t_max, 3, 1e-3);
+  // The vee slot's path is placed at (0, 60) turned 90 degrees: its centre line is x = 0,
+  // y from 60 to 100.
+  for (const canon::Point& p : cuts.at("VEE SLOT")) {
+    EXPECT_NEAR(p.x, 0, 1e-9);
+    EXPECT_GE(p.y, 60 - 1e-9);
+    EXPECT_LE(p.y, 100 + 1e-9);
+  }
+}
+
+// Milled holes: Ø30 with an R5 tool is finished at 15 - 5 = 10 from the axis (circles about it,
+// never beyond); the through hole Ø24 goes 10 + 1 (through_clearance) deep.
+TEST(FeaturesOwn, MilledHolesAreCirclesAboutTheAxis) {
+  const Generated r = run(cases() / "hole-milled.stp");
+  ASSERT_EQ(r.count("STEPNC-101") + r.count("STEPNC-102") + r.count("STEPNC-103"), 0u);
+  std::size_t arcs = 0;
+  for (const canon::Call& c : r.calls) arcs += std::holds_alternative<canon::ArcFeed>(c) ? 1 : 0;
+  EXPECT_GT(arcs, 10u);
+  const auto cuts = cuts_by_workingstep(r.calls);
+  double outer = 0, deepest = 0;
+  for (const canon::Point& p : cuts.at("HOLE FINISH")) {
+    outer = std::max(outer, std::hypot(p.x, p.y));
+    deepest = std::min(deepest, p.z);
+  }
+  EXPECT_NEAR(outer, 10, 1e-3);
+  EXPECT_NEAR(deepest, -12, 1e-9);
+  double through = 0;
+  for (const canon::Point& p : cuts.at("THROUGH HOLE")) through = std::min(through, p.z);
+  EXPECT_NEAR(through, -11, 1e-9);
+}
+
+// A cutting depth of 14.8 into the conical bottom (118 degrees, Ø10, depth 12: the cone's point
+// is 5 / tan 59° = 3.0043 below) is accepted; 15.5 is refused with the limit 15.0043.
+TEST(FeaturesOwn, CuttingDepthIntoAConeAndTapers) {
+  const Generated ok = run(cases() / "hole-bottoms-taper.stp");
+  for (const auto& d : ok.diagnostics)
+    EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, "hole-bottoms-taper");
+  EXPECT_EQ(ok.count("STEPNC-016"), 2u);  // one note per taper
+  const auto cuts = cuts_by_workingstep(ok.calls);
+  ASSERT_EQ(cuts.at("DRILL INTO CONE").size(), 1u);
+  EXPECT_NEAR(cuts.at("DRILL INTO CONE")[0].z, -14.8, 1e-9);
+  const Generated refused = run(cases() / "geometry-refused.stp");
+  EXPECT_EQ(refused.count("STEPNC-101"), 4u);  // undercut, tilted path, section, region
+  EXPECT_EQ(refused.count("STEPNC-102"), 1u);
+  EXPECT_EQ(refused.count("STEPNC-103"), 1u);
+  const std::string text = refused.text("geometry-refused");
+  for (const char* named :
+       {"(DIAMETER_TAPER) (diameter 30 at the top, 36 at the depth), which widens downwards",
+        "at most 15.0043", "a drill makes a cylinder no wider than 8",
+        "(LINEAR_PATH) placed out of the slot's plane", "(B_SPLINE_CURVE_WITH_KNOTS) is a B-spline",
+        "(REGION_SURFACE_LIST) (#", "(BEZIER_SURFACE)), free-form region milling"})
+    EXPECT_NE(text.find(named), std::string::npos) << named;
 }
 
 }  // namespace

@@ -881,6 +881,150 @@ def polyline_profile(p, pts):
     return p.add(f"GENERAL_CLOSED_PROFILE($,{polyline(p, pts)})")
 
 
+# ---- geometry other systems write (issue 17, parts 4 and 5) ----
+def rot(deg):
+    import math
+    return (round(math.cos(math.radians(deg)), 6), round(math.sin(math.radians(deg)), 6), 0)
+
+
+def interop_geometry_cases():
+    p = program("slot-placed-travel", "slots whose course_of_travel has its own placement: a square-U slot along a line placed at (20, 10) turned 30 degrees, a vee slot along a line placed at (0, 60) turned 90 degrees")
+    mill10, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
+    sink = p.tool("COUNTERSINK 16 X 90", "COUNTERSINK", 16, edge_length=12.0, tip=45.0)
+    square = p.add(f"SQUARE_U_PROFILE($,{p.length(16)},{p.length(0)},90.0,{p.length(0)},90.0)")
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    u_path = p.add(f"LINEAR_PATH({p.placement(20, 10, 0, ref=rot(30))},{p.length(40)},{p.direction(1, 0, 0)})")
+    u_slot = slot_feature(p, "U SLOT PLACED", 0, 0, u_path, square, [radiused, radiused], 6)
+    v_path = p.add(f"LINEAR_PATH({p.placement(0, 60, 0, ref=(0, 1, 0))},{p.length(40)},{p.direction(1, 0, 0)})")
+    v_slot = slot_feature(p, "VEE SLOT PLACED", 0, 0, v_path, vee_profile(p, 90), [radiused, radiused], 5)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    centre = p.add("CENTER_MILLING($,.T.)")
+    ramp = p.add("PLUNGE_RAMP($,10.0)")
+    p.write([("U SLOT", u_slot, bs(p, "ROUGH", "SLOT U", mill10, tech, cp, 3.0, None, 0.0, 0.0, ramp)),
+             ("VEE SLOT", v_slot, bs(p, "FINISH", "SLOT VEE", sink, tech, centre, 2.5, None, None, None, ramp))])
+
+    p = program("pocket-placed-profile", "closed pockets whose profile has its own placement: a rectangle moved and turned 45 degrees, a circle moved off the feature origin, an L polyline turned 90 degrees")
+    t, tech = mill(p, 8, 20), p.tech(0.03, -40.0)
+    prof = p.add(f"RECTANGULAR_CLOSED_PROFILE({p.placement(15, -5, 0, ref=rot(45))},{p.length(24)},{p.length(40)})")
+    b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
+    rect = p.add(f"CLOSED_POCKET('RECT PLACED',#4,(),{p.placement(0, 0, 0)},{p.plane('POCKET DEPTH', -5)},(),$,{b},$,{p.length(5)},{prof})")
+    cprof = p.add(f"CIRCULAR_CLOSED_PROFILE({p.placement(30, 0, 0)},{p.length(30)})")
+    circle = p.add(f"CLOSED_POCKET('CIRCLE PLACED',#4,(),{p.placement(80, 0, 0)},{p.plane('POCKET DEPTH', -4)},(),$,{b},$,$,{cprof})")
+    lpoly = polyline(p, [(0, 0), (40, 0), (40, 15), (15, 15), (15, 30), (0, 30)])
+    lprof = p.add(f"GENERAL_CLOSED_PROFILE({p.placement(0, 0, 0, ref=(0, 1, 0))},{lpoly})")
+    lpocket = p.add(f"CLOSED_POCKET('L PLACED',#4,(),{p.placement(0, 60, 0)},{p.plane('POCKET DEPTH', -4)},(),$,{b},$,{p.length(5)},{lprof})")
+    s = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    p.write([("RECT", rect, bs(p, "ROUGH", "RECT", t, tech, s, 2.5, None, 0.0, 0.0)),
+             ("CIRCLE", circle, bs(p, "ROUGH", "CIRCLE", t, tech, s, 2.0, None, 0.0, 0.0)),
+             ("L", lpocket, bs(p, "FINISH", "L", t, tech, s, 2.0, None, None, None))])
+
+    p = program("hole-milled", "round holes milled rather than drilled: a blind flat hole roughed and finished (helix down, circles round), a through hole, a flat-with-radius bottom with a bull nose, a taper from 20 to 19 in circles down its cone")
+    t, tech = mill(p, 10, 30), p.tech(0.03, -40.0)
+    bull = p.tool("BULLNOSE 8 R1", "BULLNOSE_ENDMILL", 8, edge_length=25.0, edge_radius=1.0)
+    h1 = hole(p, 0, 0, 30, 12, "FLAT_HOLE_BOTTOM()")
+    h2 = hole(p, 50, 0, 24, 10)
+    h3 = hole(p, 90, 0, 20, 6, "FLAT_WITH_RADIUS_HOLE_BOTTOM(" + p.length(1.0, 0.05) + ")")
+    taper = p.add(f"DIAMETER_TAPER({p.length(19, 0.02)})")
+    h4 = p.add(f"ROUND_HOLE('TAPER D20-19',#4,(),{p.placement(130, 0, 0)},{p.plane('HOLE DEPTH', -8)},{p.length(20, 0.02)},{taper},{p.add('FLAT_HOLE_BOTTOM()')})")
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    hx = p.add("PLUNGE_HELIX($,4.0,5.0)")
+    hx2 = p.add("PLUNGE_HELIX($,3.0,5.0)")
+    p.write([("HOLE ROUGH", h1, bs(p, "ROUGH", "ROUGH", t, tech, cp, 4.0, None, 0.5, 0.2, hx)),
+             ("HOLE FINISH", h1, bs(p, "FINISH", "FINISH", t, tech, cp, 12.0, None, None, None, hx)),
+             ("THROUGH HOLE", h2, bs(p, "ROUGH", "THROUGH", t, tech, cp, 5.0, None, 0.0, 0.0, hx)),
+             ("RADIUS BOTTOM", h3, bs(p, "FINISH", "RADIUS", bull, tech, cp, 3.0, None, None, None, hx2)),
+             ("TAPER", h4, bs(p, "FINISH", "TAPER", bull, tech, cp, 4.0, None, None, None, hx2))])
+
+    p = program("hole-bottoms-taper", "drilling depths into a conical bottom with a drill whose point is not given; tapered holes (diameter and angle tapers) drilled at their narrowest diameter")
+    plain = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
+    drill8 = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
+    cone = hole(p, 0, 0, 10, 12, "CONICAL_HOLE_BOTTOM(118.0,$)")
+    dtaper = p.add(f"DIAMETER_TAPER({p.length(8, 0.02)})")
+    ataper = p.add("ANGLE_TAPER(2.862405226)")  # tan = 1/20: from 10 to 8 over the depth 20
+    b1 = p.add("THROUGH_BOTTOM_CONDITION()")
+    t1 = p.add(f"ROUND_HOLE('TAPER D10-8',#4,(),{p.placement(30, 0, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(10, 0.02)},{dtaper},{b1})")
+    t2 = p.add(f"ROUND_HOLE('TAPER 2 DEG',#4,(),{p.placement(60, 0, 0)},{p.plane('HOLE DEPTH', -20)},{p.length(10, 0.02)},{ataper},{b1})")
+    tech = p.tech(0.01, -20.0)
+    p.write([("DRILL INTO CONE", cone, drill_op(p, "DRILLING", "DRILL CONE", plain, tech, cutting_depth="14.800")),
+             ("DRILL DIAMETER TAPER", t1, drill_op(p, "DRILLING", "DRILL TAPER", drill8, tech)),
+             ("DRILL ANGLE TAPER", t2, drill_op(p, "DRILLING", "DRILL ANGLE", drill8, tech))])
+
+    p = program("pocket-rough-corners", "roughing passes whose tool radius + side allowance exceed the corner radius (a warning with the stock left), finished by a tool that fits")
+    big, small, tech = mill(p, 16, 20), mill(p, 8, 20), p.tech(0.03, -40.0)
+    rect = rect_pocket(p, 0, 0, 60, 40, 6, 5)
+    lpoly = polyline(p, [(0, 0), (60, 0), (60, 25), (25, 25), (25, 45), (0, 45)])
+    lpocket = general_pocket(p, "L POCKET", 80, 0, lpoly, 5, corner=4)
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    p.write([("RECT ROUGH", rect, bs(p, "ROUGH", "RECT ROUGH", big, tech, cp, 3.0, None, 0.5, 0.0)),
+             ("RECT FINISH", rect, bs(p, "FINISH", "RECT FINISH", small, tech, cp, 6.0, None, None, None)),
+             ("L ROUGH", lpocket, bs(p, "ROUGH", "L ROUGH", big, tech, cp, 2.5, None, 0.5, 0.0)),
+             ("L FINISH", lpocket, bs(p, "FINISH", "L FINISH", small, tech, cp, 5.0, None, None, None))])
+
+    p = program("geometry-refused", "geometry the generator refuses, each naming the instance: a milled taper that widens downwards, a drill wider than a taper, a cutting depth past the point of a cone, a course of travel placed out of the slot plane, a B-spline slot section, free-form region milling")
+    t, tech = mill(p, 10, 30), p.tech(0.03, -40.0)
+    drill10 = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
+    dtaper = p.add(f"DIAMETER_TAPER({p.length(8, 0.02)})")
+    b1 = p.add("FLAT_HOLE_BOTTOM()")
+    wider = p.add(f"DIAMETER_TAPER({p.length(36, 0.02)})")
+    taper = p.add(f"ROUND_HOLE('UNDERCUT TAPER',#4,(),{p.placement(0, 0, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(30, 0.02)},{wider},{b1})")
+    taper10 = p.add(f"ROUND_HOLE('TAPER D10-8',#4,(),{p.placement(40, 0, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(10, 0.02)},{dtaper},{b1})")
+    cone = hole(p, 60, 0, 10, 12, "CONICAL_HOLE_BOTTOM(118.0,$)")
+    square = p.add(f"SQUARE_U_PROFILE($,{p.length(16)},{p.length(0)},90.0,{p.length(0)},90.0)")
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    tilted = p.add(f"LINEAR_PATH({p.placement(0, 0, 0, axis=(0, 1, 0), ref=(1, 0, 0))},{p.length(40)},{p.direction(1, 0, 0)})")
+    tslot = slot_feature(p, "SLOT TILTED TRAVEL", 0, 40, tilted, square, [radiused, radiused], 5)
+    pts = [p.point(x, y, 0) for x, y in [(-8, 0), (-8, -6), (8, -6), (8, 0)]]
+    spline = p.add(f"B_SPLINE_CURVE_WITH_KNOTS('',3,({','.join(pts)}),.UNSPECIFIED.,.F.,.F.,(4,4),(0.,1.),.UNSPECIFIED.)")
+    gprof = p.add(f"GENERAL_PROFILE($,{spline})")
+    sslot = slot_feature(p, "SLOT SPLINE SECTION", 0, 80, line_path(p, 40), gprof, [radiused, radiused], 6)
+    cps = [[p.point(x, y, z) for x, y, z in row] for row in
+           [[(0, 0, 0), (0, 20, 1), (0, 40, 0)], [(20, 0, 1), (20, 20, 3), (20, 40, 1)], [(40, 0, 0), (40, 20, 1), (40, 40, 0)]]]
+    grid = ",".join("(" + ",".join(r) + ")" for r in cps)
+    surface = p.add(f"BEZIER_SURFACE('',2,2,({grid}),.UNSPECIFIED.,.F.,.F.,.F.)")
+    region = p.add(f"REGION_SURFACE_LIST('FREEFORM REGION',#4,(),{p.placement(100, 0, 0)},({surface}))")
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    ff = p.add(f"FREEFORM_OPERATION($,$,'FREEFORM',5.000,$,{t},{tech},{p.functions()},$,$,$,$)")
+    p.write([("MILL TAPER", taper, bs(p, "ROUGH", "TAPER", t, tech, cp, 4.0, None, 0.0, 0.0)),
+             ("DRILL TOO WIDE FOR TAPER", taper10, drill_op(p, "DRILLING", "DRILL WIDE", drill10, p.tech(0.01, -20.0))),
+             ("DRILL PAST CONE", cone, drill_op(p, "DRILLING", "DRILL DEEP", drill10, p.tech(0.01, -20.0), cutting_depth="15.500")),
+             ("SLOT TILTED", tslot, bs(p, "ROUGH", "TILTED", t, tech, cp, 3.0, None, 0.0, 0.0)),
+             ("SLOT SPLINE", sslot, bs(p, "ROUGH", "SPLINE", t, tech, cp, 3.0, None, 0.0, 0.0)),
+             ("FREEFORM", region, ff)])
+
+    # Every kind above in one program, as a CAPP system writes a part: a ring groove along a
+    # circular path placed off the feature origin and turned, a pocket with a placed profile
+    # roughed into its corners then finished, a milled hole, a drilling depth into a cone, a
+    # tapered hole drilled at its narrowest diameter.
+    p = program("geometry-combined", "issue 17 geometry in one part: placed circular course of travel, placed pocket profile roughed into tight corners and finished, milled hole, drilling into a cone, tapered hole")
+    big, small, tech = mill(p, 16, 25), mill(p, 8, 20), p.tech(0.03, -40.0)
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    drill = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
+    drill8 = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
+    loop = p.add("LOOP_SLOT_END_TYPE()")
+    ring = p.add(f"COMPLETE_CIRCULAR_PATH({p.placement(20, 0, 0, ref=rot(60))},{p.length(25)})")
+    groove = slot_feature(p, "RING GROOVE", 0, 0, ring, p.add(f"ROUNDED_U_PROFILE($,{p.length(6)})"), [loop], 3)
+    prof = p.add(f"RECTANGULAR_CLOSED_PROFILE({p.placement(10, 5, 0, ref=rot(-20))},{p.length(36)},{p.length(56)})")
+    b = p.add("PLANAR_POCKET_BOTTOM_CONDITION()")
+    pocket = p.add(f"CLOSED_POCKET('POCKET',#4,(),{p.placement(100, 0, 0)},{p.plane('POCKET DEPTH', -6)},(),$,{b},$,{p.length(5)},{prof})")
+    milled = hole(p, 0, 80, 26, 10, "FLAT_HOLE_BOTTOM()")
+    cone = hole(p, 50, 80, 10, 12, "CONICAL_HOLE_BOTTOM(118.0,$)")
+    dtaper = p.add(f"DIAMETER_TAPER({p.length(8, 0.02)})")
+    through = p.add("THROUGH_BOTTOM_CONDITION()")
+    taper = p.add(f"ROUND_HOLE('TAPER D10-8',#4,(),{p.placement(80, 80, 0)},{p.plane('HOLE DEPTH', -15)},{p.length(10, 0.02)},{dtaper},{through})")
+    cp = p.add("CONTOUR_PARALLEL(0.5,.T.,.CCW.,$)")
+    centre = p.add("CENTER_MILLING($,.T.)")
+    ramp = p.add("PLUNGE_RAMP($,5.0)")
+    hx = p.add("PLUNGE_HELIX($,4.0,5.0)")
+    dtech = p.tech(0.01, -20.0)
+    p.write([("RING GROOVE", groove, bs(p, "FINISH", "GROOVE", ball6, tech, centre, 1.5, None, None, None, ramp)),
+             ("POCKET ROUGH", pocket, bs(p, "ROUGH", "POCKET ROUGH", big, tech, cp, 3.0, None, 0.5, 0.0)),
+             ("POCKET FINISH", pocket, bs(p, "FINISH", "POCKET FINISH", small, tech, cp, 6.0, None, None, None)),
+             ("MILLED HOLE", milled, bs(p, "ROUGH", "HOLE", small, tech, cp, 5.0, None, 0.0, 0.0, hx)),
+             ("DRILL INTO CONE", cone, drill_op(p, "DRILLING", "DRILL CONE", drill, dtech, cutting_depth="14.800")),
+             ("DRILL TAPER", taper, drill_op(p, "DRILLING", "DRILL TAPER", drill8, dtech))])
+
+
 if __name__ == "__main__":
     main()
     general_cases()
+    interop_geometry_cases()

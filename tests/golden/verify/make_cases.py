@@ -363,6 +363,61 @@ def shape_cases():
     shape_program("step-good", "a step cut to its wall", step_feature, endmill10, good)
 
 
+def placed_slot_feature(f):
+    """A square-U SLOT 10 wide, 5 deep, radiused ends, at (20, 40), whose LINEAR_PATH (40 along
+    its x) has its own placement: at (0, 10) of the feature, turned 90 degrees (issue 17). Its
+    centre line runs from (20, 50) to (20, 90)."""
+    f.add("SLOT('SLOT1',#900,(#31),#950,#951,#967,#968,(#969,#970))", 21)
+    f.add("AXIS2_PLACEMENT_3D('SLOT1',#955,#921,#922)", 950)
+    f.add("PLANE('SLOT1 DEPTH',#956)", 951)
+    f.add("CARTESIAN_POINT('',(20.,40.,0.))", 955)
+    f.add("AXIS2_PLACEMENT_3D('SLOT1 DEPTH',#957,#921,#922)", 956)
+    f.add("CARTESIAN_POINT('',(0.,0.,-5.))", 957)
+    f.add("LINEAR_PATH(#961,#959,#922)", 967)
+    f.add("AXIS2_PLACEMENT_3D('TRAVEL',#962,#921,#924)", 961)
+    f.add("CARTESIAN_POINT('',(0.,10.,0.))", 962)
+    f.add("TOLERANCED_LENGTH_MEASURE(40.,#925)", 959)
+    f.add("SQUARE_U_PROFILE($,#975,#971,90.,#971,90.)", 968)
+    f.add("RADIUSED_SLOT_END_TYPE()", 969)
+    f.add("RADIUSED_SLOT_END_TYPE()", 970)
+    f.add("TOLERANCED_LENGTH_MEASURE(0.,#925)", 971)
+    f.add("TOLERANCED_LENGTH_MEASURE(10.,#925)", 975)
+
+
+def tapered_hole_feature(f):
+    """A ROUND_HOLE at (30, 30), 10 at the top narrowing to 8 at its flat bottom 15 deep
+    (DIAMETER_TAPER, issue 17)."""
+    f.add("ROUND_HOLE('TAPER1',#900,(#31),#950,#951,#959,#967,#968)", 21)
+    f.add("AXIS2_PLACEMENT_3D('TAPER1',#955,#921,#922)", 950)
+    f.add("PLANE('TAPER1 DEPTH',#956)", 951)
+    f.add("CARTESIAN_POINT('',(30.,30.,0.))", 955)
+    f.add("AXIS2_PLACEMENT_3D('TAPER1 DEPTH',#957,#921,#922)", 956)
+    f.add("CARTESIAN_POINT('',(0.,0.,-15.))", 957)
+    f.add("TOLERANCED_LENGTH_MEASURE(10.,#925)", 959)
+    f.add("DIAMETER_TAPER(#960)", 967)
+    f.add("TOLERANCED_LENGTH_MEASURE(8.,#925)", 960)
+    f.add("FLAT_HOLE_BOTTOM()", 968)
+
+
+def geometry_cases():
+    endmill10 = ("ENDMILL(#711,3,.RIGHT.,.F.,$)", "MILLING_TOOL_DIMENSION(10.,$,$,25.,0.,$,$)")
+    endmill8 = ("ENDMILL(#711,3,.RIGHT.,.F.,$)", "MILLING_TOOL_DIMENSION(8.,$,$,25.,0.,$,$)")
+    # The slot's path placement read: the end mill of its width along (0, 10)..(0, 50) of the
+    # feature passes; the same pass along the feature's x (the placement ignored) gouges.
+    shape_program("slot-placed-travel", "a slot along a placed course of travel, cut along it",
+                  placed_slot_feature, endmill10,
+                  [(0, 10, 5), (0, 10, -5), (0, 50, -5), (0, 50, 5)])
+    shape_program("slot-placed-travel-ignored", "the placement of the course of travel ignored",
+                  placed_slot_feature, endmill10,
+                  [(0, 0, 5), (0, 0, -5), (40, 0, -5), (40, 0, 5)])
+    # A tapered hole (10 to 8): an 8 mm tool down its axis passes; a 10 mm one cuts 1 mm into
+    # the cone of its wall at the bottom.
+    shape_program("taper-good", "a tapered hole cut at its narrowest diameter",
+                  tapered_hole_feature, endmill8, [(0, 0, 5), (0, 0, -15), (0, 0, 5)])
+    shape_program("taper-too-wide", "a tapered hole cut at its top diameter",
+                  tapered_hole_feature, endmill10, [(0, 0, 5), (0, 0, -15), (0, 0, 5)])
+
+
 def main():
     os.makedirs(os.path.join(HERE, "cases"), exist_ok=True)
     program("good", "a face, a pocket and a hole, machined right")
@@ -395,6 +450,7 @@ def main():
     program("kind-not-checked", "a feature kind the verifier does not check", step=True)
     shape_cases()
     general_cases()
+    geometry_cases()
     return 0
 
 

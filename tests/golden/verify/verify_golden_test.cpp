@@ -133,6 +133,19 @@ INSTANTIATE_TEST_SUITE_P(
         // 0.4 into the wall (from its start, past the step's open end).
         Expected{"step-good", {}},
         Expected{"step-wall-gouge", {Code::VerifyGouge}, Position{20.4, -7, -8}},
+        // Issue 17. A slot whose course of travel has its own placement ((0, 10), turned 90
+        // degrees): cut along it, it passes; cut along the feature's x as if the placement were
+        // not there, the tool is in the wall (worst at the far end, (60, 40)), the slot's floor
+        // is never reached.
+        Expected{"slot-placed-travel", {}},
+        Expected{"slot-placed-travel-ignored",
+                 {Code::VerifyGouge, Code::VerifyDepth, Code::VerifyCoverage},
+                 Position{60, 40, -5}},
+        // A hole tapering from 10 to 8, 15 deep: its wall is the cone between them. An 8 mm
+        // tool down its axis passes; a 10 mm one is 1 mm (0.9978 along the cone's normal) into
+        // it at the bottom.
+        Expected{"taper-good", {}},
+        Expected{"taper-too-wide", {Code::VerifyGouge}, Position{30, 30, -15}},
         // General outlines. An L-shaped polyline pocket with orthogonal_radius 5 = the tool
         // radius: its boundary at 5 from the walls and lines between pass.
         Expected{"l-pocket", {}},

@@ -35,6 +35,11 @@ class Draft {
   // Reports the motion limit (STEPNC-103) and returns false.
   bool limit_reached() { return report_.limit_reached(options_.max_moves); }
 
+  // Moves from index `first` on carried into `frame`'s parent: a planner that drew them in a
+  // frame of its own (a slot's placed course of travel). `frame` must keep +z (an in-plane
+  // placement), so arcs keep their sense.
+  void place_from(std::size_t first, const detail::Frame& frame);
+
   // The path, when `ok`; else an empty one that is not to be played.
   [[nodiscard]] Path finish(bool ok) &&;
 

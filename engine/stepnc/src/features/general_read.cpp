@@ -40,10 +40,16 @@ std::optional<PocketRegion> closed_region(Reader& reader, const Instance& bounda
   const auto fillets = fillet_material(reader, outline, rho, d);
   if (!fillets) return std::nullopt;
   const auto pocket = polygons.difference(Areas{Area{*ring, {}}}, *fillets);
+  // Roughing leaves the corners tighter than the tool to the finishing pass (STEPNC-120,
+  // corner_checks): the floor it must reach has fillets of the tool's radius + allowance there.
+  const bool rough = roughing(reader) && d > rho;
+  const auto rough_fillets = rough ? fillet_material(reader, outline, d, d) : fillets;
+  if (!rough_fillets) return std::nullopt;
+  const auto reached = rough ? polygons.difference(Areas{Area{*ring, {}}}, *rough_fillets) : pocket;
   const auto centres = pocket ? polygons.offset(*pocket, -(d + margin)) : std::nullopt;
-  const auto floor = pocket ? polygons.offset(*pocket, -(operation.allowance_side + 2 * margin +
-                                                         options.corner_tolerance))
-                            : std::nullopt;
+  const auto floor = reached ? polygons.offset(*reached, -(operation.allowance_side + 2 * margin +
+                                                           options.corner_tolerance))
+                             : std::nullopt;
   if (!centres || !floor) {
     reader.report().bad(reader.subject(reader.feature()),
                         reader.name(reader.feature()) + ": its outline cannot be offset");

@@ -3,6 +3,8 @@
 // (docs/features.md, "Read, then plan"). Both report through one ModelReport, so diagnostics
 // keep the order in which they were found.
 
+#include <string>
+
 #include "draft.hpp"
 #include "face.hpp"
 #include "general.hpp"
@@ -62,11 +64,38 @@ bool outside_profile(Reader& reader, Draft& draft) {
 }
 
 // A straight U slot is a region; every other slot the passes of a form tool.
+// A course of travel with its own placement: planned in it, then carried into the feature's.
 bool slot(Reader& reader, Draft& draft) {
   SlotBasics basics;
   if (!read_slot_basics(reader, basics)) return false;
-  if (basics.region()) return read_then_plan(reader, basics, draft, read_slot_region, plan_region);
-  return read_then_plan(reader, basics, draft, read_form_slot, plan_form_slot);
+  const std::size_t first = draft.moves().size();
+  const bool ok = basics.region()
+                      ? read_then_plan(reader, basics, draft, read_slot_region, plan_region)
+                      : read_then_plan(reader, basics, draft, read_form_slot, plan_form_slot);
+  if (ok) draft.place_from(first, basics.travel_frame);
+  return ok;
+}
+
+// Free-form region milling (a REGION_SURFACE_LIST of B-spline or Bezier surfaces under a
+// FREEFORM_OPERATION) needs a 3D toolpath (a parallel projection onto the surfaces) that the
+// generator does not make: refused, naming the operation, the region and its surfaces' kinds.
+bool freeform(Reader& reader) {
+  const Instance& feature = reader.feature();
+  std::string surfaces;
+  if (const auto list = reader.get(feature, "surface_list"); list && list->is_list()) {
+    std::size_t shown = 0;
+    const auto items = reader.model().items(*list);
+    for (const p21::Value& v : items) {
+      if (!v.is_reference() || shown == 3) continue;
+      surfaces += (shown++ == 0 ? " (" : ", ") + reader.name(reader.model().find(v.id()));
+    }
+    if (shown > 0)
+      surfaces += items.size() > shown ? ", ... " + std::to_string(items.size()) + " in all)" : ")";
+  }
+  return reader.report().not_implemented(
+      reader.name(reader.operation()) + " on " + reader.name(feature) + surfaces +
+      ", free-form region milling (a 3D toolpath over the region's surfaces; give the "
+      "workingstep an explicit toolpath),");
 }
 
 // The generator of the workingstep's feature kind (thread drilling by its operation: its
@@ -82,7 +111,18 @@ bool generate_kind(Reader& reader, Draft& draft) {
   if (reader.is(&feature, "general_outside_profile")) return outside_profile(reader, draft);
   if (reader.is(&feature, "slot")) return slot(reader, draft);
   if (reader.is(&feature, "step")) return read_then_plan(reader, draft, read_step, plan_step);
-  if (reader.is(&feature, "round_hole")) return read_then_plan(reader, draft, read_hole, plan_hole);
+  if (reader.is(&feature, "round_hole")) {
+    // Milled (bottom-and-side or side milling: helix down, circles round), else drilled.
+    if (reader.is(&reader.operation(), "bottom_and_side_milling") ||
+        reader.is(&reader.operation(), "side_milling")) {
+      if (reader.set(feature, "change_in_diameter"))
+        return read_then_plan(reader, draft, read_milled_taper, plan_milled_taper);
+      return read_then_plan(reader, draft, read_milled_hole, plan_region);
+    }
+    return read_then_plan(reader, draft, read_hole, plan_hole);
+  }
+  if (reader.is(&reader.operation(), "freeform_operation") || reader.is(&feature, "region"))
+    return freeform(reader);
   return reader.report().not_implemented(reader.name(reader.operation()) + " on " +
                                          reader.name(feature) + " (this feature kind)");
 }

@@ -134,22 +134,65 @@ bool read_cycle(Reader& reader, HoleKind kind, const Tool& tool, HoleSpec& spec)
   return false;
 }
 
+// How deep the tip may go in the hole, by its bottom: through, past the depth plane by the
+// point and the clearance; a conical bottom, down to the cone's point (its height below the
+// depth plane, R / tan(tip_angle / 2)) or the tool's point, whichever is lower; a blind flat,
+// flat-with-radius or spherical bottom (whose lowest point is the depth plane), the depth plus
+// the tool's point and the clearance as before (a point below a flat floor is the bottom's
+// note, read_drill_bottom). `why` says which.
+double deepest_tip(Reader& reader, const Instance& bottom, double depth, double radius, double tip,
+                   std::string& why) {
+  if (reader.is(&bottom, "conical_hole_bottom")) {
+    const auto angle = reader.number(bottom, "tip_angle");
+    const double cone =
+        angle && *angle > 0 && *angle < 180 ? radius / std::tan(radians(*angle / 2)) : 0;
+    why = "the point of its " + reader.name(bottom) + ", " + fmt(cone) + " below its depth " +
+          fmt(depth);
+    return depth + std::max(cone, tip);
+  }
+  why = "its depth " + fmt(depth);
+  return depth + tip + reader.options().through_clearance;
+}
+
 // Where the tip stops: the operation's cutting_depth, else the bottom condition's.
 std::optional<double> read_bottom(Reader& reader, const Instance& bottom, double depth,
-                                  const Tool& tool, bool pointed) {
+                                  double radius, const Tool& tool, bool pointed) {
   const Instance& op = reader.operation();
   const auto cutting_depth = reader.number(op, "cutting_depth");
   if (!cutting_depth)
     return read_drill_bottom(reader, reader.feature(), bottom, depth, tool, pointed, "");
   const double tip = pointed ? tip_length(tool) : 0;
-  if (!(*cutting_depth > 0) ||
-      *cutting_depth > depth + tip + reader.options().through_clearance + kEps) {
-    reader.report().bad(reader.subject(op),
-                        reader.name(op) + " cutting_depth " + fmt(*cutting_depth) +
-                            " is not within the depth of " + reader.name(reader.feature()));
+  std::string why;
+  const double deepest = deepest_tip(reader, bottom, depth, radius, tip, why);
+  if (!(*cutting_depth > 0) || *cutting_depth > deepest + kEps) {
+    reader.report().bad(reader.subject(op), reader.name(op) + " cutting_depth " +
+                                                fmt(*cutting_depth) + " is not within " +
+                                                reader.name(reader.feature()) + " (" + why +
+                                                ": at most " + fmt(deepest) + ")");
     return std::nullopt;
   }
   return -*cutting_depth;
+}
+
+// A tapered hole: a drill (a cylinder) no wider than its narrowest diameter drills it, and the
+// taper is left to another operation (a note); a wider one would cut into the taper.
+bool check_taper(Reader& reader, const Tool& tool, const Toleranced& diameter, double depth,
+                 const Taper& taper) {
+  const Instance& hole = reader.feature();
+  if (!taper.subject) return true;
+  const std::string shape = reader.name(hole) + " with " + taper.subject.name() + " (diameter " +
+                            fmt(2 * taper.top) + " at the top, " + fmt(2 * taper.bottom) +
+                            " at its depth " + fmt(depth) + ")";
+  if (2 * tool.radius > 2 * taper.smallest() + diameter.upper + kEps)
+    return reader.report().unfit(tool.subject, tool.subject.name() + " diameter " +
+                                                   fmt(2 * tool.radius) + " cuts into " + shape +
+                                                   ": a drill makes a cylinder no wider than " +
+                                                   fmt(2 * taper.smallest()) + " here");
+  reader.report().note(taper.subject, reader.name(reader.operation()) + " drills a cylinder of " +
+                                          tool.subject.name() + "'s diameter " +
+                                          fmt(2 * tool.radius) + " in " + shape +
+                                          "; another operation has to cut the taper");
+  return true;
 }
 
 }  // namespace
@@ -201,8 +244,6 @@ bool read_hole(Reader& reader, HoleSpec& spec) {
   const Instance& op = reader.operation();
   const auto kind = read_kind(reader);
   if (!kind) return false;
-  if (reader.set(hole, "change_in_diameter"))
-    return report.not_implemented(reader.name(hole) + " with a taper");
   const auto diameter = reader.toleranced(hole, "diameter");
   const Instance* bottom = reader.ref(hole, "bottom_condition", "hole_bottom_condition");
   if (!diameter || bottom == nullptr)
@@ -213,9 +254,13 @@ bool read_hole(Reader& reader, HoleSpec& spec) {
   if (!depth || !tool) return false;
   if (!reader.feed() || !(*reader.feed() > 0))
     return report.bad(reader.subject(op), reader.name(op) + " has no feed rate in its technology");
-  if (!check_size(reader, *tool, *diameter, *kind)) return false;
+  // A taper: the cone of a conical bottom has the taper's final diameter.
+  const auto taper = read_taper(reader, hole, diameter->size, *depth);
+  if (!taper || !check_size(reader, *tool, *diameter, *kind) ||
+      !check_taper(reader, *tool, *diameter, *depth, *taper))
+    return false;
   const bool pointed = *kind == HoleKind::Drill || *kind == HoleKind::Peck;
-  const auto bottom_z = read_bottom(reader, *bottom, *depth, *tool, pointed);
+  const auto bottom_z = read_bottom(reader, *bottom, *depth, taper->bottom, *tool, pointed);
   if (!bottom_z || !check_drill_edge(reader, *tool, *bottom_z, hole)) return false;
   spec.bottom_z = *bottom_z;
   spec.retract_z = reader.number(op, "retract_plane").value_or(reader.options().clearance);

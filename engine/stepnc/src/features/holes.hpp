@@ -5,13 +5,54 @@
 // feed). Coordinates are the hole's: its axis is z, its top z = 0 (docs/features.md).
 
 #include <optional>
+#include <vector>
 
 #include "draft.hpp"
+#include "region.hpp"
 #include "spec.hpp"
 
 namespace ncpost::stepnc::features {
 
 class Reader;
+
+// A ROUND_HOLE's change_in_diameter: its radius at the top and at the depth plane (both the
+// diameter's when it has none). DIAMETER_TAPER gives the final diameter; ANGLE_TAPER the angle
+// between wall and axis (positive: narrowing downwards).
+struct Taper {
+  double top = 0;
+  double bottom = 0;
+  Subject subject;  // the taper; empty: none
+  [[nodiscard]] double smallest() const { return top < bottom ? top : bottom; }
+};
+// Diagnostics: STEPNC-103 a taper without a positive final diameter, an angle outside (-90, 90)
+// or one that closes the hole above its depth.
+[[nodiscard]] std::optional<Taper> read_taper(Reader& reader, const p21::Instance& hole,
+                                              double diameter, double depth);
+
+// A ROUND_HOLE milled rather than drilled (bottom-and-side or side milling): the circle of its
+// diameter cleared as a region, helix down, full circles at each level. Diagnostics (and
+// read_region's): STEPNC-101 a conical or spherical bottom; STEPNC-103 no diameter or bottom
+// condition.
+[[nodiscard]] bool read_milled_hole(Reader& reader, RegionSpec& spec);
+
+// A tapered ROUND_HOLE milled, narrowing downwards: the cylinder of its narrowest diameter
+// cleared as a region (`core`), then the cone of its wall in full circles, one per level, each
+// at the cone's radius at its own height less the inset (the wall above a level is wider, so no
+// circle reaches into it), the levels close enough that the steps they leave on the cone stay
+// within FeatureOptions::profile_tolerance.
+struct MilledTaperSpec {
+  RegionSpec core;
+  double top = 0;     // the wall's radius at the top
+  double bottom = 0;  // at the depth plane
+  double depth = 0;
+  std::vector<double> levels;  // of the circles, from the top down
+};
+// Diagnostics (and read_region's, read_taper's): STEPNC-101 a taper that widens downwards (an
+// undercut), a bottom other than flat or through; STEPNC-103 more circles than the motion
+// limit.
+[[nodiscard]] bool read_milled_taper(Reader& reader, MilledTaperSpec& spec);
+// Diagnostics: plan_region's; STEPNC-103 more motions than the motion limit.
+[[nodiscard]] bool plan_milled_taper(const MilledTaperSpec& spec, Draft& draft);
 
 // DRILLING_TYPE_STRATEGY: feed and speed as shares of the technology's near the top and near the
 // bottom of the hole.
@@ -70,10 +111,12 @@ struct HoleSpec {
 
 // Diagnostics (and Reader::read_depth's, read_tool's):
 // - STEPNC-101: an operation that is not drilling-type, or one of them the generator does not
-//   know; a taper (change_in_diameter); a bottom condition other than through, conical or blind;
+//   know; a bottom condition other than through, conical or blind;
 //   a test cut or waiting position (boring, reaming); a drilling strategy or feed_on_retract
 //   with a tap, reamer or boring cycle.
-// - STEPNC-102: a tool larger than the hole (+ tolerance); a reamer or tap smaller than it
+// - STEPNC-102: a tool larger than the hole (+ tolerance), or than a tapered hole's smallest
+//   diameter (a drill makes a cylinder; a note says the taper is left to another operation); a
+//   reamer or tap smaller than it
 //   (- tolerance); a point angle that is not a conical bottom's; a cutting edge shorter than the
 //   depth; a tap whose hand is not the spindle's direction.
 // - STEPNC-103: no diameter or bottom condition; no feed rate; a cutting_depth outside the hole;

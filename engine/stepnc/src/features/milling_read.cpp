@@ -158,4 +158,10 @@ bool rings_ccw(Reader& reader, const Operation& operation, bool wall_outside, bo
   return ccw;
 }
 
+bool roughing(Reader& reader) {
+  const Instance* op = &reader.operation();
+  return reader.is(op, "bottom_and_side_rough_milling") || reader.is(op, "side_rough_milling") ||
+         reader.is(op, "plane_rough_milling");
+}
+
 }  // namespace ncpost::stepnc::features

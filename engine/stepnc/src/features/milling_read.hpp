@@ -23,6 +23,10 @@ bool check_overlap(Reader& reader, const Operation& operation, double overlap);
 // The cutting edge must take the deepest level step (the wall height cut at once).
 // Diagnostics: STEPNC-102 a cutting edge shorter than that.
 bool check_edge(Reader& reader, const Tool& tool, const std::vector<double>& z);
+
+// The workingstep's operation is a roughing one (BOTTOM_AND_SIDE_ROUGH_MILLING,
+// SIDE_ROUGH_MILLING, PLANE_ROUGH_MILLING): what it cannot reach is the finishing pass's.
+[[nodiscard]] bool roughing(Reader& reader);
 // The tool's corner radius makes a floor fillet (planar_radius), within its tolerance.
 // Diagnostics: STEPNC-102 a corner radius larger than the fillet (+ allowance), or smaller.
 bool check_fillet(Reader& reader, const Tool& tool, const Operation& operation,

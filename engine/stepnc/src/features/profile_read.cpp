@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "../curves.hpp"
+#include "milling_read.hpp"
 
 namespace ncpost::stepnc::features {
 namespace {
@@ -288,22 +289,43 @@ bool corner_checks(Reader& reader, const Outline& outline, const Tool& tool,
   const auto feature = [&] { return reader.name(reader.feature()); };
   // A corner turning towards the material is one the tool must fit into.
   const double sign = material_outside ? 1 : -1;
+  // Roughing leaves the stock it cannot reach in corners tighter than the tool for the
+  // finishing pass: a warning with the largest stock left, once per feature (the first such
+  // corner named).
+  const bool rough = roughing(reader);
+  std::string first;
+  double stock = 0;
+  const auto tight = [&](const std::string& what, double left) {
+    if (!rough) return reader.report().unfit(tool.subject, what);
+    if (first.empty()) first = what;
+    stock = std::max(stock, left);
+    return true;
+  };
   for (const Corner& c : corners(outline)) {
     if (sign * c.turn <= 0) continue;
-    const double left = d * (1 / std::cos(std::min(std::abs(c.turn), 3.1) / 2) - 1);
+    const double secant = 1 / std::cos(std::min(std::abs(c.turn), 3.1) / 2) - 1;
+    const double left = d * secant;
     if (left <= reader.options().corner_tolerance || corner_radius + kEps >= d) continue;
-    return reader.report().unfit(tool.subject, who() + " > corner radius " + fmt(corner_radius) +
-                                                   " of " + feature() + " at " + at_text(c.at));
+    if (!tight(who() + " > corner radius " + fmt(corner_radius) + " of " + feature() + " at " +
+                   at_text(c.at),
+               (d - corner_radius) * secant))
+      return false;
   }
   for (const Element& e : outline.elements) {
     if (!e.arc || sign * e.sweep <= 0 || e.radius + kEps >= d ||
         std::max(e.radius, corner_radius) + kEps >= d)
       continue;
     const double mid = std::atan2((e.start - e.centre).y, (e.start - e.centre).x) + e.sweep / 2;
+    // An arc of the outline itself (not a corner's fillet) that the tool cannot follow: the
+    // outline the part must have, which roughing too may not leave unmachined in general.
     return reader.report().unfit(
         tool.subject, who() + " > arc radius " + fmt(e.radius) + " of " + feature() + " at " +
                           at_text(e.centre + P{std::cos(mid), std::sin(mid)} * e.radius));
   }
+  if (!first.empty())
+    reader.report().stock_left(tool.subject, first + ": the roughing pass leaves up to " +
+                                                 fmt(stock) +
+                                                 " mm more stock there for the finishing pass");
   return true;
 }
 

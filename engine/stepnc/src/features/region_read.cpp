@@ -18,11 +18,16 @@ bool check_fit(Reader& reader, const Region& region, const Tool& tool, const Ope
   const Shape& shape = region.shape;
   const double inset = tool.radius + operation.allowance_side;
   if (region.corners_in_material && shape.kind == Shape::Kind::Rectangle &&
-      shape.corner + kEps < inset)
-    return report.unfit(tool.subject, tool.subject.name() + " radius " + fmt(tool.radius) +
-                                          " + allowance " + fmt(operation.allowance_side) + " of " +
-                                          operation.subject.name() + " > corner radius " +
-                                          fmt(shape.corner) + " of " + f());
+      shape.corner + kEps < inset) {
+    const std::string what = tool.subject.name() + " radius " + fmt(tool.radius) + " + allowance " +
+                             fmt(operation.allowance_side) + " of " + operation.subject.name() +
+                             " > corner radius " + fmt(shape.corner) + " of " + f();
+    if (!roughing(reader)) return report.unfit(tool.subject, what);
+    // A right-angled corner: the tool's arc stops (inset - corner)(√2 - 1) short of the fillet.
+    report.stock_left(tool.subject, what + ": the roughing pass leaves up to " +
+                                        fmt((inset - shape.corner) * (std::sqrt(2.0) - 1)) +
+                                        " mm more stock in its corners for the finishing pass");
+  }
   const double room = std::max(0.0, shape.inradius() - inset);
   if (shape.inradius() - inset < -kEps)
     return report.unfit(tool.subject, tool.subject.name() + " diameter " + fmt(2 * tool.radius) +

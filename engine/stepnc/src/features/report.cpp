@@ -42,6 +42,10 @@ bool Report::limit_reached(std::size_t max_moves) {
                  " motions (FeatureOptions::max_moves); check the stepover and depths");
 }
 
+void Report::stock_left(const Subject& at, std::string message) {
+  add({diag::Code::StepncCornerStock, at, std::move(message)});
+}
+
 void Report::note(const Subject& at, std::string message) {
   add({diag::Code::StepncNote, at, std::move(message)});
 }

@@ -52,6 +52,9 @@ class Report {
   bool bad(const Subject& at, std::string message);
   // STEPNC-103 at the workingstep: the path would need more than `max_moves` motions.
   bool limit_reached(std::size_t max_moves);
+  // STEPNC-120 (a warning): a roughing pass leaves more stock than its allowance somewhere (a
+  // corner tighter than the tool), which the finishing pass has to remove.
+  void stock_left(const Subject& at, std::string message);
   // STEPNC-016: how a reading or a plan came about where the standard leaves it open.
   void note(const Subject& at, std::string message);
   // STEPNC-016 for a value a reader assumed where the file leaves it implicit:

@@ -60,6 +60,9 @@ struct SlotBasics {
   std::size_t end_count = 0;  // as the file gives them (one item stands for both ends)
   Subject travel;             // course_of_travel
   Subject swept;              // swept_shape
+  // The course of travel's own placement in the feature's xy plane (identity when it has none):
+  // the slot is read and planned in it, and its moves carried into the feature's frame.
+  detail::Frame travel_frame;
   // A square-U or rounded-U slot along a line without woodruff ends: a region.
   [[nodiscard]] bool region() const;
 };
@@ -90,10 +93,11 @@ struct FormSlotSpec {
 };
 
 // Diagnostics:
-// - STEPNC-101: an operation other than bottom-and-side or side milling; a placed course of
-//   travel or swept shape; a path other than linear or circular; a profile other than square-U
-//   (vertical walls, one floor radius), rounded-U, symmetric vee or partial circle of at most
-//   180 degrees; an end type the generator does not know.
+// - STEPNC-101: an operation other than bottom-and-side or side milling; a course of travel
+//   placed out of the feature's xy plane; a placed swept shape; a path other than linear or
+//   circular; a profile other than square-U (vertical walls, one floor radius), rounded-U,
+//   symmetric vee or partial circle of at most 180 degrees; an end type the generator does not
+//   know.
 // - STEPNC-103: no course_of_travel or swept_shape; sizes that are not positive or beyond the
 //   length limit; a sweep angle of 0 or a whole turn; a vee angle outside (0, 180) or no tilt;
 //   a negative vee radius or corner radius; more than two end conditions; a loop end on an

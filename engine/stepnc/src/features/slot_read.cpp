@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "milling_read.hpp"
+#include "profile_read.hpp"
 #include "region.hpp"
 #include "slot.hpp"
 
@@ -55,11 +56,11 @@ bool read_circular_path(Reader& reader, const Instance& travel, SlotPath& path) 
   return true;
 }
 
-bool read_path(Reader& reader, const Instance& travel, SlotPath& path) {
+// A course of travel with a placement of its own is read in that placement (in the feature's
+// xy plane: turned about and moved along it, never tilted out of it).
+bool read_path(Reader& reader, const Instance& travel, SlotPath& path, detail::Frame& frame) {
   const auto f = [&] { return reader.name(reader.feature()); };
-  if (reader.set(travel, "placement"))
-    return reader.report().not_implemented(f() + " with a placed course_of_travel " +
-                                           reader.name(travel));
+  if (!read_profile_placement(reader, travel, "slot's", frame)) return false;
   if (reader.is(&travel, "linear_path")) return read_linear_path(reader, travel, path);
   if (reader.is(&travel, "circular_path")) return read_circular_path(reader, travel, path);
   return reader.report().not_implemented(f() + " along " + reader.name(travel) +
@@ -153,6 +154,17 @@ bool read_section(Reader& reader, const Instance& swept, SlotSection& s) {
   if (reader.is(&swept, "rounded_u_profile")) return read_rounded_u(reader, swept, s);
   if (reader.is(&swept, "vee_profile")) return read_vee(reader, swept, s);
   if (reader.is(&swept, "partial_circular_profile")) return read_partial_circle(reader, swept, s);
+  if (reader.is(&swept, "general_profile")) {
+    // A free cross-section (a polyline, a B-spline or Bezier curve): no form tool has its shape,
+    // and a 2.5D path cannot follow it; the curve is named with its kind.
+    const Instance* curve = reader.ref(swept, "its_profile", "bounded_curve");
+    const bool spline = reader.is(curve, "b_spline_curve");
+    return reader.report().not_implemented(
+        f() + " with " + reader.name(swept) + " whose its_profile " + reader.name(curve) +
+        (spline ? " is a B-spline (or Bezier) cross-section" : " is a general cross-section") +
+        " (square-U, rounded-U, vee and partial-circular slots are; a general section needs a "
+        "form tool of its shape or a 3D toolpath)");
+  }
   return reader.report().not_implemented(f() + " with " + reader.name(swept) +
                                          " (square-U, rounded-U, vee and partial-circular slots "
                                          "are)");
@@ -257,7 +269,8 @@ bool read_slot_basics(Reader& reader, SlotBasics& basics) {
                       reader.name(f) + " needs a course_of_travel and a swept_shape");
   basics.travel = reader.subject(*travel);
   basics.swept = reader.subject(*swept);
-  return read_path(reader, *travel, basics.path) && read_section(reader, *swept, basics.section) &&
+  return read_path(reader, *travel, basics.path, basics.travel_frame) &&
+         read_section(reader, *swept, basics.section) &&
          read_ends(reader, basics.end, basics.end_count) && check_ends(reader, basics);
 }
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "features/holes.hpp"
 #include "features/region.hpp"
 #include "plan_support.hpp"
 
@@ -106,6 +107,118 @@ TEST_F(RegionPlan, BackAndForthLines) {
     at = m.to;
   }
   EXPECT_EQ(lines, 7);
+}
+
+// Roughing into corners tighter than the tool (issue 17, STEPNC-120 in the reader): the rings
+// of a 60 × 40 pocket with corner radius 3 at inset 5.5 (R5 + allowance 0.5) have sharp corners
+// at (±24.5, ±14.5): the tool never comes nearer than the inset to a wall, and the corner keeps
+// the stock the finishing pass removes.
+TEST_F(RegionPlan, RoughingRingsInCornersTighterThanTheToolStayOffTheWalls) {
+  RegionSpec spec = ex1_pocket();
+  spec.shape = Shape::rectangle(30, 20, 3);
+  spec.inset = 5.5;
+  spec.entry.radius = 4;
+  ASSERT_TRUE(plan_region(spec, draft_));
+  double x_max = 0, y_max = 0;
+  for (const Move& m : moves()) {
+    if (m.kind != Move::Kind::Feed) continue;
+    x_max = std::max(x_max, std::abs(m.to.x));
+    y_max = std::max(y_max, std::abs(m.to.y));
+  }
+  EXPECT_NEAR(x_max, 24.5, 1e-12);
+  EXPECT_NEAR(y_max, 14.5, 1e-12);
+  EXPECT_EQ(count(Move::Kind::Arc), 1u);  // the helix; the corners are sharp
+}
+
+// A milled round hole is a circle region (milled_hole_read.cpp): Ø30, R5 tool, allowance 0.5
+// (inset 5.5), two levels. The tool goes down by a helix about the centre and cuts full circles
+// about it (ARC_FEED), the outermost of radius 15 - 5.5 = 9.5, never beyond it.
+TEST_F(RegionPlan, AMilledHoleIsAHelixThenCircles) {
+  RegionSpec spec = ex1_pocket();
+  spec.shape = Shape::circle(15);
+  spec.inset = 5.5;
+  spec.stepover = 4;
+  spec.levels = {-4, -8};
+  spec.entry.radius = 4;
+  ASSERT_TRUE(plan_region(spec, draft_));
+  EXPECT_TRUE(report_.all().empty());
+  std::size_t circles = 0;
+  double outer = 0;
+  for (const Move& m : moves()) {
+    if (m.kind == Move::Kind::Feed) {
+      EXPECT_LE(std::hypot(m.to.x, m.to.y), 9.5 + 1e-9);
+    }
+    if (m.kind != Move::Kind::Arc) continue;
+    const double radius = std::hypot(m.to.x - m.centre.x, m.to.y - m.centre.y);
+    EXPECT_LE(std::hypot(m.centre.x, m.centre.y) + radius, 9.5 + 1e-9);
+    if (std::abs(m.centre.x) < 1e-12 && std::abs(m.centre.y) < 1e-12) {
+      ++circles;
+      outer = std::max(outer, radius);
+    }
+  }
+  EXPECT_NEAR(outer, 9.5, 1e-9);
+  EXPECT_GE(circles, 4u);  // at least two rings on each of the two levels
+  EXPECT_NEAR(moves().back().to.z, options_.clearance, 1e-12);
+}
+
+// Draft::place_from carries moves drawn in a placement of their own (a slot's placed course
+// of travel) into the feature's frame: points and arc centres moved and turned, the arcs' sense
+// kept, moves drawn before `first` and non-motions untouched.
+TEST_F(RegionPlan, PlaceFromCarriesMovesIntoTheFeaturesFrame) {
+  draft_.rapid({1, 0, 5});
+  const std::size_t first = draft_.moves().size();
+  draft_.feed({10, 0, -2});
+  draft_.arc({10, 0, -2}, {5, 0, -2}, -1);
+  draft_.add({Move::Kind::FeedRate, {}, {}, 1, 300});
+  detail::Frame frame;
+  frame.origin = {20, 10, 0};
+  frame.x = {0, 1, 0};
+  frame.y = {-1, 0, 0};
+  draft_.place_from(first, frame);
+  EXPECT_NEAR(moves()[0].to.x, 1, 1e-12);  // before `first`
+  EXPECT_NEAR(moves()[1].to.x, 20, 1e-12);
+  EXPECT_NEAR(moves()[1].to.y, 20, 1e-12);
+  EXPECT_NEAR(moves()[1].to.z, -2, 1e-12);
+  EXPECT_NEAR(moves()[2].centre.x, 20, 1e-12);
+  EXPECT_NEAR(moves()[2].centre.y, 15, 1e-12);
+  EXPECT_EQ(moves()[2].turns, -1);
+  EXPECT_EQ(moves()[3].value, 300);
+  EXPECT_NEAR(moves()[3].to.x, 0, 1e-12);
+}
+
+// A milled taper (holes.hpp) from radius 10 at the top to 8 at its depth 8, an R4 tool: the
+// core cylinder of radius 8, then a circle at each level at the cone's radius there less the
+// inset, 10 - z/4 - 4: 5.5, 5, 4.5, 4. No circle reaches past the cone at its own height, and
+// the wall above a level is wider still.
+TEST_F(RegionPlan, AMilledTaperFollowsTheConeLevelByLevel) {
+  MilledTaperSpec spec;
+  spec.core = ex1_pocket();
+  spec.core.shape = Shape::circle(8);
+  spec.core.inset = 4;
+  spec.core.stepover = 3;
+  spec.core.levels = {-4, -8};
+  spec.core.entry.radius = 2;
+  spec.top = 10;
+  spec.bottom = 8;
+  spec.depth = 8;
+  spec.levels = {-2, -4, -6, -8};
+  ASSERT_TRUE(plan_milled_taper(spec, draft_));
+  std::vector<double> radii;
+  bool core_done = false;
+  for (const Move& m : moves()) {
+    if (m.kind == Move::Kind::Rapid && std::abs(m.to.x) < 1e-12 && std::abs(m.to.y) < 1e-12)
+      core_done = true;
+    if (m.kind == Move::Kind::Feed || m.kind == Move::Kind::Arc) {
+      EXPECT_LE(std::hypot(m.to.x, m.to.y), 10 + 0.25 * m.to.z - 4 + 1e-9) << m.to.z;
+    }
+    if (core_done && m.kind == Move::Kind::Arc) radii.push_back(std::hypot(m.to.x, m.to.y));
+  }
+  ASSERT_EQ(radii.size(), 4u);
+  EXPECT_NEAR(radii[0], 5.5, 1e-12);
+  EXPECT_NEAR(radii[1], 5.0, 1e-12);
+  EXPECT_NEAR(radii[2], 4.5, 1e-12);
+  EXPECT_NEAR(radii[3], 4.0, 1e-12);
+  EXPECT_NEAR(moves().back().to.z, options_.clearance, 1e-12);
 }
 
 }  // namespace
