@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <set>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
@@ -128,8 +128,20 @@ class Interpreter {
   std::vector<const Instance*> workpiece_setups_;
   std::unordered_set<std::uint64_t> on_path_;
   std::unordered_set<std::uint64_t> variants_noted_;
-  std::set<std::pair<std::uint64_t, std::uint64_t>> units_checked_;  // (technology, tool) ids
-  const Instance* tool_ = nullptr;                                   // the tool in the spindle
+  // (technology, tool) ids → the feed and spindle speed read (units.hpp).
+  struct UnitsKey {
+    std::uint64_t technology, tool;
+    bool operator==(const UnitsKey&) const = default;
+  };
+  struct UnitsKeyHash {
+    std::size_t operator()(const UnitsKey& k) const noexcept {
+      return std::hash<std::uint64_t>()(k.technology * 0x9E3779B97F4A7C15ull ^ k.tool);
+    }
+  };
+  std::unordered_map<UnitsKey, std::pair<std::optional<double>, std::optional<double>>,
+                     UnitsKeyHash>
+      units_read_;
+  const Instance* tool_ = nullptr;  // the tool in the spindle
   std::size_t assumptions_commented_ = 0;
   std::size_t errors_checked_ = 0;
   bool stopped_ = false;
@@ -324,18 +336,22 @@ void Interpreter::technology(const Instance* tech) {
   std::optional<double> feed = written.feed;
   std::optional<double> spindle = written.spindle;
   if (tolerant()) {
-    // Units that do not add up (units.hpp): the plausible reading, noted, or an error; reported
-    // where a technology is first used with a tool.
-    const units::Reading reading = units::cross_check(written, tool_size(tool_));
-    if (units_checked_.emplace(tech->id, tool_ ? tool_->id : 0).second) {
+    // Units that do not add up (units.hpp): the plausible reading, noted, or an error; checked
+    // and reported where a technology is first used with a tool, the reading kept for its
+    // later uses (a toolpath list may name the same technology thousands of times).
+    const UnitsKey key{tech->id, tool_ ? tool_->id : 0};
+    auto taken = units_read_.find(key);
+    if (taken == units_read_.end()) {
+      const units::Reading reading = units::cross_check(written, tool_size(tool_));
       for (const std::string& n : reading.notes)
         geometry_.error(diag::Code::InteropUnits, *tech, detail::describe(m_, *tech) + ": " + n);
       for (const std::string& e : reading.errors)
         geometry_.error(diag::Code::InteropUnitsConflict, *tech,
                         detail::describe(m_, *tech) + ": " + e);
+      taken = units_read_.emplace(key, std::make_pair(reading.feed, reading.spindle)).first;
     }
-    feed = reading.feed;
-    spindle = reading.spindle;
+    feed = taken->second.first;
+    spindle = taken->second.second;
   }
   if (feed) machine_.feed_rate(*feed * kFeedToMmPerMin);
   // NIST's convention (ex1.stp's notes): a negative speed turns clockwise.

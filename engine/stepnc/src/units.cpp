@@ -39,8 +39,9 @@ void check_spindle(const Written& w, double diameter, Reading& out) {
   const double s = *w.spindle;
   const double iso_rpm = std::abs(s) * 60;  // ISO 14649: rev/s
   const double as_rpm = std::abs(s);        // written in rpm
-  const std::string spindle = "spindle " + fmt(s);
-  const std::string tool = " on a tool of diameter " + fmt(diameter) + " mm";
+  // Messages are made only when there is something to say (this runs per technology).
+  const auto spindle_text = [&] { return "spindle " + fmt(s); };
+  const auto tool_text = [&] { return " on a tool of diameter " + fmt(diameter) + " mm"; };
   if (w.cutspeed && *w.cutspeed > 0) {
     const double v = *w.cutspeed;
     // ISO units first; a pair agrees only at a plausible speed (a file that writes both in
@@ -51,11 +52,11 @@ void check_spindle(const Written& w, double diameter, Reading& out) {
         const double cut = per_minute ? v / 60 : v;
         if (!agree(surface_speed(diameter, n), cut) || !plausible_rpm(n, diameter)) continue;
         const std::string why =
-            ": at " + fmt(n) + " rpm" + tool + " the cutting speed is " + fmt(cut) + " m/s";
+            ": at " + fmt(n) + " rpm" + tool_text() + " the cutting speed is " + fmt(cut) + " m/s";
         if (rpm) {
           out.spindle = s / 60;
-          out.notes.push_back(spindle + " read as rpm (" + fmt(as_rpm) + " rpm), not rev/s (" +
-                              fmt(iso_rpm) + " rpm)" + why);
+          out.notes.push_back(spindle_text() + " read as rpm (" + fmt(as_rpm) +
+                              " rpm), not rev/s (" + fmt(iso_rpm) + " rpm)" + why);
         }
         if (per_minute)
           out.notes.push_back("cutspeed " + fmt(v) + " read as m/min (" + fmt(cut) +
@@ -63,22 +64,23 @@ void check_spindle(const Written& w, double diameter, Reading& out) {
         return;
       }
     }
-    out.errors.push_back(spindle + " (" + fmt(iso_rpm) + " rpm as rev/s, " + fmt(as_rpm) +
-                         " as rpm)" + tool + " cuts at " + fmt(surface_speed(diameter, iso_rpm)) +
-                         " or " + fmt(surface_speed(diameter, as_rpm)) + " m/s, but cutspeed is " +
-                         fmt(v) + " (m/s, or m/min): no reading of the units makes them agree");
+    out.errors.push_back(spindle_text() + " (" + fmt(iso_rpm) + " rpm as rev/s, " + fmt(as_rpm) +
+                         " as rpm)" + tool_text() + " cuts at " +
+                         fmt(surface_speed(diameter, iso_rpm)) + " or " +
+                         fmt(surface_speed(diameter, as_rpm)) + " m/s, but cutspeed is " + fmt(v) +
+                         " (m/s, or m/min): no reading of the units makes them agree");
     return;
   }
   if (plausible_rpm(iso_rpm, diameter)) return;
   if (plausible_rpm(as_rpm, diameter)) {
     out.spindle = s / 60;
-    out.notes.push_back(spindle + " read as rpm (" + fmt(as_rpm) +
-                        " rpm), not rev/s: " + fmt(iso_rpm) + " rpm" + tool + " would cut at " +
-                        fmt(surface_speed(diameter, iso_rpm)) + " m/s");
+    out.notes.push_back(spindle_text() + " read as rpm (" + fmt(as_rpm) +
+                        " rpm), not rev/s: " + fmt(iso_rpm) + " rpm" + tool_text() +
+                        " would cut at " + fmt(surface_speed(diameter, iso_rpm)) + " m/s");
     return;
   }
-  out.errors.push_back(spindle + " is " + fmt(iso_rpm) + " rpm as rev/s and " + fmt(as_rpm) +
-                       " rpm as rpm" + tool + ": neither gives a surface speed between " +
+  out.errors.push_back(spindle_text() + " is " + fmt(iso_rpm) + " rpm as rev/s and " + fmt(as_rpm) +
+                       " rpm as rpm" + tool_text() + ": neither gives a surface speed between " +
                        fmt(kMinSurfaceSpeed) + " and " + fmt(kMaxSurfaceSpeed) + " m/s");
 }
 
@@ -90,10 +92,10 @@ void check_feed(const Written& w, const ToolSize& tool, Reading& out) {
     double to_mm_per_min;
   };
   static constexpr Unit kUnits[] = {{"m/s", 60000}, {"mm/min", 1}, {"mm/s", 60}};
-  const std::string feed = "feedrate " + fmt(f);
+  const auto feed = [&] { return "feedrate " + fmt(f); };
   const auto take = [&](const Unit& u, const std::string& why) {
     out.feed = f * u.to_mm_per_min / 60000;
-    out.notes.push_back(feed + " read as " + u.name + " (" + fmt(f * u.to_mm_per_min) +
+    out.notes.push_back(feed() + " read as " + u.name + " (" + fmt(f * u.to_mm_per_min) +
                         " mm/min), not m/s (" + fmt(f * 60000) + " mm/min): " + why);
   };
   const std::optional<double> spindle = out.spindle ? out.spindle : w.spindle;
@@ -101,14 +103,16 @@ void check_feed(const Written& w, const ToolSize& tool, Reading& out) {
       *spindle != 0) {
     const double rpm = std::abs(*spindle) * 60;
     const double expected = *w.feed_per_tooth * *tool.teeth * rpm;
-    const std::string per_tooth = "feedrate_per_tooth " + fmt(*w.feed_per_tooth) + " mm × " +
-                                  std::to_string(*tool.teeth) + " teeth × " + fmt(rpm) +
-                                  " rpm = " + fmt(expected) + " mm/min";
+    const auto per_tooth = [&] {
+      return "feedrate_per_tooth " + fmt(*w.feed_per_tooth) + " mm × " +
+             std::to_string(*tool.teeth) + " teeth × " + fmt(rpm) + " rpm = " + fmt(expected) +
+             " mm/min";
+    };
     if (agree(f * kUnits[0].to_mm_per_min, expected)) return;
     for (std::size_t i = 1; i < std::size(kUnits); ++i)
-      if (agree(f * kUnits[i].to_mm_per_min, expected)) return take(kUnits[i], per_tooth);
-    out.errors.push_back(feed + " (" + fmt(f * 60000) + " mm/min as m/s) disagrees with " +
-                         per_tooth + " in every unit (m/s, mm/min, mm/s)");
+      if (agree(f * kUnits[i].to_mm_per_min, expected)) return take(kUnits[i], per_tooth());
+    out.errors.push_back(feed() + " (" + fmt(f * 60000) + " mm/min as m/s) disagrees with " +
+                         per_tooth() + " in every unit (m/s, mm/min, mm/s)");
     return;
   }
   const auto plausible = [](double mm_per_min) {
@@ -118,7 +122,7 @@ void check_feed(const Written& w, const ToolSize& tool, Reading& out) {
   for (std::size_t i = 1; i < std::size(kUnits); ++i)
     if (plausible(f * kUnits[i].to_mm_per_min))
       return take(kUnits[i], "as m/s it is beyond " + fmt(kMaxFeed) + " mm/min");
-  out.errors.push_back(feed + " is " + fmt(f * 60000) + " mm/min as m/s and " + fmt(f) +
+  out.errors.push_back(feed() + " is " + fmt(f * 60000) + " mm/min as m/s and " + fmt(f) +
                        " as mm/min: neither lies between " + fmt(kMinFeed) + " and " +
                        fmt(kMaxFeed) + " mm/min");
 }
