@@ -2,7 +2,9 @@
 // give a canonical program or diagnostics, never a crash, a hang or a sanitizer report. The
 // model is interpreted whether or not it validates against the schema: the interpreter must
 // cope with whatever a hostile file holds. The schema check runs in both modes first: tolerant
-// (the default) must never report an error that strict (`--strict`) does not.
+// (the default) must never report an error that strict (`--strict`) does not. Then the model is
+// interpreted in both modes (stepnc::Mode), each with the schema and aliases a job of that mode
+// uses.
 
 #include <algorithm>
 #include <cstddef>
@@ -16,6 +18,7 @@
 #include "ncpost/express/validate.hpp"
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/stepnc/interpreter.hpp"
+#include "ncpost/stepnc/variants.hpp"
 
 namespace {
 
@@ -46,8 +49,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (errors(ncpost::express::validate(read.model, *selection.set(), tolerant)) >
       errors(ncpost::express::validate(read.model, *selection.set(), strict)))
     std::abort();
-  const ncpost::stepnc::AttributeReader attributes(read.model, *selection.set());
-  NullSink sink;
-  const auto result = ncpost::stepnc::interpret(read.model, attributes, sink);
-  return static_cast<int>((result.calls + sink.calls) & 0);
+  // Then the job's two readings: strict as written, tolerant through the variants table (its
+  // schema names choose the schema, its entity aliases are checked as what they stand for), the
+  // implicit values and the units cross-check. Neither may crash.
+  std::size_t calls = 0;
+  for (const auto mode : {ncpost::stepnc::Mode::Strict, ncpost::stepnc::Mode::Tolerant}) {
+    const auto chosen =
+        registry.select_or_builtin(read.model, ncpost::stepnc::schema_aliases(mode));
+    ncpost::express::ValidateOptions options =
+        mode == ncpost::stepnc::Mode::Strict ? strict : tolerant;
+    options.entity_aliases = ncpost::stepnc::entity_aliases(mode);
+    calls += ncpost::express::validate(read.model, *chosen.set(), options).size();
+    const ncpost::stepnc::AttributeReader attributes(read.model, *chosen.set(), mode);
+    NullSink sink;
+    const auto result = ncpost::stepnc::interpret(read.model, attributes, sink);
+    calls += result.calls + sink.calls;
+  }
+  return static_cast<int>(calls & 0);
 }

@@ -2,17 +2,22 @@
 // never a crash, a hang or a sanitizer report. Read in pieces by p21::StreamReader, and read in
 // pieces side by side (ReadOptions::helpers, pieces of 16 bytes or more, the helper's pieces run
 // first), it must give the same diagnostics and model. After a clean read, writing the model and
-// reading it again must succeed with an equal model (the writer's contract).
+// reading it again must succeed with an equal model (the writer's contract). A clean model is
+// then checked against the schema in both modes a job reads it in (strict, and tolerant with
+// the variants table's schema names and entity aliases), which must not crash either.
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "ncpost/express/registry.hpp"
+#include "ncpost/express/validate.hpp"
 #include "ncpost/p21/compare.hpp"
 #include "ncpost/p21/reader.hpp"
 #include "ncpost/p21/stream_reader.hpp"
 #include "ncpost/p21/writer.hpp"
 #include "ncpost/parallel/pieces.hpp"
+#include "ncpost/stepnc/variants.hpp"
 
 namespace {
 
@@ -71,5 +76,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!first.ok()) return 0;
   const auto second = ncpost::p21::read(ncpost::p21::write_to_string(first.model));
   if (!second.ok() || ncpost::p21::first_difference(first.model, second.model)) __builtin_trap();
+  static const ncpost::express::SchemaRegistry registry;
+  for (const auto mode : {ncpost::stepnc::Mode::Strict, ncpost::stepnc::Mode::Tolerant}) {
+    const auto selection =
+        registry.select_or_builtin(first.model, ncpost::stepnc::schema_aliases(mode));
+    ncpost::express::ValidateOptions options;
+    options.tolerant = mode == ncpost::stepnc::Mode::Tolerant;
+    options.entity_aliases = ncpost::stepnc::entity_aliases(mode);
+    total += ncpost::express::validate(first.model, *selection.set(), options).size();
+  }
   return static_cast<int>(total & 0);
 }

@@ -178,7 +178,9 @@ TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
 TEST(Rs274Interop, LinuxcncTolerantCases) {
   NCPOST_REQUIRE_RS274_OR_SKIP();
   const fs::path cases = test::source_dir() / "tests" / "golden" / "tolerant" / "cases";
-  for (const char* name : {"omitted-unread", "abstract-tool", "combined"}) {
+  for (const char* name :
+       {"omitted-unread", "abstract-tool", "combined", "tool-dimension", "combined-schema",
+        "implicit-depths", "open-polyline", "units-rpm", "interop-all"}) {
     SCOPED_TRACE(name);
     const auto o = compare_posted_with_rs274(
         post_file(cases / (std::string(name) + ".stp"), "linuxcnc", true, true), name, "linuxcnc");

@@ -226,11 +226,31 @@ std::vector<std::string> SchemaRegistry::known_names() const {
 }
 
 SchemaSelection SchemaRegistry::select_for(const p21::Model& model) const {
+  return select_for(model, {});
+}
+
+const SchemaSource* SchemaRegistry::find(std::string_view schema_name,
+                                         std::span<const NameAlias> aliases,
+                                         const NameAlias** used) const {
+  if (const SchemaSource* source = find(schema_name)) return source;
+  const std::string wanted = normalise_name(schema_name);
+  for (const NameAlias& alias : aliases) {
+    if (alias.written != wanted) continue;
+    if (const SchemaSource* source = find(alias.read_as)) {
+      if (used != nullptr) *used = &alias;
+      return source;
+    }
+  }
+  return nullptr;
+}
+
+SchemaSelection SchemaRegistry::select_for(const p21::Model& model,
+                                           std::span<const NameAlias> aliases) const {
   SchemaSelection selection;
   const std::vector<std::string> entries = file_schema_names(model);
   const std::string* chosen = nullptr;
   for (const std::string& entry : entries) {
-    selection.source = find(entry);
+    selection.source = find(entry, aliases, nullptr);
     if (selection.source != nullptr) {
       chosen = &entry;
       break;
@@ -246,19 +266,32 @@ SchemaSelection SchemaRegistry::select_for(const p21::Model& model) const {
     return selection;
   }
   for (const std::string& entry : entries) {
-    const SchemaSource* source = find(entry);
+    const NameAlias* alias = nullptr;
+    const SchemaSource* source = find(entry, aliases, &alias);
     if (source == nullptr)
       unknown("no schema for FILE_SCHEMA '" + entry + "'; known: " + join(known_names()));
     else if (source != selection.source)
       unknown("FILE_SCHEMA '" + entry + "' is declared in '" + source->origin + "', not with '" +
               *chosen + "' in '" + selection.source->origin + "'; only '" +
               selection.source->origin + "' is used");
+    else if (alias != nullptr)
+      selection.diagnostics.push_back(
+          diag::make(diag::Code::InteropSchemaName, line, column,
+                     "FILE_SCHEMA '" + entry + "' is read as '" + std::string(alias->read_as) +
+                         "', the ISO 14649 schema under another name (docs/interoperability.md, "
+                         "\"Variants\"): the file is checked against '" +
+                         source->origin + "'"));
   }
   return selection;
 }
 
 SchemaSelection SchemaRegistry::select_or_builtin(const p21::Model& model) const {
-  SchemaSelection selection = select_for(model);
+  return select_or_builtin(model, {});
+}
+
+SchemaSelection SchemaRegistry::select_or_builtin(const p21::Model& model,
+                                                  std::span<const NameAlias> aliases) const {
+  SchemaSelection selection = select_for(model, aliases);
   if (selection.source == nullptr) {
     selection.source = builtin_;
     selection.fallback = true;

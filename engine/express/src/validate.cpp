@@ -525,6 +525,11 @@ class Validator {
     if (!info.looked_up) {
       info.looked_up = true;
       info.entity = set_.find_entity(model_.keyword(keyword));
+      if (info.entity == nullptr) {
+        for (const NameAlias& alias : options_.entity_aliases)
+          if (alias.written == detail::to_lower(model_.keyword(keyword)))
+            info.entity = set_.find_entity(alias.read_as);
+      }
     }
     return info;
   }

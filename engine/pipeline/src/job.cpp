@@ -114,7 +114,7 @@ Interpretation interpret_model(const Program& program, canon::Sink& sink, const 
   options.cancel = context.cancel;
   options.stop_at_first_error = settings.stop_at_first_error;
   const p21::Model& model = program.loaded.model;
-  const stepnc::AttributeReader attributes(model, *program.loaded.schema);
+  const stepnc::AttributeReader attributes(model, *program.loaded.schema, program.loaded.mode);
   // An AP238 AIM program (FILE_SCHEMA integrated_cnc_schema) says the same things with other
   // entities; its interpreter drives the same machine.
   const stepnc::InterpretResult result = ap238::is_aim(model)

@@ -394,7 +394,7 @@ VerifyOutcome verify(Input input, const JobContext& context, const VerifySetting
   options.grid = settings.grid;
   const auto started = Clock::now();
   const p21::Model& model = program.loaded.model;
-  const stepnc::AttributeReader attributes(model, *program.loaded.schema);
+  const stepnc::AttributeReader attributes(model, *program.loaded.schema, program.loaded.mode);
   outcome.result = verify::verify(model, attributes, options);
   outcome.job.work_time = Clock::now() - started;
   outcome.job.cancelled = cancelled(context);
@@ -431,8 +431,11 @@ Inspection inspect(Input input, const JobContext& context) {
   if (program.cancelled || !has_model) return inspection;
   const auto started = Clock::now();
   const p21::Model& model = program.loaded.model;
-  inspection.info = ap238::is_aim(model) ? ap238::inspect(model, *program.loaded.schema)
-                                         : stepnc::inspect(model, *program.loaded.schema);
+  stepnc::InspectOptions inspect_options;
+  inspect_options.mode = program.loaded.mode;
+  inspection.info = ap238::is_aim(model)
+                        ? ap238::inspect(model, *program.loaded.schema)
+                        : stepnc::inspect(model, *program.loaded.schema, inspect_options);
   inspection.job.work_time = Clock::now() - started;
   append(inspection.job.diagnostics, diag::with_file(inspection.info.diagnostics, program.name));
   inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);

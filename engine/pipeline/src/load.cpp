@@ -16,7 +16,8 @@ using Clock = std::chrono::steady_clock;
 // After reading: the schema the header names (or the built-in), and the check against it.
 void check(LoadedModel& out, const express::SchemaRegistry& schemas, const LoadOptions& options) {
   const auto started = Clock::now();
-  express::SchemaSelection selection = schemas.select_or_builtin(out.model);
+  express::SchemaSelection selection =
+      schemas.select_or_builtin(out.model, stepnc::schema_aliases(out.mode));
   out.schema = selection.set();
   out.schema_is_fallback = selection.fallback;
   out.diagnostics.insert(out.diagnostics.end(), selection.diagnostics.begin(),
@@ -27,6 +28,7 @@ void check(LoadedModel& out, const express::SchemaRegistry& schemas, const LoadO
     validate_options.helpers = options.helpers;
     validate_options.plan = &selection.source->check_plan();
     validate_options.tolerant = options.tolerant;
+    validate_options.entity_aliases = stepnc::entity_aliases(out.mode);
     auto checked = express::validate(out.model, *out.schema, validate_options);
     out.diagnostics.insert(out.diagnostics.end(), std::make_move_iterator(checked.begin()),
                            std::make_move_iterator(checked.end()));
@@ -52,13 +54,14 @@ bool LoadedModel::ok() const {
 LoadedModel load(std::string bytes, const express::SchemaRegistry& schemas,
                  const LoadOptions& options) {
   LoadedModel out;
+  out.mode = options.tolerant ? stepnc::Mode::Tolerant : stepnc::Mode::Strict;
   const auto started = Clock::now();
   out.format = detect_format(bytes);
   if (out.format == InputFormat::P28) {
     p28::ReadOptions p28_options;
     // A P28 document names its schema in its header, which comes first.
     p28_options.schema_for_header = [&](const p21::Model& header) {
-      return schemas.select_or_builtin(header).set();
+      return schemas.select_or_builtin(header, stepnc::schema_aliases(out.mode)).set();
     };
     take(out, p28::read(bytes, nullptr, p28_options));
   } else {
@@ -85,6 +88,7 @@ LoadedModel load(p21::StreamReader& streamed, const express::SchemaRegistry& sch
   if (detect_format(streamed.arrived(streamed.appended())) != InputFormat::P21)
     return load(streamed.take_text(), schemas, options);
   LoadedModel out;
+  out.mode = options.tolerant ? stepnc::Mode::Tolerant : stepnc::Mode::Strict;
   out.format = InputFormat::P21;
   take(out, streamed.finish());
   out.read_time = Clock::now() - started;

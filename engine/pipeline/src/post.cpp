@@ -296,7 +296,7 @@ PostResult post(const LoadedModel& loaded, const profile::LoadedProfile& profile
   interpret_options.tools = options.tools;
   interpret_options.stop_at_first_error = true;
   interpret_options.cancel = options.cancel;
-  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema);
+  const stepnc::AttributeReader attributes(loaded.model, *loaded.schema, loaded.mode);
   const auto interpret_into = [&](canon::Sink& sink) {
     const stepnc::InterpretResult interpreted =
         stepnc::interpret(loaded.model, attributes, sink, interpret_options);

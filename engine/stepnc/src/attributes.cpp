@@ -54,13 +54,35 @@ std::optional<p21::Value> complex_attribute(const p21::Model& model,
 
 }  // namespace
 
-AttributeReader::AttributeReader(const p21::Model& model, const express::SchemaSet& schema)
-    : model_(model), schema_(schema), executable_(schema.find_entity("executable")) {
+AttributeReader::AttributeReader(const p21::Model& model, const express::SchemaSet& schema,
+                                 Mode mode)
+    : model_(model), schema_(schema), mode_(mode), executable_(schema.find_entity("executable")) {
   by_keyword_.reserve(model.keyword_count());
-  for (p21::KeywordId k = 0; k < model.keyword_count(); ++k)
-    by_keyword_.push_back(k == p21::Model::kComplexKeyword || k == p21::Model::kExternalKeyword
-                              ? nullptr
-                              : schema.find_entity(model.keyword(k)));
+  variant_by_keyword_.assign(model.keyword_count(), nullptr);
+  for (p21::KeywordId k = 0; k < model.keyword_count(); ++k) {
+    if (k == p21::Model::kComplexKeyword || k == p21::Model::kExternalKeyword) {
+      by_keyword_.push_back(nullptr);
+      continue;
+    }
+    const std::string_view written = model.keyword(k);
+    const express::Entity* e = schema.find_entity(written);
+    if (mode == Mode::Tolerant) {
+      // The table's rows, the only place that knows a variant (variants.hpp).
+      const Variant* row = e == nullptr     ? find_variant(Variant::Kind::EntityAlias, written)
+                           : e->is_abstract ? find_variant(Variant::Kind::Supertype, written)
+                                            : nullptr;
+      if (const express::Entity* read_as = row ? schema.find_entity(row->read_as) : nullptr) {
+        e = read_as;
+        variant_by_keyword_[k] = row;
+      }
+    }
+    by_keyword_.push_back(e);
+  }
+}
+
+const Variant* AttributeReader::variant(const p21::Instance& instance) const {
+  return instance.keyword < variant_by_keyword_.size() ? variant_by_keyword_[instance.keyword]
+                                                       : nullptr;
 }
 
 const express::Entity* AttributeReader::entity(const p21::Instance& instance) const {

@@ -5,13 +5,17 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include "features/generator.hpp"
+#include "features/report.hpp"
 #include "ncpost/stepnc/curves.hpp"
 #include "ncpost/stepnc/geometry.hpp"
 #include "ncpost/stepnc/machine.hpp"
 #include "ncpost/stepnc/program_info.hpp"
+#include "units.hpp"
 
 namespace ncpost::stepnc {
 namespace {
@@ -99,6 +103,18 @@ class Interpreter {
                  const Instance& tool_instance, const Frame& frame);
   void set_security_plane(const Instance& owner);
 
+  // ---- what ncpost assumes (docs/interoperability.md) ----
+  [[nodiscard]] bool tolerant() const { return a_.mode() == Mode::Tolerant; }
+  // An INTEROP-002 note for each instance of the tool read through the variants table.
+  void note_variants(const Instance& tool_instance);
+  // The tool's diameter and teeth, read without reporting (the feature readers report).
+  const Instance* referenced(const Instance& owner, std::string_view attribute,
+                             std::string_view type);
+  units::ToolSize tool_size(const Instance* tool_instance);
+  // Each assumption noted since the last call (INTEROP notes) as a COMMENT here, so that the
+  // posted program carries it at the workingstep it concerns, in every profile's comment syntax.
+  void comment_assumptions();
+
   const p21::Model& m_;
   const AttributeReader& a_;
   Machine machine_;
@@ -111,6 +127,22 @@ class Interpreter {
   std::vector<Frame> workpiece_origins_;  // workpiece setups of the current setup
   std::vector<const Instance*> workpiece_setups_;
   std::unordered_set<std::uint64_t> on_path_;
+  std::unordered_set<std::uint64_t> variants_noted_;
+  // (technology, tool) ids → the feed and spindle speed read (units.hpp).
+  struct UnitsKey {
+    std::uint64_t technology, tool;
+    bool operator==(const UnitsKey&) const = default;
+  };
+  struct UnitsKeyHash {
+    std::size_t operator()(const UnitsKey& k) const noexcept {
+      return std::hash<std::uint64_t>()(k.technology * 0x9E3779B97F4A7C15ull ^ k.tool);
+    }
+  };
+  std::unordered_map<UnitsKey, std::pair<std::optional<double>, std::optional<double>>,
+                     UnitsKeyHash>
+      units_read_;
+  const Instance* tool_ = nullptr;  // the tool in the spindle
+  std::size_t assumptions_commented_ = 0;
   std::size_t errors_checked_ = 0;
   bool stopped_ = false;
 };
@@ -254,6 +286,7 @@ void Interpreter::nc_function(const Instance& f) {
                                                                        : name(f)});
   } else if (geometry_.is_a(f, "load_tool")) {
     if (const Instance* t = ref(f, "its_tool", "machining_tool")) tool(*t);
+    comment_assumptions();
   } else if (geometry_.is_a(f, "unload_tool")) {
     machine_.unload_tool();
   } else if (geometry_.is_a(f, "exchange_pallet") || geometry_.is_a(f, "index_pallet") ||
@@ -273,7 +306,9 @@ void Interpreter::nc_function(const Instance& f) {
 }
 
 bool Interpreter::tool(const Instance& t) {
+  tool_ = &t;
   if (machine_.holds(t.id)) return true;
+  note_variants(t);
   double assembly_length = 0;
   if (const auto l = geometry_.get(t, "overall_assembly_length"); l && l->is_number())
     assembly_length = m_.as_real(*l);
@@ -290,10 +325,79 @@ bool Interpreter::tool(const Instance& t) {
 
 void Interpreter::technology(const Instance* tech) {
   if (tech == nullptr) return;
-  if (const auto f = geometry_.number(*tech, "feedrate")) machine_.feed_rate(*f * kFeedToMmPerMin);
-  if (!geometry_.is_a(*tech, "milling_technology")) return;
+  units::Written written;
+  written.feed = geometry_.number(*tech, "feedrate");
+  const bool milling = geometry_.is_a(*tech, "milling_technology");
+  if (milling) {
+    written.spindle = geometry_.number(*tech, "spindle");
+    written.cutspeed = geometry_.number(*tech, "cutspeed");
+    written.feed_per_tooth = geometry_.number(*tech, "feedrate_per_tooth");
+  }
+  std::optional<double> feed = written.feed;
+  std::optional<double> spindle = written.spindle;
+  if (tolerant()) {
+    // Units that do not add up (units.hpp): the plausible reading, noted, or an error; checked
+    // and reported where a technology is first used with a tool, the reading kept for its
+    // later uses (a toolpath list may name the same technology thousands of times).
+    const UnitsKey key{tech->id, tool_ ? tool_->id : 0};
+    auto taken = units_read_.find(key);
+    if (taken == units_read_.end()) {
+      const units::Reading reading = units::cross_check(written, tool_size(tool_));
+      for (const std::string& n : reading.notes)
+        geometry_.error(diag::Code::InteropUnits, *tech, detail::describe(m_, *tech) + ": " + n);
+      for (const std::string& e : reading.errors)
+        geometry_.error(diag::Code::InteropUnitsConflict, *tech,
+                        detail::describe(m_, *tech) + ": " + e);
+      taken = units_read_.emplace(key, std::make_pair(reading.feed, reading.spindle)).first;
+    }
+    feed = taken->second.first;
+    spindle = taken->second.second;
+  }
+  if (feed) machine_.feed_rate(*feed * kFeedToMmPerMin);
   // NIST's convention (ex1.stp's notes): a negative speed turns clockwise.
-  if (const auto s = geometry_.number(*tech, "spindle")) machine_.spindle(*s);
+  if (milling && spindle) machine_.spindle(*spindle);
+}
+
+void Interpreter::note_variants(const Instance& t) {
+  if (!tolerant()) return;
+  const Instance* body = referenced(t, "its_tool_body", "tool_body");
+  const Instance* dimension = body ? referenced(*body, "dimension", "") : nullptr;
+  for (const Instance* i : {&t, body, dimension}) {
+    const Variant* row = i ? a_.variant(*i) : nullptr;
+    if (row == nullptr || !variants_noted_.insert(i->id).second) continue;
+    std::string message = detail::describe(m_, *i) + ": " + std::string(row->assumption);
+    if (const auto d = tool_size(&t).diameter)
+      message += "; tool " + detail::describe(m_, t) + " '" + name(t) + "' of diameter " +
+                 features::fmt(*d) + " mm";
+    geometry_.error(diag::Code::InteropVariant, *i, std::move(message));
+  }
+}
+
+const Instance* Interpreter::referenced(const Instance& owner, std::string_view attribute,
+                                        std::string_view type) {
+  const auto v = geometry_.get(owner, attribute);
+  const Instance* target = v && v->is_reference() ? m_.find(v->id()) : nullptr;
+  return target != nullptr && (type.empty() || geometry_.is_a(*target, type)) ? target : nullptr;
+}
+
+units::ToolSize Interpreter::tool_size(const Instance* t) {
+  units::ToolSize out;
+  const Instance* body = t ? referenced(*t, "its_tool_body", "milling_machine_tool_body") : nullptr;
+  if (body == nullptr) return out;
+  if (const Instance* d = referenced(*body, "dimension", "milling_tool_dimension"))
+    out.diameter = geometry_.number(*d, "diameter");
+  if (const auto teeth = geometry_.get(*body, "number_of_teeth");
+      teeth && teeth->kind() == p21::ValueKind::Integer)
+    out.teeth = static_cast<int>(m_.as_integer(*teeth));
+  return out;
+}
+
+void Interpreter::comment_assumptions() {
+  for (; assumptions_commented_ < diagnostics_.size(); ++assumptions_commented_) {
+    const diag::Diagnostic& d = diagnostics_[assumptions_commented_];
+    if (d.severity == diag::Severity::Note && d.code_id().starts_with("INTEROP-"))
+      emit(canon::Comment{"ASSUMED " + d.message});
+  }
 }
 
 void Interpreter::machine_functions(const Instance* functions) {
@@ -344,6 +448,7 @@ void Interpreter::toolpaths(const Instance* list, const Frame& frame, bool rapid
     }
     technology(ref(*path, "its_technology", "technology", true));
     machine_functions(ref(*path, "its_machine_functions", "machine_functions", true));
+    comment_assumptions();
     const Instance* curve = ref(*path, "basiccurve", "bounded_curve");
     if (curve == nullptr) continue;
     auto segments = curves_.segments(*curve);
@@ -392,6 +497,7 @@ void Interpreter::workingstep(const Instance& ws) {
     if (tool_instance != nullptr && tool(*tool_instance)) {
       technology(ref(*operation, "its_technology", "technology"));
       machine_functions(ref(*operation, "its_machine_functions", "machine_functions"));
+      comment_assumptions();
       const Instance* list = ref(*operation, "its_toolpath", "toolpath_list", true);
       if (list == nullptr) {
         generated(ws, *operation, feature, *tool_instance, frame);
@@ -411,6 +517,7 @@ void Interpreter::generated(const Instance& ws, const Instance& operation, const
   features::Request request{
       &ws, &operation, feature, &tool_instance, machine_.feed(), machine_.spindle_speed()};
   const features::Path path = features::generate(geometry_, request, options_.features);
+  comment_assumptions();
   if (!path.ok) return;
   const bool upright = std::abs(frame.z.z - 1) < 1e-9;
   bool first = true;

@@ -86,7 +86,10 @@ namespace {
 class Inspector {
  public:
   Inspector(const Model& model, const express::SchemaSet& schema, const InspectOptions& options)
-      : model_(model), attributes_(model, schema), options_(options), lines_(model.text()) {}
+      : model_(model),
+        attributes_(model, schema, options.mode),
+        options_(options),
+        lines_(model.text()) {}
 
   ProgramInfo run() {
     info_.header = read_header(model_);

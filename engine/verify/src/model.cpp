@@ -234,8 +234,13 @@ bool closed_profile(const Reader& r, const p21::Instance& profile, Feature& f,
     if (!read) return false;
     chain = std::move(*read);
     if ((chain.back().b - chain.front().a).length() > 1e-3) {
-      f.reason = "its general closed profile is not closed";
-      return false;
+      // Tolerant, a polyline that does not repeat its first point is closed by a line back to
+      // it (INTEROP-005); strict, the profile is not closed.
+      if (!r.tolerant() || !r.is_a(*curve, "polyline")) {
+        f.reason = "its general closed profile is not closed";
+        return false;
+      }
+      chain.push_back({false, chain.back().b, chain.front().a, {}, 0, 0});
     }
     chain.back().b = chain.front().a;
   }
@@ -287,10 +292,42 @@ bool open_pocket_walls(const Reader& r, const p21::Instance& feature, Feature& f
   return true;
 }
 
+// Tolerant, a through hole without a depth plane goes down to the lowest corner of its
+// workpiece's bounding BLOCK (the workpiece's, else its raw piece's): the floor relative to the
+// feature's top (INTEROP-003), checked here from the block's corners.
+std::optional<double> through_floor(const Reader& r, const p21::Instance& feature) {
+  const p21::Instance* bottom = r.ref(feature, "bottom_condition");
+  if (!r.tolerant() || bottom == nullptr || !r.is_a(*bottom, "through_bottom_condition"))
+    return std::nullopt;
+  const p21::Instance* workpiece = r.ref(feature, "its_workpiece");
+  const p21::Instance* block = workpiece ? r.ref(*workpiece, "its_bounding_geometry") : nullptr;
+  if (block == nullptr && workpiece != nullptr) {
+    if (const p21::Instance* raw = r.ref(*workpiece, "its_rawpiece"))
+      block = r.ref(*raw, "its_bounding_geometry");
+  }
+  if (block == nullptr || !r.is_a(*block, "block")) return std::nullopt;
+  const auto corner = r.placement(r.ref(*block, "position"));
+  const auto top = r.placement(r.ref(feature, "feature_placement"));
+  const auto x = r.number(*block, "x");
+  const auto y = r.number(*block, "y");
+  const auto z = r.number(*block, "z");
+  if (!corner || !top || !x || !y || !z) return std::nullopt;
+  double lowest = corner->origin.z;
+  for (const double i : {0.0, *x})
+    for (const double j : {0.0, *y})
+      for (const double k : {0.0, *z}) lowest = std::min(lowest, corner->point({i, j, k}).z);
+  if (!(lowest < top->origin.z)) return std::nullopt;
+  return lowest - top->origin.z;
+}
+
 double depth_of(const Reader& r, const p21::Instance& feature, bool& ok) {
   ok = false;
   const p21::Instance* plane = r.ref(feature, "depth");
-  if (plane == nullptr) return 0;
+  if (plane == nullptr) {
+    const auto through = through_floor(r, feature);
+    ok = through.has_value();
+    return through.value_or(0);
+  }
   const auto frame = r.placement(r.ref(*plane, "position"));
   if (!frame) return 0;
   ok = true;

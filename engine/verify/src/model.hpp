@@ -60,6 +60,9 @@ class Reader {
       : m_(model), a_(attributes), lines_(model.text()) {}
 
   [[nodiscard]] const p21::Model& model() const { return m_; }
+  // The job's reading (stepnc::Mode): tolerant, the verifier takes the values a program leaves
+  // implicit as the interpreter does (docs/interoperability.md), each computed here on its own.
+  [[nodiscard]] bool tolerant() const { return a_.mode() == stepnc::Mode::Tolerant; }
   [[nodiscard]] std::optional<p21::Value> get(const p21::Instance& i, std::string_view name) const {
     return a_.get(i, name);
   }

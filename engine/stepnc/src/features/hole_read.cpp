@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "holes.hpp"
+#include "implicit.hpp"
 #include "reader.hpp"
 
 namespace ncpost::stepnc::features {
@@ -159,8 +160,11 @@ std::optional<double> read_bottom(Reader& reader, const Instance& bottom, double
                                   double radius, const Tool& tool, bool pointed) {
   const Instance& op = reader.operation();
   const auto cutting_depth = reader.number(op, "cutting_depth");
-  if (!cutting_depth)
-    return read_drill_bottom(reader, reader.feature(), bottom, depth, tool, pointed, "");
+  if (!cutting_depth) {
+    const auto z = read_drill_bottom(reader, reader.feature(), bottom, depth, tool, pointed, "");
+    if (z) note_implicit_cutting_depth(reader, *z);
+    return z;
+  }
   const double tip = pointed ? tip_length(tool) : 0;
   std::string why;
   const double deepest = deepest_tip(reader, bottom, depth, radius, tip, why);

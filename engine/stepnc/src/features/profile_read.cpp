@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "../curves.hpp"
+#include "implicit.hpp"
 #include "milling_read.hpp"
 
 namespace ncpost::stepnc::features {
@@ -185,7 +186,12 @@ std::optional<Outline> general_closed(Reader& reader, const Instance& boundary) 
   auto out = read_curve(reader, boundary, *curve);
   if (!out) return std::nullopt;
   const P gap = out->elements.back().end - out->elements.front().start;
-  if (gap.length() > kJoinTolerance) {
+  if (gap.length() > kJoinTolerance && close_implicitly(reader, boundary, *curve, gap.length())) {
+    Element closing;
+    closing.start = out->elements.back().end;
+    closing.end = out->elements.front().start;
+    out->elements.push_back(closing);
+  } else if (gap.length() > kJoinTolerance) {
     reader.report().bad(reader.subject(*curve),
                         reader.name(*curve) + " of " + reader.name(boundary) +
                             " is not closed: it ends " + fmt(gap.length()) + " mm from its start");

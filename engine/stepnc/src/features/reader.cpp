@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "implicit.hpp"
+
 namespace ncpost::stepnc::features {
 
 void ModelReport::add(Finding finding) {
@@ -163,6 +165,7 @@ std::optional<double> Reader::read_depth() {
   const Instance& f = feature();
   const Instance* plane = ref(f, "depth", "elementary_surface");
   if (plane == nullptr) {
+    if (auto through = implicit_through_depth(*this)) return through;  // implicit.hpp
     report_.bad(subject(f), name(f) + " has no depth plane");
     return std::nullopt;
   }

@@ -60,6 +60,10 @@ class Report {
   // STEPNC-016 for a value a reader assumed where the file leaves it implicit:
   // "<at>: <what> taken as <value> (<why>)".
   void assumed(const Subject& at, std::string_view what, double value, std::string_view why);
+  // A finding of another code (the INTEROP notes of values left implicit, implicit.hpp).
+  void add_finding(diag::Code code, const Subject& at, std::string message) {
+    add({code, at, std::move(message)});
+  }
 
  protected:
   virtual void add(Finding finding) = 0;

@@ -12,6 +12,7 @@ F1200.
 S1200
 M3
 M8
+(ASSUMED #70  CUTTING_TOOL : the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL  no spindle orientation   its tool body says what kind of tool it is  tool #70  CUTTING_TOOL   FACE MILL 50  of diameter 50 mm)
 G0 X10. Y-30. Z20.
 G0 X10. Y-30. Z7.
 G1 X10. Y-30. Z0.
@@ -31,6 +32,7 @@ G43 H71
 F600.
 S3000
 M3
+(ASSUMED #71  CUTTING_TOOL : the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL  no spindle orientation   its tool body says what kind of tool it is  tool #71  CUTTING_TOOL   END MILL 10  of diameter 10 mm)
 G0 X38. Y40. Z20.
 G0 X38. Y40. Z2.
 G1 X62. Y40. Z-4.
@@ -97,6 +99,7 @@ G43 H72
 F300.
 S1800
 M3
+(ASSUMED #72  CUTTING_TOOL : the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL  no spindle orientation   its tool body says what kind of tool it is  tool #72  CUTTING_TOOL   DRILL 10  of diameter 10 mm)
 G0 X20. Y20. Z20.
 G0 X20. Y20. Z5.
 G1 X20. Y20. Z-15.
@@ -107,3 +110,6 @@ M9
 M2
 %
 abstract-tool.stp:26:1: warning: EXP-059: ×3, first #70 CUTTING_TOOL: cutting_tool is ABSTRACT; only its subtypes (or a complex instance) can be instantiated (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
+abstract-tool.stp:26:1: note: INTEROP-002: #70 (CUTTING_TOOL): the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL (no spindle orientation); its tool body says what kind of tool it is; tool #70 (CUTTING_TOOL) 'FACE MILL 50' of diameter 50 mm
+abstract-tool.stp:27:1: note: INTEROP-002: #71 (CUTTING_TOOL): the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL (no spindle orientation); its tool body says what kind of tool it is; tool #71 (CUTTING_TOOL) 'END MILL 10' of diameter 10 mm
+abstract-tool.stp:28:1: note: INTEROP-002: #72 (CUTTING_TOOL): the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL (no spindle orientation); its tool body says what kind of tool it is; tool #72 (CUTTING_TOOL) 'DRILL 10' of diameter 10 mm

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -110,8 +111,14 @@ class SchemaRegistry {
   // The source for the model's FILE_SCHEMA names: the source of the first name that is known.
   // Each name that source does not declare gives EXP-050, and so does a model without names.
   [[nodiscard]] SchemaSelection select_for(const p21::Model& model) const;
+  // The same, where a FILE_SCHEMA name that no source declares may be an alias's `written`: it
+  // selects the source of the alias's `read_as`, with an INTEROP-001 note instead of EXP-050.
+  [[nodiscard]] SchemaSelection select_for(const p21::Model& model,
+                                           std::span<const NameAlias> aliases) const;
   // select_for, or the built-in (with an EXP-052 note after the EXP-050s) when no name is known.
   [[nodiscard]] SchemaSelection select_or_builtin(const p21::Model& model) const;
+  [[nodiscard]] SchemaSelection select_or_builtin(const p21::Model& model,
+                                                  std::span<const NameAlias> aliases) const;
 
   // 'AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }' → "automotive_design": the text before the
   // first space or '{', trimmed, in lower case.
@@ -124,6 +131,10 @@ class SchemaRegistry {
     std::string name;  // lower case
     const SchemaSource* source;
   };
+  // find(), else the source of the first alias of `schema_name` whose read_as is known
+  // (`used`: that alias).
+  const SchemaSource* find(std::string_view schema_name, std::span<const NameAlias> aliases,
+                           const NameAlias** used) const;
   void register_names(const SchemaSource& source, std::vector<diag::Diagnostic>* clashes);
 
   // unique_ptr: SchemaSelection and Name point at sources, which must not move when more are added.

@@ -36,6 +36,8 @@
 #include <atomic>
 #include <cstddef>
 #include <memory>
+#include <span>
+#include <string_view>
 #include <vector>
 
 #include "ncpost/diag/diagnostic.hpp"
@@ -65,6 +67,13 @@ class CheckPlan {
   std::unique_ptr<const Impl> impl_;
 };
 
+// A name other systems write, read as a name the schema declares (lower case both): the table is
+// engine/stepnc's (stepnc/variants.hpp), the schema layer only applies it.
+struct NameAlias {
+  std::string_view written;
+  std::string_view read_as;
+};
+
 struct ValidateOptions {
   // At most this many diagnostics are returned; after them one EXP-058 says how many more
   // problems there were. A large file that was written for another schema would otherwise give
@@ -91,6 +100,10 @@ struct ValidateOptions {
   // max_diagnostics (there are at most as many as the schema has attributes). False: one error
   // per instance (`--strict`). docs/interoperability.md, "Tolerant and strict".
   bool tolerant = false;
+  // Entities the schema does not declare that are checked as the entity each alias names (an
+  // instance of TOOL_DIMENSION checked as a MILLING_TOOL_DIMENSION, and referenced where one is
+  // wanted); the strings must outlive the check. Empty: undeclared entities are EXP-060.
+  std::span<const NameAlias> entity_aliases;
 };
 
 [[nodiscard]] std::vector<diag::Diagnostic> validate(const p21::Model& model,

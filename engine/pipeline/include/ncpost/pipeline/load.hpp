@@ -12,6 +12,7 @@
 #include "ncpost/p21/model.hpp"
 #include "ncpost/parallel/pieces.hpp"
 #include "ncpost/pipeline/detect.hpp"
+#include "ncpost/stepnc/variants.hpp"
 
 namespace ncpost::p21 {
 class StreamReader;
@@ -29,7 +30,9 @@ struct LoadOptions {
   // same either way.
   const parallel::Helpers* helpers = nullptr;
   // The schema check reports what the interpreter checks again as aggregated warnings
-  // (express::ValidateOptions::tolerant); a job sets it unless JobContext::strict.
+  // (express::ValidateOptions::tolerant); a job sets it unless JobContext::strict. Tolerant, the
+  // variants table (stepnc/variants.hpp) also names the schema of FILE_SCHEMA names such as
+  // COMBINED_SCHEMA, and the check reads its entity aliases.
   bool tolerant = false;
 };
 
@@ -39,6 +42,9 @@ struct LoadedModel {
   // Never null after load(): the schema FILE_SCHEMA names, or the built-in as a fallback.
   const express::SchemaSet* schema = nullptr;
   bool schema_is_fallback = false;
+  // How the model is to be read: LoadOptions::tolerant. Every AttributeReader of a job over this
+  // model takes it (stepnc::AttributeReader's mode).
+  stepnc::Mode mode = stepnc::Mode::Strict;
   // Reading, schema choice (EXP-050/052) and, unless the schema is a fallback, the check of the
   // model against it, in that order.
   std::vector<diag::Diagnostic> diagnostics;

@@ -11,15 +11,27 @@
 
 #include "ncpost/express/schema.hpp"
 #include "ncpost/p21/model.hpp"
+#include "ncpost/stepnc/variants.hpp"
 
 namespace ncpost::stepnc {
 
 // Attribute access for one model and one schema. Built once per model (it resolves every
 // keyword of the model to its entity); read-only afterwards, so it may be shared by threads.
 // The model and the schema must outlive it.
+//
+// Mode::Tolerant (the default, as every job's unless `--strict`) applies the variants table
+// (variants.hpp): an instance of an entity alias (TOOL_DIMENSION) or of an ABSTRACT supertype
+// the table names (CUTTING_TOOL) is read as the entity the table gives, and variant() tells the
+// readers so, which note it. Mode::Strict reads the entities as written.
 class AttributeReader {
  public:
-  AttributeReader(const p21::Model& model, const express::SchemaSet& schema);
+  AttributeReader(const p21::Model& model, const express::SchemaSet& schema,
+                  Mode mode = Mode::Tolerant);
+
+  [[nodiscard]] Mode mode() const noexcept { return mode_; }
+  // The variants-table row the instance is read through (a simple instance only); null when it
+  // is read as written.
+  [[nodiscard]] const Variant* variant(const p21::Instance& instance) const;
 
   // The value of attribute `name` (any case) of `instance`, or nullopt when the schema does not
   // know the instance's entity, the entity has no such attribute, or the instance has fewer
@@ -46,7 +58,9 @@ class AttributeReader {
  private:
   const p21::Model& model_;
   const express::SchemaSet& schema_;
+  Mode mode_;
   std::vector<const express::Entity*> by_keyword_;  // keyword id → entity, null when unknown
+  std::vector<const Variant*> variant_by_keyword_;  // keyword id → its row, null: as written
   const express::Entity* executable_ = nullptr;
 };
 

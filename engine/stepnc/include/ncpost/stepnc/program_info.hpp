@@ -21,6 +21,7 @@
 #include "ncpost/express/registry.hpp"
 #include "ncpost/express/schema.hpp"
 #include "ncpost/p21/model.hpp"
+#include "ncpost/stepnc/variants.hpp"
 
 namespace ncpost::stepnc {
 
@@ -106,6 +107,8 @@ struct ProgramInfo {
 struct InspectOptions {
   // Workplans nested deeper than this are reported instead of followed.
   unsigned max_nesting = 64;
+  // How entities are read (variants.hpp): the job's mode.
+  Mode mode = Mode::Tolerant;
 };
 
 // With the schema given: no check that it is the model's.
