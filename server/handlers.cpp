@@ -829,9 +829,9 @@ void trace_job(Request& request, Services& services, Exchange& exchange, FilePar
     return;
   }
   // Without format=, the Accept header may ask for a JSON form.
-  const auto accept = request[http::field::accept];
-  const bool ndjson = format == "json" || (!format_param && accept.find("application/x-ndjson") !=
-                                                                std::string_view::npos);
+  const bool ndjson =
+      format == "json" ||
+      (!format_param && accept_prefers(request[http::field::accept], "application/x-ndjson"));
   const bool document = !ndjson && !format_param && wants_json(request);
   auto context = job_context(request, services, exchange);
   if (!context) return;

@@ -173,16 +173,23 @@ bool is_attr_char(unsigned char c) {
 
 }  // namespace
 
-bool accept_prefers_json(std::string_view accept) {
+bool accept_prefers(std::string_view accept, std::string_view media_type) {
+  const auto slash = media_type.find('/');
+  if (slash == std::string_view::npos) return false;
   std::vector<MediaRange> ranges;
   for_each_element(accept, [&ranges](std::string_view element) {
     if (auto range = parse_media_range(element)) ranges.push_back(*range);
   });
   if (ranges.empty()) return false;
-  const Preference json = preference_for(ranges, "application", "json");
+  const Preference wanted =
+      preference_for(ranges, media_type.substr(0, slash), media_type.substr(slash + 1));
   const Preference text = preference_for(ranges, "text", "plain");
-  if (json.q == 0) return false;
-  return json.q > text.q || (json.q == text.q && json.specificity > text.specificity);
+  if (wanted.q == 0) return false;
+  return wanted.q > text.q || (wanted.q == text.q && wanted.specificity > text.specificity);
+}
+
+bool accept_prefers_json(std::string_view accept) {
+  return accept_prefers(accept, "application/json");
 }
 
 bool none_match_matches(std::string_view if_none_match, std::string_view etag) {

@@ -13,6 +13,8 @@ namespace ncpost::server {
 // then */*); JSON wins when its q is higher, or equal and more specific. Media types compare
 // case-insensitively; a range with a malformed q is ignored.
 [[nodiscard]] bool accept_prefers_json(std::string_view accept);
+// The same for any media type ("application/x-ndjson") against text/plain.
+[[nodiscard]] bool accept_prefers(std::string_view accept, std::string_view media_type);
 
 // If-None-Match against the current entity tag with the weak comparison of RFC 9110 §13.1.2:
 // `*`, a list of tags, and W/ prefixes on either side.

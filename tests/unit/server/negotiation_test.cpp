@@ -30,6 +30,11 @@ TEST(AcceptPrefersJson, MediaRangesAndQValues) {
   EXPECT_FALSE(accept_prefers_json("application/json;q=0.1234"));
   EXPECT_FALSE(accept_prefers_json("json"));
   EXPECT_TRUE(accept_prefers_json("garbage, application/json"));
+  // Any media type the same way (the NDJSON trace).
+  EXPECT_TRUE(accept_prefers("application/x-ndjson", "application/x-ndjson"));
+  EXPECT_FALSE(accept_prefers("application/json", "application/x-ndjson"));
+  EXPECT_FALSE(accept_prefers("application/x-ndjson;q=0.5, text/plain", "application/x-ndjson"));
+  EXPECT_FALSE(accept_prefers("application/x-ndjson", "not-a-media-type"));
 }
 
 TEST(NoneMatch, WeakComparisonListsAndStar) {
