@@ -1,6 +1,7 @@
 #include "converter.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -1410,7 +1411,17 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     if (text.empty() || (c.semicolon && dialect_.parenthesis_comments)) continue;
     comment(text, where);
   }
+  // Which actions the block's codes have, as bits: most of the look-ups below find nothing,
+  // and then cost a bit test instead of a walk over the codes.
+  static_assert(sizeof(Action) == 1, "an action is one of at most 256");
+  std::array<std::uint64_t, 4> actions{};
+  for (const CodeRef& c : b.codes) {
+    const auto a = static_cast<std::uint8_t>(c.spec->action);
+    actions[a >> 6] |= std::uint64_t{1} << (a & 63);
+  }
   auto find = [&](Action a) -> const CodeRef* {
+    const auto i = static_cast<std::uint8_t>(a);
+    if (((actions[i >> 6] >> (i & 63)) & 1) == 0) return nullptr;
     for (const CodeRef& c : b.codes)
       if (c.spec->action == a) return &c;
     return nullptr;
