@@ -1,6 +1,7 @@
 #include "converter.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -107,6 +108,19 @@ Converter::Converter(const Dialect& dialect, canon::Sink& sink, Report& report,
 
 void Converter::emit(canon::Call call) {
   sink_.call(call);
+  ++calls_;
+}
+
+// A straight move to pos_, written field by field into a call kept for the purpose: building a
+// Pose and copying it into a fresh variant costs a store-forwarding stall per motion.
+template <class Move>
+void Converter::emit_move() {
+  Move& move = move_call_.emplace<Move>();
+  move.to.x = from_mm(pos_[0]);
+  move.to.y = from_mm(pos_[1]);
+  move.to.z = from_mm(pos_[2]);
+  if (uses_rotary_) move.to.rotary.emplace(canon::Rotary{pos_[3], pos_[4], pos_[5]});
+  sink_.call(move_call_);
   ++calls_;
 }
 
@@ -447,7 +461,7 @@ bool Converter::rapid(const Axes& target, const Where& where, std::uint32_t colu
   ensure_section(where);
   check_limits(target, where, column);
   pos_ = target;
-  emit(canon::StraightTraverse{pose(pos_)});
+  emit_move<canon::StraightTraverse>();
   return true;
 }
 
@@ -464,7 +478,7 @@ bool Converter::linear(const Axes& target, const Where& where, std::uint32_t col
     emit(canon::SetFeedRate{from_mm(std::sqrt(length)) * feed_});
   }
   pos_ = target;
-  emit(canon::StraightFeed{pose(pos_)});
+  emit_move<canon::StraightFeed>();
   return true;
 }
 
@@ -1226,7 +1240,8 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
   flow = kNoFlow;
   // ---- Check: modal groups, refused codes, required and unused words ----
   const CodeSpec* motion = nullptr;
-  const CodeSpec* non_motion[16] = {};
+  // Not zeroed: only the first non_motion_count are read (zeroing it was a `rep stos` per block).
+  const CodeSpec* non_motion[16];
   std::size_t non_motion_count = 0;
   std::uint64_t groups_seen = 0;
   for (const CodeRef& c : b.codes) {
@@ -1396,7 +1411,17 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     if (text.empty() || (c.semicolon && dialect_.parenthesis_comments)) continue;
     comment(text, where);
   }
+  // Which actions the block's codes have, as bits: most of the look-ups below find nothing,
+  // and then cost a bit test instead of a walk over the codes.
+  static_assert(sizeof(Action) == 1, "an action is one of at most 256");
+  std::array<std::uint64_t, 4> actions{};
+  for (const CodeRef& c : b.codes) {
+    const auto a = static_cast<std::uint8_t>(c.spec->action);
+    actions[a >> 6] |= std::uint64_t{1} << (a & 63);
+  }
   auto find = [&](Action a) -> const CodeRef* {
+    const auto i = static_cast<std::uint8_t>(a);
+    if (((actions[i >> 6] >> (i & 63)) & 1) == 0) return nullptr;
     for (const CodeRef& c : b.codes)
       if (c.spec->action == a) return &c;
     return nullptr;

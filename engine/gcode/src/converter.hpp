@@ -133,6 +133,8 @@ class Converter final : public StateView {
 
  private:
   void emit(canon::Call call);
+  template <class Move>
+  void emit_move();
   void ensure_section(const Where& where);
   void open_section(const Where& where, const std::string& name);
   void close_section();
@@ -200,6 +202,7 @@ class Converter final : public StateView {
   int tool_selected_ = 0;
   int tool_in_spindle_ = 0;
   bool uses_rotary_ = false;
+  canon::Call move_call_;  // emit_move's call, reused
 
   // Positions and offsets in mm (rotary axes in degrees).
   Axes pos_{};  // current coordinate system

@@ -47,7 +47,7 @@ void normalise(std::string_view raw, const Lexing& lexing, Line& line) {
   // Line is reused from line to line, so this allocates only for a longer line than before).
   const std::size_t n = raw.size();
   line.text.resize(n);
-  line.columns.resize(n);
+  if (line.columns.size() < n) line.columns.resize(n);
   char* text = line.text.data();
   std::uint32_t* columns = line.columns.data();
   std::size_t out = 0;
@@ -55,7 +55,6 @@ void normalise(std::string_view raw, const Lexing& lexing, Line& line) {
     // Trailing blanks carry nothing.
     while (out > 0 && text[out - 1] == ' ') --out;
     line.text.resize(out);
-    line.columns.resize(out);
   };
   std::size_t i = 0;
   while (i < n && (raw[i] == ' ' || raw[i] == '\t')) ++i;

@@ -29,10 +29,12 @@ struct LexError {
 };
 
 struct Line {
-  std::uint32_t number = 0;            // 1-based line number in its file
-  std::string_view raw;                // the line as written, without the line end
-  std::string text;                    // normalised
-  std::vector<std::uint32_t> columns;  // columns[i]: 1-based column of text[i] in raw
+  std::uint32_t number = 0;  // 1-based line number in its file
+  std::string_view raw;      // the line as written, without the line end
+  std::string text;          // normalised
+  // columns[i]: 1-based column of text[i] in raw, for i < text.size() (the vector only grows:
+  // entries past the text are left from longer lines, and not zeroed for every line).
+  std::vector<std::uint32_t> columns;
   std::vector<Comment> comments;
   bool block_delete = false;  // '/' first
   bool has_error = false;
@@ -40,7 +42,7 @@ struct Line {
 
   // 1-based column in `raw` of normalised position `i` (the end of the line past the text).
   [[nodiscard]] std::uint32_t column(std::size_t i) const noexcept {
-    return i < columns.size() ? columns[i] : static_cast<std::uint32_t>(raw.size() + 1);
+    return i < text.size() ? columns[i] : static_cast<std::uint32_t>(raw.size() + 1);
   }
 };
 
