@@ -24,10 +24,14 @@ int run_inspect(Args args) {
   auto job = prepare_job(options);
   if (!job) return kExitRejected;
   const pipeline::Inspection inspection = pipeline::inspect(std::move(job->input), job->context);
-  if (format == "json")
-    std::cout << pipeline::inspection_json(inspection).dump(2) << '\n';
-  else
+  if (format == "json") {
+    pipeline::write_inspection_json(inspection, [](std::string_view piece) {
+      std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
+    });
+    std::cout << '\n';
+  } else {
     std::cout << pipeline::inspection_text(inspection);
+  }
   std::cout.flush();
   print_diagnostics(inspection.job.diagnostics);
   return inspection.job.ok ? kExitOk : kExitRejected;

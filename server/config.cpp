@@ -20,6 +20,8 @@ constexpr std::string_view kUsage = R"(usage: ncpostd --listen HOST:PORT [option
   --max-header BYTES        request header limit, 431 beyond it (default 16384)
   --stream-read-min BYTES   raw model uploads this large are read while they arrive; 0: never
                             (default 1048576)
+  --hold-back BYTES          a post's first bytes kept until an error in them can still be a
+                            422 (default 65536; 0: stream at once)
   --io-threads N            threads running the connections (default: 1 per 2 cores, at least 1)
   --workers N               threads running jobs (default: the core count)
   --queue N                 jobs that may wait for a worker; 503 beyond (default 64)
@@ -104,6 +106,8 @@ ParsedArgs parse_args(std::span<const std::string_view> args) {
       config.openapi_file = std::filesystem::path(value);
     } else if (name == "max-body") {
       if (!parse_number(value, config.max_body) || config.max_body == 0) return bad();
+    } else if (name == "hold-back") {
+      if (!parse_number(value, config.hold_back)) return bad();
     } else if (name == "stream-read-min") {
       if (!parse_number(value, config.stream_read_min)) return bad();
     } else if (name == "max-header") {

@@ -25,6 +25,9 @@ struct Config {
   // Raw uploads at least this large to a route that reads a model are read while they arrive
   // (docs/server.md, "Large uploads"); 0 turns it off.
   std::uint64_t stream_read_min = std::uint64_t{1} << 20;
+  // The first bytes of a posted program kept back before the head goes out, so that an error
+  // found in them is a 422 instead of a cut stream (docs/server.md); 0: stream at once.
+  std::uint64_t hold_back = 64 * 1024;
   unsigned io_threads = 0;  // 0: from the core count
   unsigned workers = 0;     // 0: from the core count
   // Jobs that may wait for a worker; beyond workers + queue a job route answers 503 at once.

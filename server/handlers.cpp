@@ -13,6 +13,7 @@
 #include "ncpost/pipeline/diagnostics.hpp"
 #include "ncpost/pipeline/jobs.hpp"
 #include "ncpost/pipeline/post.hpp"
+#include "negotiation.hpp"
 
 namespace ncpost::server {
 namespace {
@@ -73,8 +74,7 @@ std::optional<std::string> read_small_file(const std::filesystem::path& path) {
 }
 
 bool wants_json(const Request& request) {
-  const auto accept = request[http::field::accept];
-  return accept.find("application/json") != std::string_view::npos;
+  return accept_prefers_json(request[http::field::accept]);
 }
 
 // Collects small pieces into chunks of about 64 KiB: one chunk per engine callback would cost a
@@ -133,18 +133,6 @@ std::string hex64(std::uint64_t v) {
   char buffer[17];
   std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
   return buffer;
-}
-
-std::string file_stem(std::string_view name) {
-  const auto slash = name.find_last_of("/\\");
-  if (slash != std::string_view::npos) name.remove_prefix(slash + 1);
-  if (const auto dot = name.rfind('.'); dot != std::string_view::npos && dot > 0)
-    name = name.substr(0, dot);
-  std::string safe;
-  for (char c : name)
-    safe +=
-        (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c : '_';
-  return safe.empty() ? "program" : safe;
 }
 
 // A post's stages (pipeline::PostResult): interpretation and rendering interleave chunk by
@@ -244,18 +232,32 @@ void handle_healthz(Request&, Services&, Exchange& exchange) {
 }
 
 void handle_readyz(Request&, Services& services, Exchange& exchange) {
-  const auto profiles = services.profiles->list().profiles;
+  const auto listed = services.profiles->list();
+  const auto& profiles = listed.profiles;
+  // A profile that does not load (its stylesheet, or the common templates it imports, broken)
+  // would answer every post with 500: the server is not ready to serve it. Loaded profiles are
+  // cached, so this compiles only what changed.
+  json broken = json::array();
+  for (const auto& summary : profiles)
+    if (services.profiles->find(summary.id).outcome == pipeline::LookupOutcome::Broken)
+      broken.push_back(summary.id);
+  for (const auto& d : listed.diagnostics) broken.push_back(d.file);
   const bool saturated = services.saturated && services.saturated();
   const bool memory = services.memory_exhausted && services.memory_exhausted();
-  const bool ready = !profiles.empty() && !saturated && !memory;
+  const bool ready = !profiles.empty() && broken.empty() && !saturated && !memory;
   json body;
   body["status"] = ready ? "ready" : "not ready";
   body["profiles"] = profiles.size();
+  body["broken_profiles"] = std::move(broken);
   body["queue_saturated"] = saturated;
   body["memory_exhausted"] = memory;
   Response r = json_response(ready ? 200 : 503, body);
   r.set(http::field::cache_control, "no-store");
-  if (saturated || memory) r.set(http::field::retry_after, "1");
+  // A broken profile is mended by an operator, not by waiting a second: ask again later.
+  if (saturated || memory)
+    r.set(http::field::retry_after, "1");
+  else if (!ready)
+    r.set(http::field::retry_after, "30");
   exchange.respond(std::move(r));
 }
 
@@ -304,8 +306,21 @@ void handle_profiles_list(Request&, Services& services, Exchange& exchange) {
 }
 
 // The profile a request names; after its 404 (unknown) or 500 (broken), a lookup without one.
+// A name no profile can have: the request is wrong, not the store (400 on every route, not
+// 404), and the store is never asked.
+std::optional<Response> invalid_profile_id(std::string_view id) {
+  if (profile::valid_id(id)) return std::nullopt;
+  return problem(
+      400, "PROFILE-008", "Invalid profile id",
+      "'" + std::string(id) + "' is not a profile id: [a-z0-9][a-z0-9._-]*, at most 64 characters");
+}
+
 pipeline::ProfileLookup find_profile_or_respond(Services& services, Exchange& exchange,
                                                 std::string_view id) {
+  if (auto refused = invalid_profile_id(id)) {
+    exchange.respond(std::move(*refused));
+    return {};
+  }
   pipeline::ProfileLookup lookup = services.profiles->find(id);
   switch (lookup.outcome) {
     case pipeline::LookupOutcome::Found:
@@ -331,7 +346,7 @@ void handle_profile_get(Request& request, Services& services, Exchange& exchange
   const auto& loaded = lookup.profile;
   if (!loaded) return;
   const std::string etag = "\"" + loaded->version + "\"";
-  if (request[http::field::if_none_match] == etag) {
+  if (none_match_matches(request[http::field::if_none_match], etag)) {
     Response r{http::status::not_modified, 11};
     r.set(http::field::etag, etag);
     exchange.respond(std::move(r));
@@ -379,6 +394,11 @@ Response profile_put_problem(const pipeline::ProfilePut& put) {
       return problem(500, "PROFILE-007", "The profile was rejected",
                      "the previous version (if any) stays active; see diagnostics",
                      put.diagnostics);
+    case pipeline::PutOutcome::Reserved:
+      return problem(
+          409, "PROFILE-009", "Not a profile",
+          "the store only replaces profiles it wrote or profile folders; nothing changed",
+          put.diagnostics);
     case pipeline::PutOutcome::BadId:
       return problem(400, "profile-rejected", "The profile was rejected",
                      "the previous version (if any) stays active; see diagnostics",
@@ -393,6 +413,10 @@ Response profile_put_problem(const pipeline::ProfilePut& put) {
 void handle_profile_put(Request& request, Services& services, Exchange& exchange) {
   exchange.profile = exchange.path_id;
   if (auto refused = refuse_admin(request, services)) {
+    exchange.respond(std::move(*refused));
+    return;
+  }
+  if (auto refused = invalid_profile_id(exchange.path_id)) {
     exchange.respond(std::move(*refused));
     return;
   }
@@ -438,6 +462,10 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
     exchange.respond(std::move(*refused));
     return;
   }
+  if (auto refused = invalid_profile_id(exchange.path_id)) {
+    exchange.respond(std::move(*refused));
+    return;
+  }
   switch (services.profiles->remove(exchange.path_id)) {
     case profile::RemoveOutcome::Removed: {
       Response r{http::status::no_content, 11};
@@ -448,6 +476,15 @@ void handle_profile_delete(Request& request, Services& services, Exchange& excha
       exchange.respond(http_problem(404, diag::Code::HttpNotFound, "Unknown profile",
                                     "no profile '" + exchange.path_id + "' to delete"));
       return;
+    case profile::RemoveOutcome::Foreign: {
+      const std::vector<diag::FileDiagnostic> one = {
+          {"request", diag::make(diag::Code::ProfileReserved, 0, 0,
+                                 "the folder '" + exchange.path_id +
+                                     "' holds files that are not a profile's")}};
+      exchange.respond(problem(409, "PROFILE-009", "Not a profile",
+                               "the store deletes only profiles; nothing changed", one));
+      return;
+    }
     case profile::RemoveOutcome::ReadOnly: {
       const std::vector<diag::FileDiagnostic> one = {
           {"request", diag::make(diag::Code::ProfileReadOnly, 0, 0,
@@ -476,7 +513,8 @@ json diagnostics_with_output_lines(const std::vector<diag::FileDiagnostic>& diag
 // blocks to the workingsteps and the motions they came from (the browser front end's view).
 void post_json(Services& services, Exchange& exchange, pipeline::Input input,
                const pipeline::JobContext& context, const profile::LoadedProfile& profile,
-               const std::string& filename, bool shop_checks, bool motion_lines) {
+               const std::string& filename, const std::string& etag, bool shop_checks,
+               bool motion_lines) {
   std::string text;
   std::vector<pipeline::WorkingstepMark> marks;
   std::vector<pipeline::MotionMark> motions;
@@ -523,7 +561,13 @@ void post_json(Services& services, Exchange& exchange, pipeline::Input input,
   body["blocks"] = std::move(map["blocks"]);
   body["workingsteps"] = std::move(map["workingsteps"]);
   if (motion_lines) body["motions"] = std::move(motion_map);
-  exchange.respond(json_response(200, body));
+  // The streamed form's headers that describe the program; its name is in the body, and its
+  // diagnostics, which the streamed form sends as trailer fields.
+  Response r = json_response(200, body);
+  r.set(http::field::etag, etag);
+  r.set("X-Ncpost-Profile-Version", profile.version);
+  r.set(http::field::vary, "Accept");
+  exchange.respond(std::move(r));
 }
 
 void handle_post(Request& request, Services& services, Exchange& exchange) {
@@ -559,28 +603,34 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
                 (context->gcode_dialect ? "/from:" + context->gcode_dialect->version : ""));
   const std::string etag = "\"" + hex64(input_hash) + hex64(context_hash) + "\"";
   const bool as_json = wants_json(request);
-  if (request[http::field::if_none_match] == etag && !as_json) {
+  if (none_match_matches(request[http::field::if_none_match], etag) && !as_json) {
     Response r{http::status::not_modified, 11};
     r.set(http::field::etag, etag);
     exchange.respond(std::move(r));
     return;
   }
-  const std::string filename = file_stem(upload->name) + loaded_profile->profile.extension;
+  const std::string filename = ascii_file_stem(upload->name) + loaded_profile->profile.extension;
   if (as_json) {
-    post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename,
+    post_json(services, exchange, job_input(*upload), *context, *loaded_profile, filename, etag,
               *shop_checks, *motion_lines);
     return;
   }
 
   StreamHead head{http::status::ok, 11};
   head.set(http::field::content_type, loaded_profile->profile.mime_type);
-  head.set(http::field::content_disposition, "attachment; filename=\"" + filename + "\"");
+  head.set(http::field::content_disposition,
+           attachment_disposition(upload->name, loaded_profile->profile.extension));
   head.set(http::field::etag, etag);
   head.set("X-Content-Type-Options", "nosniff");
   head.set("X-Ncpost-Profile-Version", loaded_profile->version);
+  head.set(http::field::vary, "Accept");
   head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
-  // The head goes out with the first piece of text, so that an error found before any output
-  // is still an ordinary problem+json response.
+  // The head goes out once --hold-back bytes of text are there (or the job ends), so that an
+  // error found before that is still an ordinary problem+json response. That matters for
+  // inputs read as they are interpreted (G-code, CL), whose errors can follow the first
+  // blocks; it costs a small program's first byte nothing, a large one's 64 KiB.
+  const std::uint64_t hold_back = services.config.hold_back;
+  std::string held;
   bool begun = false;
   bool alive = true;
   pipeline::PostOptions options;
@@ -615,9 +665,12 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
       [&](std::string_view piece) {
         if (!alive) return;
         if (!begun) {
+          held.append(piece);
+          if (held.size() < hold_back) return;
           begun = true;
-          alive = begin();
-          if (!alive) return;
+          alive = begin() && exchange.write(held);
+          held = std::string();
+          return;
         }
         alive = exchange.write(piece);
       },
@@ -643,8 +696,14 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
                              "the post stopped before any output; see diagnostics", diagnostics));
     return;
   }
-  // A program that renders to nothing is still a (complete, empty) program.
-  if (begin()) exchange.end_stream(true, diagnostics_trailer(diagnostics));
+  // A program shorter than what is held back, or one that renders to nothing (still a
+  // complete, empty program).
+  if (!begin()) return;
+  const bool written = held.empty() || exchange.write(held);
+  if (written)
+    exchange.end_stream(true, diagnostics_trailer(diagnostics));
+  else
+    exchange.end_stream(false);
 }
 
 void handle_conversion(Request& request, Services& services, Exchange& exchange) {
@@ -664,8 +723,8 @@ void handle_conversion(Request& request, Services& services, Exchange& exchange)
   if (!upload) return;
   StreamHead head{http::status::ok, 11};
   head.set(http::field::content_type, *to == "p21" ? "application/p21" : "application/xml");
-  head.set(http::field::content_disposition, "attachment; filename=\"" + file_stem(upload->name) +
-                                                 (*to == "p21" ? ".stp\"" : ".stpx\""));
+  head.set(http::field::content_disposition,
+           attachment_disposition(upload->name, *to == "p21" ? ".stp" : ".stpx"));
   head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
   const pipeline::ConvertTo target = *to == "p21" ? pipeline::ConvertTo::P21
                                      : binding.value_or("late") == "early"
@@ -874,29 +933,6 @@ void handle_schema(Request& request, Services& services, Exchange& exchange) {
   exchange.respond(text_response("application/xml", std::move(xml)));
 }
 
-int hex_value(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
-std::string percent_decode(std::string_view s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '+') {
-      out += ' ';
-    } else if (s[i] == '%' && i + 2 < s.size() && hex_value(s[i + 1]) >= 0 &&
-               hex_value(s[i + 2]) >= 0) {
-      out += static_cast<char>(hex_value(s[i + 1]) * 16 + hex_value(s[i + 2]));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 std::string problem_body(unsigned status, std::string_view type, std::string_view title,
@@ -972,6 +1008,13 @@ std::optional<Upload> take_upload(Request& request, std::optional<Response>& err
     const MultipartResult parts = parse_multipart(request.body(), *boundary);
     if (!parts.ok()) {
       error = bad_request(parts.error);
+      return std::nullopt;
+    }
+    const auto files = std::count_if(parts.parts.begin(), parts.parts.end(),
+                                     [](const MultipartPart& p) { return p.name == "file"; });
+    if (files > 1) {
+      error = bad_request("the upload has " + std::to_string(files) +
+                          " parts named 'file': one program per request");
       return std::nullopt;
     }
     const MultipartPart* part = parts.find("file");

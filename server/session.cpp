@@ -10,6 +10,7 @@
 
 #include "access_log.hpp"
 #include "multipart.hpp"
+#include "negotiation.hpp"
 #include "server.hpp"
 
 namespace ncpost::server {
@@ -466,6 +467,12 @@ void Session::handle_request() {
     return send(std::move(r));
   }
   record_.route = match.route->name;
+  // One value per parameter: which of two the request meant cannot be guessed.
+  if (const std::string repeated = repeated_query_parameter(request_.target()); !repeated.empty()) {
+    (void)channel_->claim_response({});
+    return send(error_response(400, diag::Code::HttpBadRequest, "Bad request",
+                               "the query parameter '" + repeated + "' is given more than once"));
+  }
   if (match.route->where == Where::Inline) {
     phase_ = Phase::Handling;
     SessionExchange exchange(shared_from_this(), channel_);

@@ -142,6 +142,26 @@ TEST(HttpRequestLine, AbsoluteFormTargetIsRouted) {
   EXPECT_EQ(profile.substr(0, 12), "HTTP/1.1 200") << profile;
 }
 
+// ---- Issue 23 (10): a parameter given twice is 400, not the first one taken -----------------
+
+TEST(HttpQuery, RepeatedParameterIs400) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << server.log();
+  const std::string body = "ISO-10303-21;";
+  RawConnection c(server.port());
+  ASSERT_TRUE(
+      c.send("POST /v1/posts?profile=linuxcnc&profile=fanuc-0i HTTP/1.1\r\n"
+             "Host: x\r\nContent-Length: " +
+             std::to_string(body.size()) + "\r\n\r\n" + body));
+  const std::string twice = c.receive_until("more than once", 5s);
+  EXPECT_EQ(twice.substr(0, 12), "HTTP/1.1 400") << twice;
+  EXPECT_NE(twice.find("'profile' is given more than once"), std::string::npos) << twice;
+  EXPECT_EQ(answer_to(server, "GET /v1/profiles/linuxcnc?a=1&b=2 HTTP/1.1\r\nHost: x\r\n\r\n")
+                .substr(0, 12),
+            "HTTP/1.1 200");
+  expect_serving(server);
+}
+
 // ---- 405: Allow with HEAD, counted under its route ------------------------------------------
 
 TEST(HttpMethods, AllowListsHeadAnd405IsCountedUnderItsRoute) {

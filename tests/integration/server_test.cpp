@@ -107,7 +107,8 @@ TEST(ServerRoutes, BytesThatAreNotUtf8AreAnsweredNotFatal) {
   }
   // The same bytes, percent-encoded, in a profile id and an upload name.
   const auto unknown = curl({server.url("/v1/profiles/%FF%FE")});
-  EXPECT_EQ(unknown.status, 404) << unknown.body;
+  EXPECT_EQ(unknown.status, 400) << "not a profile id (issue 23: 13)\n" << unknown.body;
+  EXPECT_NE(unknown.body.find("PROFILE-008"), std::string::npos) << unknown.body;
   const auto named = curl({"--data-binary", "@" + src(kCurves).string(),
                            server.url("/v1/traces?name=%FFx.stp&format=bogus")});
   EXPECT_EQ(named.status, 400) << named.body;
@@ -243,10 +244,27 @@ TEST(ServerPosts, ErrorsBeforeOutputAreProblems) {
   expect_serving(server);
 }
 
-TEST(ServerPosts, ErrorAfterOutputEndsWithTheMarkerAndIsCut) {
+// An error in the first --hold-back bytes of a program is an ordinary 422 (issue 23: 13): a
+// client never sees the start of a program that fails.
+TEST(ServerPosts, ErrorInTheHeldBackStartIsA422) {
   ServerProcess server;
   ASSERT_TRUE(server.started()) << server.log();
-  // The bracket is feature-based: the program start goes out, then STEPNC-010 stops the post.
+  const auto file = src("examples/bracket.stp");
+  auto r = curl({"--data-binary", "@" + file.string(), server.url("/v1/posts?profile=fanuc-0i")});
+  EXPECT_EQ(r.status, 422) << r.body;
+  EXPECT_EQ(r.exit_code, 0);
+  // The same diagnostics as the CLI's post, which stops at STEPNC-102 (the woodruff slot end).
+  EXPECT_NE(r.body.find("STEPNC-102"), std::string::npos) << r.body;
+  EXPECT_EQ(r.body.find("ERROR:"), std::string::npos) << "no program text in a 422\n" << r.body;
+  expect_serving(server);
+}
+
+TEST(ServerPosts, ErrorAfterOutputEndsWithTheMarkerAndIsCut) {
+  ServerOptions stream_at_once;
+  stream_at_once.args = {"--hold-back", "0"};
+  ServerProcess server(stream_at_once);
+  ASSERT_TRUE(server.started()) << server.log();
+  // The bracket is feature-based: the program start goes out, then STEPNC-102 stops the post.
   const auto file = src("examples/bracket.stp");
   auto r = curl({"--data-binary", "@" + file.string(), server.url("/v1/posts?profile=fanuc-0i")});
   EXPECT_EQ(r.status, 200);

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "check_run.hpp"
+#include "ncpost/diag/json.hpp"
 #include "records.hpp"
 
 namespace ncpost::cls {
@@ -272,7 +273,7 @@ std::optional<CheckConfig> parse_checks(std::string_view json_text,
     doc = json::parse(json_text);
   } catch (const json::parse_error& e) {
     diagnostics.push_back(
-        diag::make(diag::Code::ClsChecksInvalid, 0, 0, std::string("checks: ") + e.what()));
+        diag::json_syntax_error(diag::Code::ClsChecksInvalid, json_text, e, "checks: "));
     return std::nullopt;
   }
   return parse_checks(doc, diagnostics);

@@ -1,5 +1,7 @@
 #include "ncpost/diag/json.hpp"
 
+#include <algorithm>
+
 namespace ncpost::diag {
 
 nlohmann::ordered_json to_json(const Diagnostic& d) {
@@ -24,6 +26,26 @@ nlohmann::ordered_json to_json(std::span<const FileDiagnostic> diagnostics) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const auto& d : diagnostics) all.push_back(to_json(d));
   return all;
+}
+
+Diagnostic json_syntax_error(Code code, std::string_view text,
+                             const nlohmann::json::parse_error& error,
+                             std::string_view message_prefix) {
+  // `byte` counts from 1 and is one past the character that stopped the parser.
+  const std::size_t stop = std::min<std::size_t>(error.byte == 0 ? 0 : error.byte - 1, text.size());
+  std::uint32_t line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < stop; ++i)
+    if (text[i] == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+  const auto column = static_cast<std::uint32_t>(stop - line_start + 1);
+  std::string_view what = error.what();
+  if (const auto colon = what.find(": ");
+      what.rfind("[json.exception.", 0) == 0 && colon != std::string_view::npos)
+    what.remove_prefix(colon + 2);
+  return make(code, line, column, std::string(message_prefix) + std::string(what));
 }
 
 }  // namespace ncpost::diag

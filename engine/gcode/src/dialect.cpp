@@ -10,6 +10,7 @@
 #include <set>
 
 #include "lexer.hpp"
+#include "ncpost/diag/json.hpp"
 #include "ncpost/gcode/gcode.hpp"
 
 namespace ncpost::gcode {
@@ -848,7 +849,7 @@ DialectResult load_dialect(std::string_view json_text) {
     j = json::parse(json_text.begin(), json_text.end());
   } catch (const json::parse_error& e) {
     result.diagnostics.push_back(
-        diag::make(diag::Code::GcodeDialectJson, 0, 0, std::string("not valid JSON: ") + e.what()));
+        diag::json_syntax_error(diag::Code::GcodeDialectJson, json_text, e, "not valid JSON: "));
     return result;
   }
   Checker c(result.diagnostics);

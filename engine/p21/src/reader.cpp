@@ -108,6 +108,7 @@ class Parser {
     lexer_.jump(from, available);
     stage_ = Stage::Data;
     seen_data_ = true;
+    seen_header_ = true;  // the piece's file had one; the reader of its start checks that
     advance();
   }
 
@@ -255,6 +256,7 @@ class Parser {
   Stage stage_ = Stage::Magic;
   bool suspended_ = false;
   bool seen_data_ = false;
+  bool seen_header_ = false;        // or its absence reported
   DataSection section_;             // the DATA section being read
   std::uint32_t first_header_ = 0;  // of the HEADER section being read
   static constexpr std::uint32_t kCancelPollTokens = 4096;
@@ -499,13 +501,27 @@ bool Parser::run() {
         if (current_.kind == Tok::EndMagic) {
           // What follows the end (signatures, stray content) is read once all of it is there.
           if (!final_) return suspend();
+          if (!seen_header_) {
+            error(Code::P21MissingHeader, current_,
+                  "the file ends without a HEADER section: expected 'HEADER;' here");
+            seen_header_ = true;
+          }
           end_of_file();
           stage_ = Stage::End;
           continue;
         }
         if (current_.kind == Tok::Keyword) {
           const std::string_view word = slice(current_);
+          if (word != "HEADER" && !seen_header_) {
+            // ISO 10303-21 §8: the HEADER section comes first; without it the file's schema,
+            // and so the meaning of every instance, is unknown.
+            error(Code::P21MissingHeader, current_,
+                  "the HEADER section must come before " + std::string(word) +
+                      ": expected 'HEADER;' here");
+            seen_header_ = true;
+          }
           if (word == "HEADER") {
+            seen_header_ = true;
             begin_header_section();
             stage_ = Stage::Header;
             continue;

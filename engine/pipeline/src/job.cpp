@@ -209,9 +209,9 @@ Interpretation interpret_gcode(const Program& program, canon::Sink& sink, const 
   if (settings.stop_at_first_error) options.max_errors = 1;
   gcode::ReadResult result = gcode::read_with_dialect(
       program.text, *dialect.dialect_json, dialect.profile.id + "/dialect.json", sink, options);
+  out.ok = result.ok();  // before the diagnostics it looks at are moved out
   out.diagnostics = std::move(result.diagnostics);
   out.calls = result.calls;
-  out.ok = result.ok();
   return out;
 }
 

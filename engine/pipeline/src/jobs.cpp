@@ -88,28 +88,26 @@ json to_json(const stepnc::Executable& x) {
   return j;
 }
 
-json to_json(const stepnc::ProgramInfo& info) {
-  json out;
-  json& header = out["header"];
+json header_json(const stepnc::ProgramInfo& info) {
+  json header;
   for (const auto& [name, value] : info.header.fields) header[name] = to_json(value);
   header["schemas"] = info.header.schemas;
-  if (info.project) {
-    json& project = out["project"];
-    project["id"] = info.project->id;
-    project["name"] = info.project->name;
-    project["main_workplan"] =
-        info.project->main_workplan ? to_json(*info.project->main_workplan) : json(nullptr);
-  } else {
-    out["project"] = nullptr;
-  }
-  json& workpieces = out["workpieces"] = json::array();
+  return header;
+}
+
+json workpieces_json(const stepnc::ProgramInfo& info) {
+  json workpieces = json::array();
   for (const auto& w : info.workpieces) {
     json j = to_json(w.self);
     if (w.material) j["material"] = *w.material;
     if (w.clamping_positions) j["clamping_positions"] = *w.clamping_positions;
     workpieces.push_back(std::move(j));
   }
-  json& tools = out["tools"] = json::array();
+  return workpieces;
+}
+
+json tools_json(const stepnc::ProgramInfo& info) {
+  json tools = json::array();
   for (const auto& t : info.tools) {
     json j = to_json(t.self);
     j["used_by"] = t.used_by;
@@ -120,14 +118,205 @@ json to_json(const stepnc::ProgramInfo& info) {
     if (t.length) j["length"] = *t.length;
     tools.push_back(std::move(j));
   }
-  json& statistics = out["statistics"];
+  return tools;
+}
+
+json statistics_json(const stepnc::ProgramInfo& info) {
+  json statistics;
   statistics["bytes"] = info.statistics.bytes;
   statistics["instances"] = info.statistics.instances;
   statistics["workingsteps"] = info.statistics.workingsteps;
   statistics["entity_types"] = info.statistics.by_type.size();
   json& by_type = statistics["by_type"] = json::object();
   for (const auto& [name, n] : info.statistics.by_type) by_type[name] = n;
+  return statistics;
+}
+
+json to_json(const stepnc::ProgramInfo& info) {
+  json out;
+  out["header"] = header_json(info);
+  if (info.project) {
+    json& project = out["project"];
+    project["id"] = info.project->id;
+    project["name"] = info.project->name;
+    project["main_workplan"] =
+        info.project->main_workplan ? to_json(*info.project->main_workplan) : json(nullptr);
+  } else {
+    out["project"] = nullptr;
+  }
+  out["workpieces"] = workpieces_json(info);
+  out["tools"] = tools_json(info);
+  out["statistics"] = statistics_json(info);
   return out;
+}
+
+// Writes what nlohmann's dump(2) writes for a document, one member at a time, so that a large
+// inspection is never held as a tree of JSON values next to the program information (issue 23:
+// `ncpost inspect` of the 104 MB file peaked at 3.7x the file). Small values are dumped whole
+// and indented to their depth.
+class IndentedJsonWriter {
+ public:
+  explicit IndentedJsonWriter(const TextSink& out) : out_(out) {}
+
+  void begin(char bracket) {
+    separate();
+    buffer_ += bracket;
+    levels_.push_back({bracket == '{' ? '}' : ']'});
+  }
+  void end() {
+    const Level level = levels_.back();
+    levels_.pop_back();
+    if (!level.empty) {
+      buffer_ += '\n';
+      indent();
+    }
+    buffer_ += level.close;
+    flush_when_full();
+  }
+  void key(std::string_view name) {
+    separate();
+    buffer_ += json(name).dump();
+    buffer_ += ": ";
+    after_key_ = true;
+  }
+  void value(const json& small) {
+    separate();
+    const std::string text = small.dump(2, ' ', false, json::error_handler_t::replace);
+    if (levels_.empty()) {
+      buffer_ += text;
+    } else {
+      for (const char c : text) {
+        buffer_ += c;
+        if (c == '\n') indent();
+      }
+    }
+    flush_when_full();
+  }
+  void finish() {
+    if (!buffer_.empty()) out_(buffer_);
+    buffer_.clear();
+  }
+
+ private:
+  struct Level {
+    char close;
+    bool empty = true;
+  };
+  void separate() {
+    if (after_key_) {
+      after_key_ = false;
+      return;
+    }
+    if (levels_.empty()) return;
+    buffer_ += levels_.back().empty ? "\n" : ",\n";
+    levels_.back().empty = false;
+    indent();
+  }
+  void indent() { buffer_.append(2 * levels_.size(), ' '); }
+  void flush_when_full() {
+    if (buffer_.size() >= kFlushBytes) finish();
+  }
+
+  static constexpr std::size_t kFlushBytes = 64 * 1024;
+  const TextSink& out_;
+  std::string buffer_;
+  std::vector<Level> levels_;
+  bool after_key_ = false;
+};
+
+void write_ref_members(IndentedJsonWriter& w, const stepnc::EntityRef& ref) {
+  w.key("id");
+  w.value(ref.id);
+  w.key("type");
+  w.value(ref.type);
+  w.key("name");
+  w.value(ref.name ? json(*ref.name) : json(nullptr));
+}
+
+// The same members in the same order as to_json(Executable); recursion is bounded by the
+// inspector's nesting limit.
+void write_executable(IndentedJsonWriter& w, const stepnc::Executable& x) {
+  using Shape = stepnc::Executable::Shape;
+  if (x.missing) return w.value(nullptr);
+  w.begin('{');
+  write_ref_members(w, x.self);
+  const auto member = [&w](std::string_view name, const stepnc::Executable& child) {
+    w.key(name);
+    write_executable(w, child);
+  };
+  const auto children = [&](std::string_view name) {
+    w.key(name);
+    w.begin('[');
+    for (const auto& child : x.children) write_executable(w, child);
+    w.end();
+  };
+  const auto ref = [&w](std::string_view name, const auto& optional_ref) {
+    if (!optional_ref) return;
+    w.key(name);
+    w.value(to_json(*optional_ref));
+  };
+  switch (x.shape) {
+    case Shape::Workingstep:
+      ref("feature", x.feature);
+      ref("operation", x.operation);
+      ref("tool", x.tool);
+      break;
+    case Shape::Sequence:
+      ref("setup", x.setup);
+      children("elements");
+      break;
+    case Shape::Parallel:
+      children("branches");
+      break;
+    case Shape::If:
+      member("true_branch", x.children.at(0));
+      member("false_branch", x.children.at(1));
+      break;
+    case Shape::While:
+      member("body", x.children.at(0));
+      break;
+    case Shape::Message:
+      if (x.text) {
+        w.key("text");
+        w.value(*x.text);
+      }
+      break;
+    case Shape::ToolChange:
+      ref("tool", x.tool);
+      break;
+    case Shape::Leaf:
+      break;
+  }
+  w.end();
+}
+
+// to_json(ProgramInfo) without the document: the workplan tree, the tools and the workpieces
+// member by member, the small parts dumped whole.
+void write_program_info(IndentedJsonWriter& w, const stepnc::ProgramInfo& info) {
+  w.key("header");
+  w.value(header_json(info));
+  w.key("project");
+  if (info.project) {
+    w.begin('{');
+    w.key("id");
+    w.value(info.project->id);
+    w.key("name");
+    w.value(info.project->name);
+    w.key("main_workplan");
+    if (info.project->main_workplan)
+      write_executable(w, *info.project->main_workplan);
+    else
+      w.value(nullptr);
+    w.end();
+  } else {
+    w.value(nullptr);
+  }
+  w.key("workpieces");
+  w.value(workpieces_json(info));
+  w.key("tools");
+  w.value(tools_json(info));
+  w.key("statistics");
+  w.value(statistics_json(info));
 }
 
 bool cancelled(const JobContext& context) {
@@ -258,6 +447,16 @@ nlohmann::ordered_json inspection_json(const Inspection& inspection) {
   nlohmann::ordered_json json = to_json(inspection.info);
   json["diagnostics"] = diagnostics_json(inspection.job.diagnostics);
   return json;
+}
+
+void write_inspection_json(const Inspection& inspection, const TextSink& out) {
+  IndentedJsonWriter w(out);
+  w.begin('{');
+  write_program_info(w, inspection.info);
+  w.key("diagnostics");
+  w.value(diagnostics_json(inspection.job.diagnostics));
+  w.end();
+  w.finish();
 }
 
 std::string inspection_text(const Inspection& inspection) {

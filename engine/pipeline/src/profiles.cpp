@@ -1,6 +1,7 @@
 #include "ncpost/pipeline/profiles.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 namespace ncpost::pipeline {
 namespace {
@@ -74,6 +75,8 @@ ProfilePut Profiles::put(std::string_view id, std::string_view profile_json,
     put.outcome = PutOutcome::WriteFailed;
   else if (any_code(put.diagnostics, {diag::Code::ProfileBadId}))
     put.outcome = PutOutcome::BadId;
+  else if (any_code(put.diagnostics, {diag::Code::ProfileReserved}))
+    put.outcome = PutOutcome::Reserved;
   else
     put.outcome = PutOutcome::Rejected;
   return put;
@@ -107,20 +110,75 @@ void Profiles::hide_server_paths() noexcept {
   hide_paths_ = true;
 }
 
+namespace {
+
+// Whether text[at] may begin a path: the text's start, or after a quote, a space or '='.
+bool path_may_start(const std::string& text, std::size_t at) {
+  return at == 0 || std::string_view(" '\"=(").find(text[at - 1]) != std::string_view::npos;
+}
+
+// Every whole path component sequence "<root>" in text (followed by '/', a quote, a space,
+// ':' or the end) becomes "profiles".
+void replace_root(std::string& text, const std::string& root) {
+  static constexpr std::string_view kAs = "profiles";
+  for (auto at = text.find(root); at != std::string::npos; at = text.find(root, at)) {
+    const std::size_t end = at + root.size();
+    const bool whole = path_may_start(text, at) &&
+                       (end == text.size() ||
+                        std::string_view("/ '\":),").find(text[end]) != std::string_view::npos);
+    if (!whole) {
+      ++at;
+      continue;
+    }
+    text.replace(at, root.size(), kAs);
+    at += kAs.size();
+  }
+}
+
+// "profiles/.<id>@<hex>[-<hex>]/" (a store version folder) becomes "profiles/<id>/": the
+// version is the store's business, the id is what the client named.
+void hide_version_folders(std::string& text) {
+  static constexpr std::string_view kPrefix = "profiles/.";
+  for (auto at = text.find(kPrefix); at != std::string::npos; at = text.find(kPrefix, at + 1)) {
+    const std::size_t id_start = at + kPrefix.size();
+    const std::size_t sign = text.find('@', id_start);
+    const std::size_t slash = text.find('/', id_start);
+    if (sign == std::string::npos || slash == std::string::npos || sign > slash) continue;
+    const bool hex_version = std::all_of(
+        text.begin() + static_cast<std::ptrdiff_t>(sign + 1),
+        text.begin() + static_cast<std::ptrdiff_t>(slash),
+        [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) || c == '-'; });
+    if (!hex_version || slash == sign + 1) continue;
+    text.erase(sign, slash - sign);
+    text.erase(id_start - 1, 1);
+  }
+}
+
+}  // namespace
+
 std::vector<diag::FileDiagnostic> Profiles::without_server_paths(
     std::vector<diag::FileDiagnostic> diagnostics) const {
   if (!hide_paths_) return diagnostics;
-  // Absolute roots only: a relative --profiles DIR reveals nothing, and a short relative name
-  // would match inside ordinary words.
+  // The store's directory as given, absolute and with its links resolved, and the built-ins:
+  // whichever form a message carries.
   std::error_code ec;
-  const std::string roots[] = {std::filesystem::absolute(store_->directory(), ec).string(),
-                               profile::builtin_directory().string()};
+  std::vector<std::string> roots{
+      store_->directory().lexically_normal().string(),
+      std::filesystem::absolute(store_->directory(), ec).string(),
+      std::filesystem::weakly_canonical(store_->directory(), ec).string(),
+      profile::builtin_directory().string()};
+  // Longest first, so that a root inside another is not replaced in part.
+  std::sort(roots.begin(), roots.end(),
+            [](const std::string& a, const std::string& b) { return a.size() > b.size(); });
   for (auto& d : diagnostics)
-    for (const std::string& root : roots) {
-      if (root.size() < 2 || root.front() != '/') continue;
-      for (std::string* text : {&d.file, &d.diagnostic.message})
-        for (auto at = text->find(root); at != std::string::npos; at = text->find(root, at))
-          text->replace(at, root.size(), "profiles");
+    for (std::string* text : {&d.file, &d.diagnostic.message}) {
+      for (const std::string& root : roots) {
+        std::string trimmed = root;
+        while (trimmed.size() > 1 && trimmed.back() == '/') trimmed.pop_back();
+        if (trimmed.empty() || trimmed == "." || trimmed == "/") continue;
+        replace_root(*text, trimmed);
+      }
+      hide_version_folders(*text);
     }
   return diagnostics;
 }

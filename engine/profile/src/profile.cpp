@@ -10,6 +10,8 @@
 #include <regex>
 #include <set>
 
+#include "ncpost/diag/json.hpp"
+
 namespace ncpost::profile {
 namespace {
 
@@ -320,7 +322,7 @@ std::optional<Profile> parse_profile(std::string_view text,
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
-    diagnostics.push_back(diag::make(diag::Code::ProfileJson, 0, 0, e.what()));
+    diagnostics.push_back(diag::json_syntax_error(diag::Code::ProfileJson, text, e));
     return std::nullopt;
   }
   Checker c(diagnostics);

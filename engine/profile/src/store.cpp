@@ -169,6 +169,39 @@ std::string temp_prefix(std::string_view id) {
   return "." + std::string(id) + "~";
 }
 
+// Why the store may not write or delete DIR/<id>, or empty when it may. It only replaces what
+// it wrote (a link to one of its version folders) or a profile placed by hand (a folder with
+// nothing but a profile's files); the shared templates, other files and folders holding
+// anything else are the operator's.
+std::string foreign_entry(const fs::path& directory, std::string_view id) {
+  if (id == "common") return "'common' holds the templates every profile imports";
+  const fs::path entry = directory / std::string(id);
+  struct stat st {};
+  if (::lstat(entry.c_str(), &st) != 0) return {};
+  if (S_ISLNK(st.st_mode)) {
+    std::error_code ec;
+    const std::string target = fs::read_symlink(entry, ec).string();
+    if (!ec && target.rfind(version_prefix(id), 0) == 0 && target.find('/') == std::string::npos)
+      return {};
+    return "'" + std::string(id) + "' is a link the profile store did not make";
+  }
+  if (!S_ISDIR(st.st_mode)) return "'" + std::string(id) + "' is a file, not a profile";
+  std::error_code ec;
+  bool has_profile = false;
+  for (const auto& file : fs::directory_iterator(entry, ec)) {
+    const std::string name = file.path().filename().string();
+    const bool profile_file =
+        name == "profile.json" || name == "post.xsl" || name == "dialect.json";
+    if (!profile_file || !file.is_regular_file(ec))
+      return "the folder '" + std::string(id) + "' holds '" + name +
+             "', which is not a profile's file";
+    has_profile = has_profile || name == "profile.json";
+  }
+  if (ec) return "the folder '" + std::string(id) + "' cannot be read";
+  if (!has_profile) return "the folder '" + std::string(id) + "' holds no profile.json";
+  return {};
+}
+
 }  // namespace
 
 fs::path data_directory() {
@@ -419,6 +452,11 @@ PutResult ProfileStore::put(std::string_view id, std::string_view profile_json,
   }
 
   std::lock_guard write_lock(write_mutex_);
+  if (const std::string foreign = foreign_entry(directory_, id); !foreign.empty()) {
+    add(diagnostics, "profile.json", diag::Code::ProfileReserved,
+        foreign + "; the profile store only replaces profiles");
+    return result;
+  }
   const auto fail = [&](std::string message) {
     add(diagnostics, "profile.json", diag::Code::ProfileWrite, std::move(message));
     return std::move(result);
@@ -556,6 +594,7 @@ RemoveOutcome ProfileStore::remove(std::string_view id) {
   const auto layer = find_layer(id);
   if (!layer) return RemoveOutcome::NotFound;
   if (layer->read_only) return RemoveOutcome::ReadOnly;
+  if (!foreign_entry(directory_, id).empty()) return RemoveOutcome::Foreign;
   const fs::path entry = directory_ / std::string(id);
   struct stat st {};
   if (::lstat(entry.c_str(), &st) != 0) return RemoveOutcome::NotFound;

@@ -168,6 +168,9 @@ class Inspector {
                name_of(owner) + " has an element list that is not a list");
       return out;
     }
+    // Exactly as many as the list holds: a workplan of 40,000 workingsteps would otherwise leave
+    // up to as many unused slots of a large struct (issue 23: 16, inspect's memory).
+    out.reserve(model_.items(*list).size());
     for (Value v : model_.items(*list)) {
       const Instance* e = v.is_reference() ? model_.find(v.id()) : nullptr;
       if (e == nullptr) {

@@ -154,6 +154,21 @@ TEST(ReaderErrors, MissingEndsecAndEnd) {
   EXPECT_EQ(codes(r), (std::vector<std::string>{"P21-025", "P21-026"})) << dump(r);
 }
 
+// Issue 23 (15): Part 21 requires the HEADER section; a file without one is refused at the
+// place where 'HEADER;' was expected, and its data is still read for the report.
+TEST(ReaderErrors, MissingHeader) {
+  const auto r = read("ISO-10303-21;\nDATA;#1=A();ENDSEC;END-ISO-10303-21;");
+  ASSERT_FALSE(r.ok());
+  ASSERT_EQ(codes(r), std::vector<std::string>{"P21-047"}) << dump(r);
+  EXPECT_EQ(r.diagnostics[0].line, 2u);
+  EXPECT_EQ(r.diagnostics[0].column, 1u);
+  EXPECT_NE(r.model.find(1), nullptr);
+  const auto empty = read("ISO-10303-21;END-ISO-10303-21;");
+  ASSERT_FALSE(empty.ok());
+  EXPECT_EQ(codes(empty), (std::vector<std::string>{"P21-047", "P21-046"})) << dump(empty);
+  EXPECT_EQ(empty.diagnostics[0].column, 14u);
+}
+
 TEST(ReaderErrors, HeaderOrder) {
   const auto r = read(
       "ISO-10303-21;HEADER;FILE_SCHEMA(('S'));FILE_NAME('','',(''),(''),'','','');"

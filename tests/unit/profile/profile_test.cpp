@@ -112,6 +112,15 @@ TEST_F(ProfileTest, HandPickedInvalidExamples) {
   EXPECT_FALSE(parse_profile("{not json", d));
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].code, diag::Code::ProfileJson);
+  // Issue 23 (11): the position is the diagnostic's, not only words in its message.
+  EXPECT_EQ(d[0].line, 1u);
+  EXPECT_EQ(d[0].column, 3u) << "the 'o' that cannot continue a literal";
+  EXPECT_EQ(d[0].message.find("json.exception"), std::string::npos) << d[0].message;
+  d.clear();
+  EXPECT_FALSE(parse_profile("{\n  \"id\": \"x\",\n  \"name\": ,\n}", d));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].line, 3u);
+  EXPECT_EQ(d[0].column, 11u) << d[0].message;
 }
 
 // Walks the schema alongside the valid document: for each object, drop each required field

@@ -321,6 +321,32 @@ TEST_F(StoreTest, HandPlacedFolderIsReplacedAtomically) {
   EXPECT_EQ(store.remove("hand"), RemoveOutcome::Removed);
 }
 
+// Issue 23 (2): the store replaces only profiles. The shared templates, other files and folders
+// holding anything else are the operator's: refused with PROFILE-009, and left as they were.
+TEST_F(StoreTest, ReservedAndForeignEntriesAreNeverReplaced) {
+  fs::create_directories(dir_ / "keepme");
+  std::ofstream(dir_ / "keepme" / "notes.txt") << "an operator's notes\n";
+  fs::create_directories(dir_ / "empty");
+  std::ofstream(dir_ / "schema") << "a file, not a profile\n";
+  fs::create_directory_symlink(fs::absolute(builtin_directory() / "linuxcnc"), dir_ / "elsewhere");
+  auto store = writable();
+  for (const char* id : {"common", "keepme", "empty", "schema", "elsewhere"}) {
+    auto r = store.put(id, profile_json(id, "Takeover"), stylesheet("t"));
+    EXPECT_FALSE(r.profile) << id;
+    EXPECT_TRUE(has_code(r.diagnostics, diag::Code::ProfileReserved)) << id << all(r.diagnostics);
+  }
+  EXPECT_EQ(store.remove("keepme"), RemoveOutcome::NotFound) << "no profile there to delete";
+  EXPECT_EQ(store.remove("elsewhere"), RemoveOutcome::Foreign);
+  EXPECT_TRUE(fs::exists(dir_ / "keepme" / "notes.txt"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "schema"));
+  EXPECT_TRUE(fs::is_symlink(dir_ / "elsewhere"));
+  EXPECT_TRUE(hidden_entries(dir_).empty()) << testing::PrintToString(hidden_entries(dir_));
+  // What the store made itself it still replaces and removes.
+  ASSERT_TRUE(store.put("mine", profile_json("mine", "Mine"), stylesheet("1")).profile);
+  ASSERT_TRUE(store.put("mine", profile_json("mine", "Mine 2"), stylesheet("2")).profile);
+  EXPECT_EQ(store.remove("mine"), RemoveOutcome::Removed);
+}
+
 TEST_F(StoreTest, ReloadPicksUpChangesOthersMade) {
   auto writer = writable();
   ASSERT_TRUE(writer.put("shared", profile_json("shared", "One"), stylesheet("1")).profile);

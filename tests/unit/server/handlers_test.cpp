@@ -5,8 +5,11 @@
 #include "handlers.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -178,6 +181,116 @@ TEST_F(Handlers, ProfileChangesNeedTheTokenAndAWritableStore) {
                 {{"Authorization", "Bearer secret"}, {"Content-Type", "application/json"}})
                 .status,
             400u);
+}
+
+// Issue 23 (2): the store replaces only profiles, and /readyz fails while a profile does not
+// compile instead of letting every post answer 500.
+TEST_F(Handlers, ReservedNamesAndBrokenProfiles) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("ncpost-handlers-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "keepme");
+  std::ofstream(dir / "keepme" / "notes.txt") << "notes\n";
+  auto store = pipeline::Profiles::writable_over_builtins(dir);
+  services_.profiles = store.get();
+  services_.admin_token = "secret";
+  EXPECT_EQ(run(http::verb::get, "/readyz").status, 200u);
+  const std::string profile_json =
+      test::read_file(test::source_dir() / "stylesheets/linuxcnc/profile.json");
+  const auto multipart = [&](const std::string& id) {
+    std::string renamed = profile_json;
+    renamed.replace(renamed.find("\"linuxcnc\""), 10, "\"" + id + "\"");
+    return "--B\r\nContent-Disposition: form-data; name=\"profile\"\r\n\r\n" + renamed +
+           "\r\n--B\r\nContent-Disposition: form-data; name=\"stylesheet\"\r\n\r\n" +
+           test::read_file(test::source_dir() / "stylesheets/linuxcnc/post.xsl") + "\r\n--B--\r\n";
+  };
+  const std::map<std::string, std::string> admin = {
+      {"Authorization", "Bearer secret"}, {"Content-Type", "multipart/form-data; boundary=B"}};
+  for (const char* id : {"common", "keepme"}) {
+    const auto put = run(http::verb::put, std::string("/v1/profiles/") + id, multipart(id), admin);
+    EXPECT_EQ(put.status, 409u) << id << put.body;
+    EXPECT_EQ(put.problem()["type"], "urn:ncpost:problem:PROFILE-009") << put.body;
+  }
+  EXPECT_TRUE(fs::exists(dir / "keepme" / "notes.txt"));
+  EXPECT_EQ(run(http::verb::post, "/v1/posts?profile=linuxcnc", example()).status, 200u);
+
+  // A profile placed by hand whose stylesheet does not compile: not ready, and named.
+  fs::create_directories(dir / "broken");
+  std::string broken_json = profile_json;
+  broken_json.replace(broken_json.find("\"linuxcnc\""), 10, "\"broken\"");
+  std::ofstream(dir / "broken" / "profile.json") << broken_json;
+  std::ofstream(dir / "broken" / "post.xsl") << "<xsl:stylesheet";
+  const auto ready = run(http::verb::get, "/readyz");
+  EXPECT_EQ(ready.status, 503u) << ready.body;
+  EXPECT_EQ(json::parse(ready.body)["broken_profiles"], json::array({"broken"})) << ready.body;
+  services_.profiles = &profiles_;
+  fs::remove_all(dir);
+}
+
+// Issue 23 (6, 7, 12): Accept by media ranges and q-values, If-None-Match by weak comparison,
+// and a download name that keeps the upload's non-ASCII characters.
+TEST_F(Handlers, ContentNegotiationFollowsTheRfcs) {
+  const auto text = run(http::verb::post, "/v1/posts?profile=linuxcnc", example(),
+                        {{"Accept", "application/json;q=0.1, text/plain"}});
+  ASSERT_EQ(text.status, 200u) << text.body;
+  EXPECT_TRUE(text.streamed);
+  const auto upper = run(http::verb::post, "/v1/posts?profile=linuxcnc", example(),
+                         {{"Accept", "APPLICATION/JSON"}});
+  ASSERT_EQ(upper.status, 200u) << upper.body;
+  EXPECT_TRUE(json::parse(upper.body).contains("program"));
+
+  const auto fanuc = run(http::verb::get, "/v1/profiles/fanuc-0i");
+  const std::string etag = fanuc.headers.at("ETag");
+  for (const std::string& condition : {"W/" + etag, "\"other\", " + etag, std::string("*")})
+    EXPECT_EQ(
+        run(http::verb::get, "/v1/profiles/fanuc-0i", {}, {{"If-None-Match", condition}}).status,
+        304u)
+        << condition;
+  EXPECT_EQ(
+      run(http::verb::get, "/v1/profiles/fanuc-0i", {}, {{"If-None-Match", "\"other\""}}).status,
+      200u);
+
+  const auto named =
+      run(http::verb::post, "/v1/posts?profile=linuxcnc&name=Teil%20%C3%98%2050.stp", example());
+  ASSERT_EQ(named.status, 200u) << named.body;
+  EXPECT_EQ(named.headers.at("Content-Disposition"),
+            "attachment; filename=\"Teil___50.ngc\"; filename*=UTF-8''Teil%20%C3%98%2050.ngc");
+}
+
+// Issue 23 (13): what openapi.yaml documents. An id no profile can have is 400 on every route
+// that takes one; the JSON form of a post carries the headers its 200 lists for it.
+TEST_F(Handlers, InvalidProfileIdsAndTheJsonPostsHeaders) {
+  services_.admin_token = "secret";
+  const std::map<std::string, std::string> admin = {{"Authorization", "Bearer secret"}};
+  for (const auto& [method, target] : std::vector<std::pair<http::verb, std::string>>{
+           {http::verb::get, "/v1/profiles/UPPER"},
+           {http::verb::delete_, "/v1/profiles/a~b"},
+           {http::verb::put, "/v1/profiles/.hidden"},
+           {http::verb::post, "/v1/posts?profile=..%2Fetc"},
+           {http::verb::post, "/v1/nc/translate?from=Fanuc&to=linuxcnc"}}) {
+    const auto r = run(method, target, example(), admin);
+    EXPECT_EQ(r.status, 400u) << target << r.body;
+    if (r.status == 400u) {
+      EXPECT_EQ(r.problem()["type"], "urn:ncpost:problem:PROFILE-008");
+    }
+  }
+  // Issue 23 (10): two programs in one request: which one was meant cannot be guessed.
+  const std::string two_files =
+      "--B\r\nContent-Disposition: form-data; name=\"file\"; filename=\"a.stp\"\r\n\r\n" +
+      example() +
+      "\r\n--B\r\nContent-Disposition: form-data; name=\"file\"; filename=\"b.stp\"\r\n\r\n" +
+      example() + "\r\n--B--\r\n";
+  const auto twice = run(http::verb::post, "/v1/traces", two_files,
+                         {{"Content-Type", "multipart/form-data; boundary=B"}});
+  EXPECT_EQ(twice.status, 400u) << twice.body;
+  const auto posted = run(http::verb::post, "/v1/posts?profile=linuxcnc", example(),
+                          {{"Accept", "application/json"}});
+  ASSERT_EQ(posted.status, 200u) << posted.body;
+  EXPECT_EQ(posted.headers.at("ETag").size(), 34u);
+  EXPECT_EQ(posted.headers.at("X-Ncpost-Profile-Version"),
+            json::parse(posted.body)["profile_version"]);
+  EXPECT_EQ(posted.headers.at("Vary"), "Accept");
 }
 
 TEST_F(Handlers, PostStreamsTheProgramWithItsTrailer) {

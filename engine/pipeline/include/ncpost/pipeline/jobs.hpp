@@ -72,6 +72,9 @@ struct Inspection {
 [[nodiscard]] nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info);
 // ... and with every diagnostic of the inspection in "diagnostics".
 [[nodiscard]] nlohmann::ordered_json inspection_json(const Inspection& inspection);
+// inspection_json(inspection).dump(2), written to `out` as it goes, without building the
+// document: its memory stays that of the program information (`ncpost inspect`).
+void write_inspection_json(const Inspection& inspection, const TextSink& out);
 // The same as a human-readable tree (`ncpost inspect --format text`).
 [[nodiscard]] std::string inspection_text(const Inspection& inspection);
 

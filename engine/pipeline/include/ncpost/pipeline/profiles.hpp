@@ -41,6 +41,7 @@ enum class PutOutcome : std::uint8_t {
   Replaced,       // a new version of a visible profile (a built-in is shadowed)
   ReadOnlyStore,  // the store is not writable
   BadId,          // the id is not a valid profile id
+  Reserved,       // the id names something the store did not write (common/, a file...)
   Rejected,       // profile.json or the stylesheet has errors: nothing changed
   WriteFailed,    // the files could not be written: nothing changed
 };

@@ -192,6 +192,7 @@ enum class RemoveOutcome : std::uint8_t {
   Removed,   // gone from the writable directory (a built-in of the same id shows again)
   NotFound,  // no such id (or not a valid id)
   ReadOnly,  // a built-in only, or the store is not writable
+  Foreign,   // a folder the store did not write holding more than a profile: left alone
 };
 
 struct CacheStats {
