@@ -8,6 +8,21 @@
 namespace ncpost::server {
 namespace {
 
+// Three forms offered (the trace: text, JSON, NDJSON): the same rules pick one.
+TEST(AcceptChoice, ThreeForms) {
+  const auto choice = [](std::string_view accept) {
+    return accept_choice(accept, {"text/plain", "application/json", "application/x-ndjson"});
+  };
+  EXPECT_EQ(choice(""), 0u);
+  EXPECT_EQ(choice("*/*"), 0u);
+  EXPECT_EQ(choice("application/json"), 1u);
+  EXPECT_EQ(choice("application/x-ndjson"), 2u);
+  EXPECT_EQ(choice("application/*"), 1u) << "a tie goes to the earlier offer";
+  EXPECT_EQ(choice("application/json;q=0.5, application/x-ndjson"), 2u);
+  EXPECT_EQ(choice("application/x-ndjson;q=0, */*"), 0u);
+  EXPECT_EQ(choice("image/png"), 0u) << "nothing acceptable: the default";
+}
+
 TEST(AcceptPrefersJson, MediaRangesAndQValues) {
   EXPECT_FALSE(accept_prefers_json(""));
   EXPECT_FALSE(accept_prefers_json("text/plain"));
