@@ -68,8 +68,7 @@ if ((${#missing[@]} + ${#interop_missing[@]})); then
 fi
 
 # npm test tools, pinned by tests/package-lock.json (@redocly/cli, playwright-core, axe-core);
-# again only when the lock
-# file changed since the last install.
+# again only when the lock file changed since the last install.
 if [[ ${1:-all} != build ]]; then
   tests_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests"
   if [[ ! -x $tests_dir/node_modules/.bin/redocly || ! -d $tests_dir/node_modules/playwright-core ||
