@@ -67,11 +67,12 @@ if ((${#missing[@]} + ${#interop_missing[@]})); then
   fi
 fi
 
-# npm test tools, pinned by tests/package-lock.json (@redocly/cli); again only when the lock
-# file changed since the last install.
+# npm test tools, pinned by tests/package-lock.json (@redocly/cli, playwright-core, axe-core);
+# again only when the lock file changed since the last install.
 if [[ ${1:-all} != build ]]; then
   tests_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests"
   if [[ ! -x $tests_dir/node_modules/.bin/redocly || ! -d $tests_dir/node_modules/playwright-core ||
+        ! -d $tests_dir/node_modules/axe-core ||
         $tests_dir/package-lock.json -nt $tests_dir/node_modules/.package-lock.json ]]; then
     npm ci --prefix "$tests_dir" --no-audit --no-fund
   fi

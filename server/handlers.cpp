@@ -828,11 +828,13 @@ void trace_job(Request& request, Services& services, Exchange& exchange, FilePar
     exchange.respond(bad_request("the query parameter 'format' must be text, xml or json"));
     return;
   }
-  // Without format=, the Accept header may ask for a JSON form.
-  const bool ndjson =
-      format == "json" ||
-      (!format_param && accept_prefers(request[http::field::accept], "application/x-ndjson"));
-  const bool document = !ndjson && !format_param && wants_json(request);
+  // Without format=, the Accept header may ask for a JSON form (RFC 9110 negotiation).
+  const std::size_t accepted =
+      format_param ? 0
+                   : accept_choice(request[http::field::accept],
+                                   {"text/plain", "application/json", "application/x-ndjson"});
+  const bool ndjson = format == "json" || accepted == 2;
+  const bool document = accepted == 1;
   auto context = job_context(request, services, exchange);
   if (!context) return;
   auto upload = take_upload_or_respond(request, exchange, file_parts);

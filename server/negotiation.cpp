@@ -173,23 +173,31 @@ bool is_attr_char(unsigned char c) {
 
 }  // namespace
 
-bool accept_prefers(std::string_view accept, std::string_view media_type) {
-  const auto slash = media_type.find('/');
-  if (slash == std::string_view::npos) return false;
+std::size_t accept_choice(std::string_view accept,
+                          std::initializer_list<std::string_view> offered) {
   std::vector<MediaRange> ranges;
   for_each_element(accept, [&ranges](std::string_view element) {
     if (auto range = parse_media_range(element)) ranges.push_back(*range);
   });
-  if (ranges.empty()) return false;
-  const Preference wanted =
-      preference_for(ranges, media_type.substr(0, slash), media_type.substr(slash + 1));
-  const Preference text = preference_for(ranges, "text", "plain");
-  if (wanted.q == 0) return false;
-  return wanted.q > text.q || (wanted.q == text.q && wanted.specificity > text.specificity);
+  std::size_t chosen = 0;
+  Preference best{0, -1};
+  std::size_t k = 0;
+  for (const std::string_view type : offered) {
+    const auto slash = type.find('/');
+    const Preference p =
+        ranges.empty() ? Preference{}
+                       : preference_for(ranges, type.substr(0, slash), type.substr(slash + 1));
+    if (p.q > best.q || (p.q == best.q && p.q > 0 && p.specificity > best.specificity)) {
+      best = p;
+      chosen = k;
+    }
+    ++k;
+  }
+  return chosen;
 }
 
 bool accept_prefers_json(std::string_view accept) {
-  return accept_prefers(accept, "application/json");
+  return accept_choice(accept, {"text/plain", "application/json"}) == 1;
 }
 
 bool none_match_matches(std::string_view if_none_match, std::string_view etag) {

@@ -3,6 +3,8 @@
 // (RFC 6266). Pure functions of header text, so that they are unit-tested without a server.
 #pragma once
 
+#include <cstddef>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -13,8 +15,12 @@ namespace ncpost::server {
 // then */*); JSON wins when its q is higher, or equal and more specific. Media types compare
 // case-insensitively; a range with a malformed q is ignored.
 [[nodiscard]] bool accept_prefers_json(std::string_view accept);
-// The same for any media type ("application/x-ndjson") against text/plain.
-[[nodiscard]] bool accept_prefers(std::string_view accept, std::string_view media_type);
+
+// Which of the `offered` media types ("type/subtype", the default first) an Accept header
+// prefers, by the same rules: the highest q, then the most specific range; the earlier one on a
+// tie, and the first when none is acceptable or the header is absent.
+[[nodiscard]] std::size_t accept_choice(std::string_view accept,
+                                        std::initializer_list<std::string_view> offered);
 
 // If-None-Match against the current entity tag with the weak comparison of RFC 9110 §13.1.2:
 // `*`, a list of tags, and W/ prefixes on either side.

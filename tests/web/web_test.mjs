@@ -200,11 +200,15 @@ try {
 
   // -- the tabs: arrow keys move between them (WAI-ARIA tab pattern)
   await page.focus("#tab-output");
+  // (The Input tab reads the upload first: the switch completes asynchronously.)
   await page.keyboard.press("ArrowRight");
-  assert.equal(await page.$eval("#tab-input", (t) => t.getAttribute("aria-selected")), "true");
-  assert.equal(await page.evaluate(() => document.activeElement.id), "tab-input");
+  await page.waitForFunction(() => document.activeElement.id === "tab-input" &&
+    document.getElementById("tab-input").getAttribute("aria-selected") === "true" && !document.getElementById("input").hidden,
+  null, { timeout: 5000 });
   await page.keyboard.press("ArrowLeft");
-  assert.equal(await page.$eval("#tab-output", (t) => t.getAttribute("aria-selected")), "true");
+  await page.waitForFunction(() => document.activeElement.id === "tab-output" &&
+    document.getElementById("tab-output").getAttribute("aria-selected") === "true" && document.getElementById("input").hidden,
+  null, { timeout: 5000 });
   console.log("ok: arrow keys move between the Output and Input tabs");
 
   // -- verify a program of the project's own golden cases that gouges and leaves floor uncut:

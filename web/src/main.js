@@ -562,8 +562,10 @@ async function verify() {
     if (d.position) points.push([d.position.x, d.position.y, d.position.z]);
     list.append(diagnosticButton(d, () => {
       if (d.motion) {
-        view.markSegment(d.motion - 1);
-        $("view3d").dataset.marked = String(d.motion - 1);
+        // Motion N (1-based, trace order) → its drawn segment (none when decimated away).
+        const segment = state.motionSegment[d.motion - 1] ?? -1;
+        view.markSegment(segment);
+        $("view3d").dataset.marked = String(segment);
       }
       jumpTo("input", d.line);
     }));
