@@ -63,8 +63,8 @@ bool outside_profile(Reader& reader, Draft& draft) {
   return read_then_plan(reader, boundary, draft, read_outside, plan_outside);
 }
 
-// A straight U slot is a region; every other slot the passes of a form tool.
-// A course of travel with its own placement: planned in it, then carried into the feature's.
+// A straight U slot is a region; every other slot the passes of a form tool. A course of travel
+// with its own placement: the slot is planned in it, then its moves carried into the feature's.
 bool slot(Reader& reader, Draft& draft) {
   SlotBasics basics;
   if (!read_slot_basics(reader, basics)) return false;
