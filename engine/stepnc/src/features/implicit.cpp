@@ -87,7 +87,7 @@ std::optional<double> implicit_through_depth(Reader& reader) {
   reader.report().add_finding(
       diag::Code::InteropThroughDepth, reader.subject(f),
       reader.name(f) + ": depth taken as " + fmt(*leave) +
-          " mm (its depth is '$' and its bottom THROUGH_BOTTOM_CONDITION: it goes through " +
+          " mm (its depth is unset and its bottom THROUGH_BOTTOM_CONDITION: it goes through " +
           reader.name(workpiece) + ", whose bounding " + reader.name(block) + " ends " +
           fmt(*leave) + " mm below the hole's top)");
   return leave;
@@ -98,7 +98,7 @@ void note_implicit_cutting_depth(Reader& reader, double bottom_z) {
   const Instance& op = reader.operation();
   reader.report().add_finding(diag::Code::InteropCuttingDepth, reader.subject(op),
                               reader.name(op) + ": cutting_depth taken as " + fmt(-bottom_z) +
-                                  " mm (it is '$': the depth of " + reader.name(reader.feature()) +
+                                  " mm (unset: the depth of " + reader.name(reader.feature()) +
                                   " and its bottom)");
 }
 
