@@ -406,10 +406,14 @@ void Interpreter::machine_functions(const Instance* functions) {
     const auto v = geometry_.get(*functions, attribute);
     if (v && v->is_omitted() && required(*functions, attribute))
       // A tolerant check lets '$' through where ISO 14649 requires the flag.
-      note(*functions,
-           detail::describe(m_, *functions) + " attribute " + std::string(attribute) +
-               " is '$', which ISO 14649 does not allow: it is left as it was (off at the "
-               "start of the program)");
+      // Tolerant, an assumption like the others (INTEROP-009), so the posted program says it
+      // too; strict (a file read unchecked, without a schema of its own), the note of before.
+      geometry_.error(tolerant() ? diag::Code::InteropFlagUnset : diag::Code::StepncNote,
+                      *functions,
+                      detail::describe(m_, *functions) + " attribute " + std::string(attribute) +
+                          (tolerant() ? " is unset" : " is '$'") +
+                          ", which ISO 14649 does not allow: it is left as it was (off at the "
+                          "start of the program)");
     if (!v || v->is_omitted()) return std::nullopt;
     const auto l = m_.as_logical(*v);
     if (!l) return std::nullopt;

@@ -57,21 +57,22 @@ std::optional<double> exit_distance(const detail::Frame& box, detail::Vec3 size,
   return leave;
 }
 
-std::optional<double> implicit_through_depth(Reader& reader) {
+bool implicit_through_depth(Reader& reader, std::optional<double>& out) {
   const Instance& f = reader.feature();
-  if (!tolerant(reader)) return std::nullopt;
+  out.reset();
+  if (!tolerant(reader)) return false;
   const auto depth = reader.get(f, "depth");
   const Instance* bottom = reader.ref(f, "bottom_condition", "");
   if (!depth || !depth->is_omitted() || !reader.is(bottom, "through_bottom_condition"))
-    return std::nullopt;
+    return false;
   const Instance* workpiece = reader.ref(f, "its_workpiece", "workpiece");
   const Instance* block = workpiece ? bounding_block(reader, *workpiece) : nullptr;
-  const auto fail = [&](const std::string& why) -> std::optional<double> {
+  const auto fail = [&](const std::string& why) {
     reader.report().add_finding(diag::Code::InteropNoWorkpieceSize, reader.subject(f),
                                 reader.name(f) + " has no depth and goes through its workpiece " +
                                     reader.name(workpiece) + ", but " + why +
                                     ", so the depth of the hole is unknown");
-    return std::nullopt;
+    return true;
   };
   if (block == nullptr) return fail("the workpiece has no bounding BLOCK");
   const auto box = reader.placement(*block, "position");
@@ -87,10 +88,11 @@ std::optional<double> implicit_through_depth(Reader& reader) {
   reader.report().add_finding(
       diag::Code::InteropThroughDepth, reader.subject(f),
       reader.name(f) + ": depth taken as " + fmt(*leave) +
-          " mm (its depth is '$' and its bottom THROUGH_BOTTOM_CONDITION: it goes through " +
+          " mm (its depth is unset and its bottom THROUGH_BOTTOM_CONDITION: it goes through " +
           reader.name(workpiece) + ", whose bounding " + reader.name(block) + " ends " +
           fmt(*leave) + " mm below the hole's top)");
-  return leave;
+  out = leave;
+  return true;
 }
 
 void note_implicit_cutting_depth(Reader& reader, double bottom_z) {
@@ -98,7 +100,7 @@ void note_implicit_cutting_depth(Reader& reader, double bottom_z) {
   const Instance& op = reader.operation();
   reader.report().add_finding(diag::Code::InteropCuttingDepth, reader.subject(op),
                               reader.name(op) + ": cutting_depth taken as " + fmt(-bottom_z) +
-                                  " mm (it is '$': the depth of " + reader.name(reader.feature()) +
+                                  " mm (unset: the depth of " + reader.name(reader.feature()) +
                                   " and its bottom)");
 }
 

@@ -27,9 +27,10 @@ class Reader;
 [[nodiscard]] std::optional<double> exit_distance(const detail::Frame& box, detail::Vec3 size,
                                                   detail::Vec3 from, detail::Vec3 direction);
 
-// The depth of the feature being read when its depth plane is '$' (INTEROP-003 or -008); nullopt
-// in the strict mode, or when the feature is not a through hole (the caller reports it).
-[[nodiscard]] std::optional<double> implicit_through_depth(Reader& reader);
+// The depth of the feature being read when its depth plane is '$': true when it is a through
+// hole in the tolerant mode, with `depth` set (INTEROP-003) or, after an INTEROP-008, unset;
+// false otherwise (the caller reports the missing depth).
+[[nodiscard]] bool implicit_through_depth(Reader& reader, std::optional<double>& depth);
 
 // INTEROP-004 when the operation leaves cutting_depth unset (tolerant mode): the tool's tip
 // goes to `bottom_z` (negative, below the top) of the hole.

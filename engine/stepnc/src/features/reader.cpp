@@ -165,7 +165,8 @@ std::optional<double> Reader::read_depth() {
   const Instance& f = feature();
   const Instance* plane = ref(f, "depth", "elementary_surface");
   if (plane == nullptr) {
-    if (auto through = implicit_through_depth(*this)) return through;  // implicit.hpp
+    // A through hole's depth, when the tolerant mode takes it from the workpiece (implicit.hpp).
+    if (std::optional<double> through; implicit_through_depth(*this, through)) return through;
     report_.bad(subject(f), name(f) + " has no depth plane");
     return std::nullopt;
   }

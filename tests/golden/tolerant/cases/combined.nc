@@ -12,6 +12,7 @@ F1200.
 S1200
 M3
 (ASSUMED #70  CUTTING_TOOL : the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL  no spindle orientation   its tool body says what kind of tool it is  tool #70  CUTTING_TOOL     of diameter 50 mm)
+(ASSUMED #90  MILLING_MACHINE_FUNCTIONS  attribute coolant is unset, which ISO 14649 does not allow: it is left as it was  off at the start of the program)
 G0 X10. Y-30. Z20.
 G0 X10. Y-30. Z7.
 G1 X10. Y-30. Z0.
@@ -32,6 +33,7 @@ F600.
 S3000
 M3
 (ASSUMED #71  CUTTING_TOOL : the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL  no spindle orientation   its tool body says what kind of tool it is  tool #71  CUTTING_TOOL   END MILL 10  of diameter 10 mm)
+(ASSUMED #90  MILLING_MACHINE_FUNCTIONS  attribute coolant is unset, which ISO 14649 does not allow: it is left as it was  off at the start of the program)
 G0 X38. Y40. Z20.
 G0 X38. Y40. Z2.
 G1 X62. Y40. Z-4.
@@ -99,6 +101,7 @@ F300.
 S1800
 M3
 (ASSUMED #72  CUTTING_TOOL : the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL  no spindle orientation   its tool body says what kind of tool it is  tool #72  CUTTING_TOOL   DRILL 10  of diameter 10 mm)
+(ASSUMED #90  MILLING_MACHINE_FUNCTIONS  attribute coolant is unset, which ISO 14649 does not allow: it is left as it was  off at the start of the program)
 G0 X20. Y20. Z20.
 G0 X20. Y20. Z5.
 G1 X20. Y20. Z-15.
@@ -116,8 +119,8 @@ combined.stp:33:1: warning: EXP-062: #90 MILLING_MACHINE_FUNCTIONS.through_spind
 combined.stp:33:1: warning: EXP-062: #90 MILLING_MACHINE_FUNCTIONS.chip_removal: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:44:1: warning: EXP-062: #901 BLOCK.name: '$' but the attribute is not OPTIONAL (tolerated; an error follows where machining needs the value; --strict reports each instance as an error)
 combined.stp:26:1: note: INTEROP-002: #70 (CUTTING_TOOL): the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL (no spindle orientation); its tool body says what kind of tool it is; tool #70 (CUTTING_TOOL) '' of diameter 50 mm
-combined.stp:33:1: note: STEPNC-016: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is '$', which ISO 14649 does not allow: it is left as it was (off at the start of the program)
+combined.stp:33:1: note: INTEROP-009: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is unset, which ISO 14649 does not allow: it is left as it was (off at the start of the program)
 combined.stp:27:1: note: INTEROP-002: #71 (CUTTING_TOOL): the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL (no spindle orientation); its tool body says what kind of tool it is; tool #71 (CUTTING_TOOL) 'END MILL 10' of diameter 10 mm
-combined.stp:33:1: note: STEPNC-016: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is '$', which ISO 14649 does not allow: it is left as it was (off at the start of the program)
+combined.stp:33:1: note: INTEROP-009: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is unset, which ISO 14649 does not allow: it is left as it was (off at the start of the program)
 combined.stp:28:1: note: INTEROP-002: #72 (CUTTING_TOOL): the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL (no spindle orientation); its tool body says what kind of tool it is; tool #72 (CUTTING_TOOL) 'DRILL 10' of diameter 10 mm
-combined.stp:33:1: note: STEPNC-016: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is '$', which ISO 14649 does not allow: it is left as it was (off at the start of the program)
+combined.stp:33:1: note: INTEROP-009: #90 (MILLING_MACHINE_FUNCTIONS) attribute coolant is unset, which ISO 14649 does not allow: it is left as it was (off at the start of the program)

@@ -101,8 +101,8 @@ M3
 (ASSUMED #213  CUTTING_TOOL : the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL  no spindle orientation   its tool body says what kind of tool it is  tool #213  CUTTING_TOOL     of diameter 8 mm)
 (ASSUMED #209  TOOL_DIMENSION : a generic TOOL_DIMENSION read as a MILLING_TOOL_DIMENSION  diameter, tip half angle, circumference angle, cutting edge length, edge radius, edge centre   tool #213  CUTTING_TOOL     of diameter 8 mm)
 (ASSUMED #214  MILLING_TECHNOLOGY : spindle -1200 read as rpm  1200 rpm , not rev/s: 72000 rpm on a tool of diameter 8 mm would cut at 30.1593 m/s)
-(ASSUMED #222  ROUND_HOLE : depth taken as 20 mm  its depth is     and its bottom THROUGH_BOTTOM_CONDITION: it goes through #4  WORKPIECE , whose bounding #5  BLOCK  ends 20 mm below the hole s top)
-(ASSUMED #224  DRILLING : cutting_depth taken as 23.4034 mm  it is    : the depth of #222  ROUND_HOLE  and its bottom)
+(ASSUMED #222  ROUND_HOLE : depth taken as 20 mm  its depth is unset and its bottom THROUGH_BOTTOM_CONDITION: it goes through #4  WORKPIECE , whose bounding #5  BLOCK  ends 20 mm below the hole s top)
+(ASSUMED #224  DRILLING : cutting_depth taken as 23.4034 mm  unset: the depth of #222  ROUND_HOLE  and its bottom)
 G0 X85. Y12. Z50.
 F240.
 G0 X85. Y12. Z50.
@@ -110,7 +110,7 @@ G0 X85. Y12. Z3.
 G1 X85. Y12. Z-23.4034
 G0 X85. Y12. Z50.
 (WS #13 DRILL BLIND)
-(ASSUMED #234  DRILLING : cutting_depth taken as 14.4034 mm  it is    : the depth of #232  ROUND_HOLE  and its bottom)
+(ASSUMED #234  DRILLING : cutting_depth taken as 14.4034 mm  unset: the depth of #232  ROUND_HOLE  and its bottom)
 G0 X85. Y65. Z50.
 F240.
 G0 X85. Y65. Z50.
@@ -137,6 +137,6 @@ interop-all.stp:57:1: note: INTEROP-005: #156 (POLYLINE) of #157 (GENERAL_CLOSED
 interop-all.stp:33:1: note: INTEROP-002: #213 (CUTTING_TOOL): the ABSTRACT CUTTING_TOOL read as a MILLING_CUTTING_TOOL (no spindle orientation); its tool body says what kind of tool it is; tool #213 (CUTTING_TOOL) '' of diameter 8 mm
 interop-all.stp:30:1: note: INTEROP-002: #209 (TOOL_DIMENSION): a generic TOOL_DIMENSION read as a MILLING_TOOL_DIMENSION (diameter, tip half angle, circumference angle, cutting edge length, edge radius, edge centre); tool #213 (CUTTING_TOOL) '' of diameter 8 mm
 interop-all.stp:35:1: note: INTEROP-006: #214 (MILLING_TECHNOLOGY): spindle -1200 read as rpm (1200 rpm), not rev/s: 72000 rpm on a tool of diameter 8 mm would cut at 30.1593 m/s
-interop-all.stp:74:1: note: INTEROP-003: #222 (ROUND_HOLE): depth taken as 20 mm (its depth is '$' and its bottom THROUGH_BOTTOM_CONDITION: it goes through #4 (WORKPIECE), whose bounding #5 (BLOCK) ends 20 mm below the hole's top)
-interop-all.stp:75:1: note: INTEROP-004: #224 (DRILLING): cutting_depth taken as 23.4034 mm (it is '$': the depth of #222 (ROUND_HOLE) and its bottom)
-interop-all.stp:85:1: note: INTEROP-004: #234 (DRILLING): cutting_depth taken as 14.4034 mm (it is '$': the depth of #232 (ROUND_HOLE) and its bottom)
+interop-all.stp:74:1: note: INTEROP-003: #222 (ROUND_HOLE): depth taken as 20 mm (its depth is unset and its bottom THROUGH_BOTTOM_CONDITION: it goes through #4 (WORKPIECE), whose bounding #5 (BLOCK) ends 20 mm below the hole's top)
+interop-all.stp:75:1: note: INTEROP-004: #224 (DRILLING): cutting_depth taken as 23.4034 mm (unset: the depth of #222 (ROUND_HOLE) and its bottom)
+interop-all.stp:85:1: note: INTEROP-004: #234 (DRILLING): cutting_depth taken as 14.4034 mm (unset: the depth of #232 (ROUND_HOLE) and its bottom)

@@ -49,7 +49,7 @@ F240.
 S1000
 M3
 (ASSUMED #214  MILLING_TECHNOLOGY : spindle -1000 read as rpm  1000 rpm , not rev/s: 60000 rpm on a tool of diameter 8 mm would cut at 25.1327 m/s)
-(ASSUMED #234  DRILLING : cutting_depth taken as 14.4034 mm  it is    : the depth of #232  ROUND_HOLE  and its bottom)
+(ASSUMED #234  DRILLING : cutting_depth taken as 14.4034 mm  unset: the depth of #232  ROUND_HOLE  and its bottom)
 G0 X85. Y65. Z50.
 F240.
 G0 X85. Y65. Z50.
@@ -64,4 +64,4 @@ units-rpm.stp:34:1: note: INTEROP-006: #113 (MILLING_TECHNOLOGY): spindle -2400 
 units-rpm.stp:34:1: note: INTEROP-006: #113 (MILLING_TECHNOLOGY): cutspeed 75.4 read as m/min (1.2567 m/s), not m/s: at 2400 rpm on a tool of diameter 10 mm the cutting speed is 1.2567 m/s
 units-rpm.stp:34:1: note: INTEROP-006: #113 (MILLING_TECHNOLOGY): feedrate 480 read as mm/min (480 mm/min), not m/s (28800000 mm/min): feedrate_per_tooth 0.1 mm × 2 teeth × 2400 rpm = 480 mm/min
 units-rpm.stp:35:1: note: INTEROP-006: #214 (MILLING_TECHNOLOGY): spindle -1000 read as rpm (1000 rpm), not rev/s: 60000 rpm on a tool of diameter 8 mm would cut at 25.1327 m/s
-units-rpm.stp:59:1: note: INTEROP-004: #234 (DRILLING): cutting_depth taken as 14.4034 mm (it is '$': the depth of #232 (ROUND_HOLE) and its bottom)
+units-rpm.stp:59:1: note: INTEROP-004: #234 (DRILLING): cutting_depth taken as 14.4034 mm (unset: the depth of #232 (ROUND_HOLE) and its bottom)
