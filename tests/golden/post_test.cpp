@@ -63,7 +63,8 @@ TEST(GoldenPost, TraceCases) {
 
 // The five-axis profiles (profile.json kinematics, docs/kinematics.md): the trace cases and
 // the five-axis case with its tool-axis curve.
-const char* const kFiveAxisProfiles[] = {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"};
+const char* const kFiveAxisProfiles[] = {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax",
+                                         "heidenhain-tnc640-5ax"};
 
 TEST(GoldenPost, FiveAxisProfiles) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";

@@ -35,8 +35,8 @@ class ProfileTest : public ::testing::Test {
 };
 
 TEST_F(ProfileTest, BuiltInProfilesParse) {
-  for (const char* id :
-       {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
+  for (const char* id : {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax",
+                         "siemens-840d-5ax", "heidenhain-tnc640-5ax"}) {
     std::vector<diag::Diagnostic> d;
     auto p = parse_profile(test::read_file(stylesheets() / id / "profile.json"), d);
     ASSERT_TRUE(p) << id << ": " << (d.empty() ? "" : d[0].message);
