@@ -18,7 +18,9 @@
   <xsl:param name="rotary_axes" select="'ABC'"/>
   <xsl:param name="tcp" select="'no'"/>
   <!-- 'yes' when every block starts with N and a block number: the profile's
-       block_numbers.numbered (profile.json), which ext:block-line() follows. -->
+       block_numbers.numbered (profile.json). ext:block-line() follows it, or the
+       block_numbers="on|off" output option of the enclosing <workingstep> where one is set
+       (ext:block-numbering() called at a node inside a workingstep says which). -->
   <xsl:variable name="numbered" select="ext:block-numbering()"/>
 
   <xsl:template match="/chunk"><xsl:apply-templates select="*"/></xsl:template>

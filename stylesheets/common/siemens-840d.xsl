@@ -81,7 +81,7 @@
           <xsl:with-param name="text" select="concat($g, $axes, $centre, $turns)"/>
         </xsl:call-template>
       </xsl:when>
-      <!-- "xyz", "arc-ijk" and "block" with $numbered = 'yes', inline (see ncpost-common.xsl). -->
+      <!-- "xyz", "arc-ijk" and "block", inline (see ncpost-common.xsl). -->
       <xsl:otherwise>
         <xsl:variable name="x" select="number(@x)"/>
         <xsl:variable name="y" select="number(@y)"/>
@@ -100,7 +100,7 @@
             substring(concat(' J', ext:format(ext:arc-j(ext:setup-y($sx, $sy, $sz), ext:setup-y($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 2)),
             substring(concat(' K', ext:format(ext:arc-k(ext:setup-z($sx, $sy, $sz), ext:setup-z($cx, $cy, $cz)), 'length')), 1, 1000 * ($pl != 0)),
             $turns)"/>
-        <xsl:value-of select="ext:line(concat('N', ext:block(), ' ', $text))"/>
+        <xsl:value-of select="ext:block-line($text)"/>
         <xsl:text>&#10;</xsl:text>
       </xsl:otherwise>
     </xsl:choose>

@@ -35,7 +35,7 @@
         <xsl:call-template name="block"><xsl:with-param name="text" select="concat($g, $axes)"/></xsl:call-template>
         <xsl:value-of select="ext:moved-to(@x, @y, @z)"/>
       </xsl:when>
-      <!-- "block" with $numbered = 'yes' and "xyz", inline (see ncpost-common.xsl). -->
+      <!-- "block" and "xyz", inline (see ncpost-common.xsl). -->
       <xsl:otherwise>
         <xsl:variable name="x" select="number(@x)"/>
         <xsl:variable name="y" select="number(@y)"/>
@@ -43,7 +43,7 @@
         <xsl:variable name="axes" select="concat(' X', ext:format(ext:setup-x($x, $y, $z), 'length'),
                        ' Y', ext:format(ext:setup-y($x, $y, $z), 'length'),
                        ' Z', ext:format(ext:setup-z($x, $y, $z), 'length'))"/>
-        <xsl:value-of select="concat(ext:line(concat('N', ext:block(), ' ', $g, $axes)), '&#10;', ext:moved-to($x, $y, $z))"/>
+        <xsl:value-of select="concat(ext:block-line(concat($g, $axes)), '&#10;', ext:moved-to($x, $y, $z))"/>
       </xsl:otherwise>
     </xsl:choose>
   </xsl:template>

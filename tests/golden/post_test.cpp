@@ -11,6 +11,7 @@
 
 #include "corpus.hpp"
 #include "golden.hpp"
+#include "ncpost/cls/reader.hpp"
 #include "ncpost/express/registry.hpp"
 #include "ncpost/pipeline/load.hpp"
 #include "ncpost/profile/profile.hpp"
@@ -63,7 +64,8 @@ TEST(GoldenPost, TraceCases) {
 
 // The five-axis profiles (profile.json kinematics, docs/kinematics.md): the trace cases and
 // the five-axis case with its tool-axis curve.
-const char* const kFiveAxisProfiles[] = {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"};
+const char* const kFiveAxisProfiles[] = {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax",
+                                         "heidenhain-tnc640-5ax"};
 
 TEST(GoldenPost, FiveAxisProfiles) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
@@ -85,6 +87,53 @@ TEST(GoldenPost, NistEx1E) {
     expect_golden(
         post(corpus / "p21" / "nist_toolkit_ex1E.stp", profile_id),
         test::source_dir() / "tests" / "golden" / "post" / profile_id / "nist_toolkit_ex1E.nc");
+  }
+}
+
+// A CL file posted with `profile_id` (no checks: the built-in profiles have none).
+std::string post_cl(const fs::path& file, const std::string& profile_id) {
+  xslt::initialise();
+  static profile::ProfileStore store(test::source_dir() / "stylesheets");
+  std::vector<diag::FileDiagnostic> diagnostics;
+  const auto profile = store.load(profile_id, diagnostics);
+  EXPECT_TRUE(profile) << (diagnostics.empty() ? "" : diag::format(diagnostics[0]));
+  if (!profile) return {};
+  std::string text;
+  Renderer renderer(
+      *profile, [&](std::string_view piece) { text += piece; }, {}, file.filename().string());
+  const auto result = cls::read(test::read_file(file), renderer);
+  renderer.finish();
+  EXPECT_TRUE(result.ok()) << file;
+  EXPECT_FALSE(renderer.failed());
+  // Warnings are part of five-axis posting (KIN-005: a rotary axis turning far in one feed).
+  for (const auto& d : renderer.diagnostics())
+    if (d.diagnostic.severity == diag::Severity::Error) ADD_FAILURE() << diag::format(d);
+  return text;
+}
+
+// Every CL file of the corpus posted for LinuxCNC (tests/interop runs the same posts through
+// rs274, motion for motion): tests/golden/post/linuxcnc/cls/<file>.ngc.
+TEST(GoldenPost, ClCorpus) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(corpus / "cls")) {
+    if (!entry.is_regular_file()) continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    ++files;
+    expect_golden(post_cl(entry.path(), "linuxcnc"),
+                  test::source_dir() / "tests" / "golden" / "post" / "linuxcnc" / "cls" /
+                      (entry.path().filename().string() + ".ngc"));
+  }
+  EXPECT_GE(files, 4u);
+}
+
+// The own five-axis CL program (tool axes on GOTO/) through every five-axis profile.
+TEST(GoldenPost, ClFiveAxis) {
+  const fs::path file = test::source_dir() / "tests" / "golden" / "cls" / "cases" / "five-axis.cls";
+  for (const char* profile_id : kFiveAxisProfiles) {
+    SCOPED_TRACE(profile_id);
+    expect_golden(post_cl(file, profile_id), test::source_dir() / "tests" / "golden" / "post" /
+                                                 profile_id / "cls-five-axis.nc");
   }
 }
 

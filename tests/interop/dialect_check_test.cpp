@@ -22,6 +22,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "corpus.hpp"
@@ -524,7 +525,9 @@ class KlartextReader {
     if (kind == "CP") return helix(w);
     // TOOL CALL .. F sets the feed like a positioning block does.
     if (kind == "TOOL" && w.size() > 1 && w[1] == "CALL") return (void)feed_words(w);
-    if (kind == "BEGIN" || kind == "END" || kind == "TOOL" || kind == "STOP") return;
+    // FUNCTION TCPM / FUNCTION RESET TCPM: the tip is programmed (read_back_options).
+    if (kind == "BEGIN" || kind == "END" || kind == "TOOL" || kind == "STOP" || kind == "FUNCTION")
+      return;
     ADD_FAILURE() << "block not read: " << b;
   }
 
@@ -551,13 +554,20 @@ class KlartextReader {
       if (x[0] == 'Y') to.y = number(x, 1), axes = true;
       if (x[0] == 'Z') to.z = number(x, 1), axes = true;
       if (x[0] == 'I') ADD_FAILURE() << "incremental L not read: " << x;
+      // Rotary axes (heidenhain-tnc640-5ax), modal like the others.
+      if (x[0] == 'A' || x[0] == 'B' || x[0] == 'C') {
+        (x[0] == 'A' ? rotary_.a : x[0] == 'B' ? rotary_.b : rotary_.c) = number(x, 1);
+        has_rotary_ = axes = true;
+      }
     }
     const bool rapid = feed_words(w);
     if (axes) {
+      const std::optional<canon::Rotary> rotary =
+          has_rotary_ ? std::optional<canon::Rotary>(rotary_) : std::nullopt;
       if (rapid)
-        out_.call(canon::StraightTraverse{{to.x, to.y, to.z}});
+        out_.call(canon::StraightTraverse{{to.x, to.y, to.z, rotary}});
       else
-        out_.call(canon::StraightFeed{{to.x, to.y, to.z}});
+        out_.call(canon::StraightFeed{{to.x, to.y, to.z, rotary}});
       pos_ = to;
     }
     for (const auto& x : w)
@@ -680,6 +690,8 @@ class KlartextReader {
   static constexpr double kFmax = 1e30;
   Motions out_;
   canon::Point pos_{};
+  canon::Rotary rotary_{};
+  bool has_rotary_ = false;
   double feed_ = 0;
   double cc_x_ = 0, cc_y_ = 0;
   int cycle_ = 0;
@@ -708,7 +720,7 @@ GDialect g_dialect(const std::string& profile_id, const std::vector<canon::Call>
 
 std::vector<Motion> read_back(const std::string& profile_id, const std::string& text,
                               const MotionOptions& options, const std::vector<canon::Call>& calls) {
-  if (profile_id == "heidenhain-tnc640") return KlartextReader(options).read(text);
+  if (profile_id.rfind("heidenhain-tnc640", 0) == 0) return KlartextReader(options).read(text);
   return GCodeReader(g_dialect(profile_id, calls), options).read(text);
 }
 
@@ -725,7 +737,9 @@ const char* const kDialects[] = {
     "siemens-840d", "heidenhain-tnc640", "okuma-osp",     "mitsubishi-m80",
     "hnc-21",       "linuxcnc-5ax",      "fanuc-30i-5ax", "siemens-840d-5ax"};
 // The five-axis profiles (profile.json kinematics): one of each kinematics type.
-const char* const kFiveAxis[] = {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"};
+// heidenhain-tnc640-5ax: a second table-table machine, in Klartext with FUNCTION TCPM.
+const char* const kFiveAxis[] = {"linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax",
+                                 "heidenhain-tnc640-5ax"};
 
 fs::path trace_case(const char* name) {
   return test::source_dir() / "tests" / "golden" / "trace" / "cases" / (std::string(name) + ".stp");
@@ -1001,16 +1015,19 @@ TEST(DialectCheck, FiveAxisStepNc) {
 // The tool axes really are compared: the tilt of the first feed moved by 0.001 degrees (a tool
 // axis off by about 1.7e-5) is reported, in every five-axis dialect.
 TEST(DialectCheck, CatchesAWrongRotaryAngle) {
-  const std::pair<const char*, char> tilt_word[] = {
-      {"linuxcnc-5ax", 'A'}, {"fanuc-30i-5ax", 'A'}, {"siemens-840d-5ax", 'B'}};
+  const std::tuple<const char*, char, const char*> tilt_word[] = {
+      {"linuxcnc-5ax", 'A', "G1 X"},
+      {"fanuc-30i-5ax", 'A', "G1 X"},
+      {"siemens-840d-5ax", 'B', "G1 X"},
+      {"heidenhain-tnc640-5ax", 'A', " L X"}};
   const auto calls = five_axis_program();
-  for (const auto& [id, letter] : tilt_word) {
+  for (const auto& [id, letter, marker] : tilt_word) {
     SCOPED_TRACE(id);
     const auto p = load_profile(id);
     if (!p) continue;
     std::vector<diag::FileDiagnostic> diagnostics;
     const std::string text = render::render_program(*p, calls, diagnostics);
-    const std::string wrong = perturb(text, "G1 X", letter, 0.001);
+    const std::string wrong = perturb(text, marker, letter, 0.001, " FMAX");
     ASSERT_NE(wrong, text);
     EXPECT_GT(failures_of([&] { (void)check_text(id, p->profile, calls, wrong); }), 0) << wrong;
   }

@@ -84,6 +84,20 @@ test("workingsteps number the segments inside them; cycles are one segment", () 
   assert.deepEqual(segments[0].end, [5, 6, 10]);
 });
 
+test("a workingstep marker with output options keeps its name and gives the options", () => {
+  const { workingsteps } = read([
+    "    1 WORKINGSTEP_BEGIN(#4, CL_OPERATION, \"ROUGH_NONUM, \\\"x\\\"\", block_numbers=off, subprogram=on)",
+    "    2 WORKINGSTEP_BEGIN(#9, CL_OPERATION, \"PLAIN\")",
+  ]);
+  assert.equal(workingsteps.length, 2);
+  assert.equal(workingsteps[0].id, 4);
+  assert.equal(workingsteps[0].type, "CL_OPERATION");
+  assert.equal(workingsteps[0].name, "ROUGH_NONUM, \\\"x\\\"");
+  assert.deepEqual(workingsteps[0].options, { block_numbers: "off", subprogram: "on" });
+  assert.equal(workingsteps[1].name, "PLAIN");
+  assert.deepEqual(workingsteps[1].options, {});
+});
+
 test("the line splitter joins lines across chunks and drops CR", () => {
   const lines = [];
   const splitter = new LineSplitter((l) => lines.push(l));

@@ -12,7 +12,19 @@ export const MOTION_CALLS = new Set([
 ]);
 
 const LINE = /^\s*(\d+) ([A-Z0-9_]+)\((.*)\)\s*$/;
-const MARKER = /^#(\d+|\$), ([^,]*), "(.*)"$/;
+// #id, TYPE, "name" and, on a WORKINGSTEP_BEGIN, the output options the shop's operation-name
+// rules selected (", block_numbers=off, subprogram=on"; docs/canon.md).
+const MARKER = /^#(\d+|\$), ([^,]*), "(.*)"((?:, [a-z_]+=[a-z]+)*)$/;
+
+// ", block_numbers=off, subprogram=on" → {block_numbers: "off", subprogram: "on"}.
+function markerOptions(text) {
+  const options = {};
+  for (const pair of text.split(", ").filter((p) => p !== "")) {
+    const [key, value] = pair.split("=");
+    options[key] = value;
+  }
+  return options;
+}
 
 // How finely arcs are drawn: at most this angle per piece, and at most this many pieces.
 export const ARC_STEP_RADIANS = Math.PI / 36;
@@ -26,7 +38,7 @@ export class TraceReader {
   // emit(piece) receives each line piece of a segment: {x0,y0,z0,x1,y1,z1,rapid}.
   // onSegment(segment) once per motion call after its pieces:
   //   {index, rapid, workingstep, traceLine, end: [x,y,z]}.
-  // onWorkingstep(ws) for each WORKINGSTEP_BEGIN: {index, id, type, name, traceLine}.
+  // onWorkingstep(ws) for each WORKINGSTEP_BEGIN: {index, id, type, name, options, traceLine}.
   constructor({ emit, onSegment, onWorkingstep }) {
     this.emit = emit;
     this.onSegment = onSegment;
@@ -93,6 +105,7 @@ export class TraceReader {
         id: marker && marker[1] !== "$" ? Number(marker[1]) : 0,
         type: marker ? marker[2] : "",
         name: marker ? marker[3] : args,
+        options: marker ? markerOptions(marker[4]) : {},
         traceLine,
       });
       return;

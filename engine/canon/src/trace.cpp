@@ -125,7 +125,22 @@ class Printer {
     quoted(c.text);
     close();
   }
-  void operator()(const Begin& c) { marker(c.scope, "_BEGIN", c.entity); }
+  void operator()(const Begin& c) {
+    marker(c.scope, "_BEGIN", c.entity);
+    // WORKINGSTEP_BEGIN(#10, MACHINING_WORKINGSTEP, "name", block_numbers=off): the output
+    // options after the name, only those set.
+    if (c.options.empty()) return;
+    out_.pop_back();  // the marker's ')'
+    for (const auto& entry : kOutputOptions) {
+      const Switch s = c.options.get(entry.option);
+      if (s == Switch::Unset) continue;
+      separate();
+      out_ += entry.name;
+      out_ += '=';
+      out_ += switch_name(s);
+    }
+    close();
+  }
   void operator()(const End& c) { marker(c.scope, "_END", c.entity); }
   void operator()(const Cycle& c) {
     open(name(c.kind));

@@ -211,11 +211,15 @@ class ElementWriter {
   std::string_view name_;
 };
 
-void open_workingstep(XmlEvents& out, const Entity& e, bool continued) {
+void open_workingstep(XmlEvents& out, const Begin& b, bool continued) {
   out.text("  ");
   out.start_element("workingstep");
-  ElementWriter(out, 0).entity(e);
+  ElementWriter(out, 0).entity(b.entity);
   if (continued) out.attribute("continued", "true");
+  // The output options (output_options.hpp) as block_numbers="off" etc., only those set.
+  for (const auto& entry : kOutputOptions)
+    if (const Switch s = b.options.get(entry.option); s != Switch::Unset)
+      out.attribute(entry.name, switch_name(s));
   out.text("\n");
 }
 
@@ -328,8 +332,8 @@ void XmlChunkWriter::append(XmlEvents& out, std::span<const Call> calls, MotionR
     if (const auto* b = std::get_if<Begin>(&call); b != nullptr && b->scope == Scope::Workingstep) {
       // Workingsteps do not nest; a second begin closes the first so the XML stays well-formed.
       if (open_here_) close_workingstep(out);
-      open_workingstep(out, b->entity, false);
-      open_workingstep_ = b->entity;
+      open_workingstep(out, *b, false);
+      open_workingstep_ = *b;
       open_here_ = true;
       continue;
     }

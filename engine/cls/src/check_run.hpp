@@ -23,7 +23,9 @@ class CheckRun {
   CheckRun(const CheckConfig& config, Report report);
 
   // A new operation (TOOL PATH/ or an APT tool load) at `line`; `name` may be empty.
-  void operation(std::string_view name, std::uint32_t line);
+  // Returns the output options its operation-name rules select (the first rule setting an
+  // option decides it), for the workingstep's Begin marker.
+  [[nodiscard]] canon::OutputOptions operation(std::string_view name, std::uint32_t line);
   // The tool the operation names (TOOL PATH/...,TOOL,name).
   void tool_name(std::string_view name, std::uint32_t line, std::uint32_t column);
   // A TLDATA/ or CUTTER/ record (`word`) with what it says about the tool.

@@ -221,8 +221,13 @@ void read_rules(Validator& v, const json& node, CheckConfig& config, const json*
       } else {
         for (const auto& [key, value] : options.items()) {
           if (key.empty() || key.size() > 64) v.fail(here + "/options/" + key, "1..64 characters");
-          if (auto s = v.string(value, here + "/options/" + key, 0, 200))
+          if (auto s = v.string(value, here + "/options/" + key, 0, 200)) {
+            // Known options and values only (profile loading says the same, PROFILE-010).
+            if (const std::string problem = canon::set_output_option(rule.output, key, *s);
+                !problem.empty())
+              v.fail(here + "/options/" + key, problem);
             rule.options.emplace_back(key, *s);
+          }
         }
       }
     }
@@ -316,8 +321,9 @@ void CheckRun::select(const std::pair<std::string, std::string>& option) {
   selected_.push_back(option);
 }
 
-void CheckRun::operation(std::string_view name, std::uint32_t line) {
+canon::OutputOptions CheckRun::operation(std::string_view name, std::uint32_t line) {
   end_operation();
+  canon::OutputOptions output;
   operation_.assign(name);
   operation_line_ = line;
   head_ = config_.default_head.empty() ? nullptr : config_.head(config_.default_head);
@@ -331,7 +337,9 @@ void CheckRun::operation(std::string_view name, std::uint32_t line) {
       head_chosen = true;
     }
     for (const auto& option : rule.options) select(option);
+    canon::add_unset(output, rule.output);
   }
+  return output;
 }
 
 void CheckRun::tool_name(std::string_view name, std::uint32_t line, std::uint32_t column) {

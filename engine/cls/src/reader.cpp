@@ -991,8 +991,9 @@ class Reader::Impl {
     dangling_circle();
     close_operation();
     operation_ = canon::Entity{line, "CL_OPERATION", name};
-    emit(canon::Begin{canon::Scope::Workingstep, *operation_});
-    if (checks_) checks_->operation(name, line);
+    canon::OutputOptions options;
+    if (checks_) options = checks_->operation(name, line);
+    emit(canon::Begin{canon::Scope::Workingstep, *operation_, options});
     tool_data_ = {};
   }
 

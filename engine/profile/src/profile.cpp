@@ -21,9 +21,10 @@ class Checker {
  public:
   explicit Checker(std::vector<diag::Diagnostic>& out) : out_(out) {}
 
-  void fail(const std::string& path, const std::string& message) {
+  void fail(const std::string& path, const std::string& message,
+            diag::Code code = diag::Code::ProfileInvalid) {
     ok_ = false;
-    out_.push_back(diag::make(diag::Code::ProfileInvalid, 0, 0, path + ": " + message));
+    out_.push_back(diag::make(code, 0, 0, path + ": " + message));
   }
   [[nodiscard]] bool ok() const noexcept { return ok_; }
 
@@ -304,6 +305,55 @@ std::optional<Kinematics> read_kinematics(Checker& c, const json& doc) {
   return kin;
 }
 
+// capabilities.output_options: the output options the stylesheet honours, each once.
+void read_output_options(Checker& c, const json& cap, Profile& p) {
+  const auto it = cap.find("output_options");
+  if (it == cap.end()) return;
+  if (!it->is_array()) {
+    c.fail("/capabilities/output_options", "must be an array of output option names");
+    return;
+  }
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const std::string here = "/capabilities/output_options/" + std::to_string(i);
+    canon::OutputOption option{};
+    const json& v = (*it)[i];
+    if (!v.is_string() || !canon::find_output_option(v.get<std::string>(), option)) {
+      c.fail(here, "must be block_numbers or subprogram");
+    } else if (p.honours(option)) {
+      c.fail(here, "is named twice");
+    } else {
+      p.output_options.push_back(option);
+    }
+  }
+}
+
+// The output options of checks.operation_rules[].options must be ones the renderer knows
+// (canon/output_options.hpp), with the values it knows: PROFILE-010 when a profile is loaded
+// or uploaded, not only when a CL program is posted. The rest of the section is cls's to check
+// (CLS-100 at post time).
+void check_rule_options(Checker& c, const json& checks) {
+  const auto rules = checks.find("operation_rules");
+  if (rules == checks.end() || !rules->is_array()) return;
+  for (std::size_t i = 0; i < rules->size(); ++i) {
+    const json& rule = (*rules)[i];
+    if (!rule.is_object()) continue;
+    const auto options = rule.find("options");
+    if (options == rule.end() || !options->is_object()) continue;
+    const std::string match =
+        rule.contains("match") && rule["match"].is_string() ? rule["match"].get<std::string>() : "";
+    for (const auto& [name, value] : options->items()) {
+      canon::OutputOptions scratch;
+      const std::string problem =
+          value.is_string() ? canon::set_output_option(scratch, name, value.get<std::string>())
+                            : "output option '" + name + "' must be the string 'on' or 'off'";
+      if (!problem.empty())
+        c.fail("/checks/operation_rules/" + std::to_string(i) + "/options/" + name,
+               "the rule matching '" + match + "' selects an " + problem,
+               diag::Code::ProfileOutputOption);
+    }
+  }
+}
+
 }  // namespace
 
 bool valid_id(std::string_view id) noexcept {
@@ -409,9 +459,10 @@ std::optional<Profile> parse_profile(std::string_view text,
   }
   if (auto v = c.enumeration(doc, "", "units", {"mm", "inch"}))
     p.units = *v == "mm" ? xslt::Units::Millimetre : xslt::Units::Inch;
-  if (const json* cap = c.object(doc, "", "capabilities", true,
-                                 {"arcs", "helical", "canned_cycles", "nurbs", "chord_tolerance"},
-                                 {"arcs", "helical", "canned_cycles", "nurbs"})) {
+  if (const json* cap = c.object(
+          doc, "", "capabilities", true,
+          {"arcs", "helical", "canned_cycles", "nurbs", "chord_tolerance", "output_options"},
+          {"arcs", "helical", "canned_cycles", "nurbs"})) {
     if (auto v = c.enumeration(*cap, "/capabilities", "arcs", {"ijk", "r", "none"}))
       p.arcs = *v == "ijk" ? Arcs::Ijk : *v == "r" ? Arcs::R : Arcs::None;
     if (auto v = c.boolean(*cap, "/capabilities", "helical")) p.helical = *v;
@@ -421,6 +472,7 @@ std::optional<Profile> parse_profile(std::string_view text,
       p.nurbs = *v == "native" ? NurbsMode::Native : NurbsMode::Linearize;
     if (auto v = c.number(*cap, "/capabilities", "chord_tolerance", 0, 10, true))
       p.chord_tolerance = *v;
+    read_output_options(c, *cap, p);
   }
   if (const json* s =
           c.object(doc, "", "setup", false, {"axis", "angle", "translation", "matrix"}, {})) {
@@ -493,10 +545,12 @@ std::optional<Profile> parse_profile(std::string_view text,
   // Carried as text: engine/cls reads and checks it (cls::parse_checks), so that the profile stage
   // does not depend on the CL reader.
   if (const auto it = doc.find("checks"); it != doc.end()) {
-    if (it->is_object())
+    if (it->is_object()) {
       p.checks_json = it->dump();
-    else
+      check_rule_options(c, *it);
+    } else {
       c.fail("/checks", "must be an object");
+    }
   }
   p.kinematics = read_kinematics(c, doc);
   // The kinematics turn tool axes given in program axes, while a set-up rotation turns only

@@ -241,8 +241,34 @@ void Renderer::check_limits(const canon::Call& call) {
   limit_reports_ += diagnostics_.size() - before;
 }
 
-void Renderer::call(const canon::Call& call) {
+// The workingstep's output options that the profile cannot honour are taken off its Begin
+// (so that no stylesheet acts on half of them), each kind reported once per job (RENDER-011).
+std::optional<canon::Call> Renderer::honoured_options(const canon::Begin& b) {
+  if (b.scope != canon::Scope::Workingstep || b.options.empty()) return std::nullopt;
+  canon::Begin honoured = b;
+  for (const auto& entry : canon::kOutputOptions) {
+    const canon::Switch s = b.options.get(entry.option);
+    if (s == canon::Switch::Unset || profile_.profile.honours(entry.option)) continue;
+    honoured.options.set(entry.option, canon::Switch::Unset);
+    const auto bit = static_cast<std::uint8_t>(1U << static_cast<unsigned>(entry.option));
+    if ((options_reported_ & bit) != 0) continue;
+    options_reported_ |= bit;
+    report(diag::Code::RenderOutputOption, diag::Severity::Warning,
+           "workingstep #" + std::to_string(b.entity.id) + " '" + b.entity.name + "' asks for " +
+               std::string(entry.name) + "=" + std::string(canon::switch_name(s)) +
+               ", which profile '" + profile_.profile.id +
+               "' cannot write (capabilities.output_options); written without it (reported once "
+               "per job)");
+  }
+  if (honoured.options == b.options) return std::nullopt;
+  return canon::Call{std::move(honoured)};
+}
+
+void Renderer::call(const canon::Call& incoming) {
   if (finished_) return;
+  std::optional<canon::Call> replaced;
+  if (const auto* b = std::get_if<canon::Begin>(&incoming)) replaced = honoured_options(*b);
+  const canon::Call& call = replaced ? *replaced : incoming;
   if (const auto* b = std::get_if<canon::Begin>(&call); b && b->scope == canon::Scope::Workingstep)
     workingstep_ = b->entity;
   if (const auto* u = std::get_if<canon::UseLengthUnits>(&call))

@@ -279,6 +279,27 @@ const xmlNode* context_node(xmlXPathParserContextPtr x) {
   return x->context != nullptr ? x->context->node : nullptr;
 }
 
+// Whether blocks written at `node` carry N numbers: the block_numbers="on|off" of the enclosing
+// <workingstep> (an output option the shop's operation-name rules selected; canon/
+// output_options.hpp) when it has one, else the profile's block_numbers.numbered. Looked up
+// from the context node, so a batch of chunks in one transform numbers each workingstep as its
+// own options say.
+bool numbered_at(Call& call, const xmlNode* node) {
+  for (; node != nullptr; node = node->parent) {
+    if (node->type != XML_ELEMENT_NODE ||
+        std::string_view(reinterpret_cast<const char*>(node->name)) != "workingstep")
+      continue;
+    for (const xmlAttr* a = node->properties; a != nullptr; a = a->next) {
+      if (a->children == nullptr || a->children->content == nullptr ||
+          std::string_view(reinterpret_cast<const char*>(a->name)) != "block_numbers")
+        continue;
+      return std::string_view(reinterpret_cast<const char*>(a->children->content)) == "on";
+    }
+    break;
+  }
+  return call.config().block.numbered;
+}
+
 // ext:motion-words(): the context motion's end point words; it becomes the current position.
 void fn_motion_words(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "motion-words", 0, 0);
@@ -310,11 +331,12 @@ void fn_arc_words(xmlXPathParserContextPtr x, int nargs) {
 }
 
 // ext:block-line(text): "N<next> text" when the profile numbers its blocks
-// (block_numbers.numbered), `text` when it does not; checked against the line length.
+// (block_numbers.numbered, or the enclosing workingstep's block_numbers option: numbered_at),
+// `text` when it does not; checked against the line length.
 void fn_block_line(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "block-line", 1, 1);
   if (!call.ok()) return;
-  if (!call.config().block.numbered) {
+  if (!numbered_at(call, context_node(x))) {
     check_line_length(call, call.view(0));
     call.push_argument(0);
     return;
@@ -333,11 +355,12 @@ void fn_numbered_line(xmlXPathParserContextPtr x, int nargs) {
   call.push_string(line);
 }
 
-// ext:block-numbering(): 'yes' when the profile numbers its blocks, else 'no'.
+// ext:block-numbering(): 'yes' when blocks at the context node carry N numbers (numbered_at),
+// else 'no'.
 void fn_block_numbering(xmlXPathParserContextPtr x, int nargs) {
   Call call(x, nargs, "block-numbering", 0, 0);
   if (!call.ok()) return;
-  call.push_string(call.config().block.numbered ? "yes" : "no");
+  call.push_string(numbered_at(call, context_node(x)) ? "yes" : "no");
 }
 
 // ext:motion-run(traverse, feed, cw, ccw, form): the blocks of the run of motions that the
@@ -373,7 +396,7 @@ void fn_motion_run(xmlXPathParserContextPtr x, int nargs) {
   }
   const auto begin = static_cast<std::size_t>(*first);
   const auto end = begin + static_cast<std::size_t>(*count);
-  const bool numbered = call.config().block.numbered;
+  const bool numbered = numbered_at(call, node);
   std::string out;
   out.reserve((end - begin) * 40);
   for (std::size_t i = begin; i < end; ++i) {

@@ -101,6 +101,30 @@ TEST(CanonTrace, FeedSpindleToolsCoolantOther) {
   EXPECT_EQ(format_call(ProgramEnd{}), "PROGRAM_END()");
 }
 
+// The output options follow the name on WORKINGSTEP_BEGIN, only those set, in table order;
+// the END marker does not repeat them (web/src/trace.js reads both forms).
+TEST(CanonTrace, WorkingstepOutputOptions) {
+  OutputOptions options;
+  EXPECT_EQ(set_output_option(options, "subprogram", "on"), "");
+  EXPECT_EQ(format_call(Begin{Scope::Workingstep, entity(4, "CL_OPERATION", "A_SUB"), options}),
+            "WORKINGSTEP_BEGIN(#4, CL_OPERATION, \"A_SUB\", subprogram=on)");
+  EXPECT_EQ(set_output_option(options, "block_numbers", "off"), "");
+  EXPECT_EQ(format_call(Begin{Scope::Workingstep, entity(0, "", "x"), options}),
+            "WORKINGSTEP_BEGIN($, $, \"x\", block_numbers=off, subprogram=on)");
+  EXPECT_EQ(format_call(End{Scope::Workingstep, entity(0, "", "x")}),
+            "WORKINGSTEP_END($, $, \"x\")");
+  // Unknown names and values are refused with a message that names them.
+  EXPECT_NE(set_output_option(options, "numbering", "off").find("'numbering'"), std::string::npos);
+  EXPECT_NE(set_output_option(options, "block_numbers", "yes").find("'yes'"), std::string::npos);
+  EXPECT_EQ(options.block_numbers, Switch::Off);  // unchanged by the refused ones
+  // The first rule that sets an option decides it.
+  OutputOptions first;
+  EXPECT_EQ(set_output_option(first, "block_numbers", "on"), "");
+  add_unset(first, options);
+  EXPECT_EQ(first.block_numbers, Switch::On);
+  EXPECT_EQ(first.subprogram, Switch::On);
+}
+
 TEST(CanonTrace, StructureMarkers) {
   EXPECT_EQ(format_call(Begin{Scope::Workingstep,
                               entity(10, "MACHINING_WORKINGSTEP", "WS FINISH PLANAR FACE1")}),

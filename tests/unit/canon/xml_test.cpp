@@ -310,5 +310,35 @@ TEST(CanonXml, SplitWorkingstepIsReopenedAsContinued) {
             "</chunk>\n");
 }
 
+// The output options of a workingstep (canon/output_options.hpp) are attributes of its element,
+// in the first chunk and in every continued one, and the grammar accepts them.
+TEST(CanonXml, OutputOptionsAreWorkingstepAttributes) {
+  const Entity ws = entity(7, "CL_OPERATION", "ROUGH_NONUM");
+  OutputOptions options;
+  ASSERT_EQ(set_output_option(options, "block_numbers", "off"), "");
+  ASSERT_EQ(set_output_option(options, "subprogram", "on"), "");
+  std::vector<Call> calls = {Begin{Scope::Workingstep, ws, options}};
+  for (int n = 0; n < 4; ++n) calls.push_back(StraightFeed{{double(n), 0, 0, {}, {}}});
+  calls.push_back(End{Scope::Workingstep, ws});
+  const auto chunks = chunk_texts(calls, ChunkLimits{3});
+  ASSERT_EQ(chunks.size(), 2u);
+  EXPECT_NE(chunks[0].find("<workingstep id=\"7\" type=\"CL_OPERATION\" name=\"ROUGH_NONUM\" "
+                           "block_numbers=\"off\" subprogram=\"on\">"),
+            std::string::npos)
+      << chunks[0];
+  EXPECT_NE(chunks[1].find("name=\"ROUGH_NONUM\" continued=\"true\" block_numbers=\"off\" "
+                           "subprogram=\"on\">"),
+            std::string::npos)
+      << chunks[1];
+  for (const auto& chunk : chunks) EXPECT_EQ(rng_errors(chunk), "") << chunk;
+  EXPECT_NE(rng_errors("<chunk seq=\"0\"><workingstep name=\"w\" block_numbers=\"maybe\"/>"
+                       "</chunk>"),
+            "");
+  // Only what is set is written.
+  const auto plain =
+      chunk_texts({Begin{Scope::Workingstep, ws}, End{Scope::Workingstep, ws}}, ChunkLimits{3});
+  EXPECT_EQ(plain.front().find("block_numbers"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace ncpost::canon

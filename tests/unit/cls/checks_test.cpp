@@ -204,6 +204,55 @@ std::vector<std::string> codes_of(std::string_view text, const CheckConfig* conf
 constexpr std::string_view kWrongTool =
     "UNITS/MM\nTOOL PATH/OP,TOOL,T1-D10\nTLDATA/MILL,12,0,50,0,0\nGOTO/0,0,1,0,0,1\n";
 
+// The operation-name rules' output options reach the canonical program on each operation's
+// WORKINGSTEP_BEGIN: per operation, the first rule setting an option deciding it.
+TEST(ChecksRun, OperationRulesPutOutputOptionsOnTheWorkingstep) {
+  json section = example();
+  section["operation_rules"].push_back(json::parse(
+      R"({"match": "_NONUM", "options": {"block_numbers": "on", "subprogram": "off"}})"));
+  std::vector<diag::Diagnostic> d;
+  const auto config = parse_checks(section, d);
+  ASSERT_TRUE(config) << (d.empty() ? "" : d[0].message);
+  canon::ProgramBuffer sink;
+  ReadOptions options;
+  options.checks = &*config;
+  const auto result = read(
+      "UNITS/MM\nTOOL PATH/FACE_NONUM\nGOTO/0,0,1\nTOOL PATH/POCKET_SUB\nGOTO/0,0,1\n"
+      "TOOL PATH/PLAIN\nGOTO/0,0,1\nFINI\n",
+      sink, options);
+  EXPECT_TRUE(result.ok());
+  std::vector<std::pair<std::string, canon::OutputOptions>> begins;
+  for (const auto& call : sink.calls())
+    if (const auto* b = std::get_if<canon::Begin>(&call);
+        b && b->scope == canon::Scope::Workingstep)
+      begins.emplace_back(b->entity.name, b->options);
+  ASSERT_EQ(begins.size(), 3u);
+  EXPECT_EQ(begins[0].first, "FACE_NONUM");
+  EXPECT_EQ(begins[0].second.block_numbers, canon::Switch::Off);  // the first rule decides
+  EXPECT_EQ(begins[0].second.subprogram, canon::Switch::Off);     // only the later one sets it
+  EXPECT_EQ(begins[1].second.block_numbers, canon::Switch::Unset);
+  EXPECT_EQ(begins[1].second.subprogram, canon::Switch::On);
+  EXPECT_TRUE(begins[2].second.empty());
+  // Without checks (--no-checks) no rule runs, so no options either.
+  canon::ProgramBuffer plain;
+  (void)read("UNITS/MM\nTOOL PATH/FACE_NONUM\nGOTO/0,0,1\nFINI\n", plain);
+  for (const auto& call : plain.calls())
+    if (const auto* b = std::get_if<canon::Begin>(&call)) {
+      EXPECT_TRUE(b->options.empty());
+    }
+}
+
+TEST(ChecksConfig, UnknownOutputOptionsNameTheRule) {
+  json section = example();
+  section["operation_rules"][3]["options"] = json::parse(R"({"block_numbers": "sometimes"})");
+  std::vector<diag::Diagnostic> d;
+  EXPECT_FALSE(parse_checks(section, d));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NE(d[0].message.find("/operation_rules/3/options/block_numbers"), std::string::npos)
+      << d[0].message;
+  EXPECT_NE(d[0].message.find("'sometimes'"), std::string::npos) << d[0].message;
+}
+
 TEST(ChecksRun, SwitchedOffByTheProfileOrThePost) {
   std::vector<diag::Diagnostic> d;
   auto config = parse_checks(example(), d);

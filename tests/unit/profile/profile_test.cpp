@@ -35,8 +35,8 @@ class ProfileTest : public ::testing::Test {
 };
 
 TEST_F(ProfileTest, BuiltInProfilesParse) {
-  for (const char* id :
-       {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
+  for (const char* id : {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax",
+                         "siemens-840d-5ax", "heidenhain-tnc640-5ax"}) {
     std::vector<diag::Diagnostic> d;
     auto p = parse_profile(test::read_file(stylesheets() / id / "profile.json"), d);
     ASSERT_TRUE(p) << id << ": " << (d.empty() ? "" : d[0].message);
@@ -58,6 +58,42 @@ TEST_F(ProfileTest, FieldsMapOntoJobConfig) {
   EXPECT_EQ(p->arcs, Arcs::R);
   EXPECT_EQ(p->canned_cycles, CannedCycles::Native);
   EXPECT_EQ(p->limits.severity, diag::Severity::Error);
+}
+
+// capabilities.output_options names what the stylesheet honours; the operation-name rules'
+// options must be known ones with on/off (PROFILE-010, naming the rule's path and match).
+TEST_F(ProfileTest, OutputOptions) {
+  std::vector<diag::Diagnostic> d;
+  auto fanuc = parse_profile(test::read_file(stylesheets() / "fanuc-0i" / "profile.json"), d);
+  ASSERT_TRUE(fanuc);
+  EXPECT_TRUE(fanuc->honours(canon::OutputOption::BlockNumbers));
+  EXPECT_FALSE(fanuc->honours(canon::OutputOption::Subprogram));
+  auto tnc =
+      parse_profile(test::read_file(stylesheets() / "heidenhain-tnc640" / "profile.json"), d);
+  ASSERT_TRUE(tnc);
+  EXPECT_FALSE(tnc->honours(canon::OutputOption::BlockNumbers));  // Klartext numbers every block
+
+  auto v = valid();
+  v["capabilities"]["output_options"] = json::array({"block_numbers", "block_numbers"});
+  EXPECT_FALSE(accepts(v));
+  v["capabilities"]["output_options"] = json::array({"colour"});
+  EXPECT_FALSE(accepts(v));
+
+  v = valid();
+  v["checks"] = json::parse(test::read_file(test::source_dir() / "tests/golden/cls/checks.json"));
+  EXPECT_TRUE(accepts(v));
+  v["checks"]["operation_rules"][3]["options"]["block_numbers"] = "sometimes";
+  v["checks"]["operation_rules"][4]["options"]["numbering"] = "on";
+  d.clear();
+  EXPECT_FALSE(parse_profile(v.dump(), d));
+  ASSERT_EQ(d.size(), 2u);
+  for (const auto& x : d) EXPECT_EQ(x.code, diag::Code::ProfileOutputOption) << x.message;
+  EXPECT_NE(d[0].message.find("/checks/operation_rules/3/options/block_numbers"), std::string::npos)
+      << d[0].message;
+  EXPECT_NE(d[0].message.find("'_NONUM'"), std::string::npos) << d[0].message;
+  EXPECT_NE(d[0].message.find("'sometimes'"), std::string::npos) << d[0].message;
+  EXPECT_NE(d[1].message.find("unknown output option 'numbering'"), std::string::npos)
+      << d[1].message;
 }
 
 TEST_F(ProfileTest, HandPickedInvalidExamples) {

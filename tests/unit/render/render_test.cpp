@@ -111,7 +111,8 @@ void expect_chunked_equals_whole(const profile::LoadedProfile& p,
 TEST_F(RenderTest, ChunkedEqualsWholeProgram) {
   const fs::path cases = test::source_dir() / "tests" / "golden" / "trace" / "cases";
   // The five-axis profiles too: their kinematics state (previous angles, tool length) lives
-  // in the renderer, not in the chunks.
+  // in the renderer, not in the chunks. (Not the Heidenhain profiles: their TOOL CALL
+  // looks a few calls ahead for the speed, which a tiny chunk can cut off.)
   for (const char* id :
        {"linuxcnc", "fanuc-0i", "linuxcnc-5ax", "fanuc-30i-5ax", "siemens-840d-5ax"}) {
     auto p = builtin(id);
@@ -283,6 +284,87 @@ TEST(Nurbs, LinearizeStaysWithinChordTolerance) {
   canon::NurbsFeed bad = n;
   bad.knots.pop_back();
   EXPECT_TRUE(linearize(bad, 0.01).empty());
+}
+
+// Three workingsteps: block numbers switched off, left as the profile has them, switched on.
+std::vector<canon::Call> numbering_program(int feeds) {
+  using namespace canon;
+  std::vector<Call> calls;
+  calls.emplace_back(Begin{Scope::Project, entity(1, "PROJECT", "OPTIONS")});
+  calls.emplace_back(UseLengthUnits{Units::Millimetres});
+  const Switch switches[] = {Switch::Off, Switch::Unset, Switch::On};
+  for (int w = 0; w < 3; ++w) {
+    OutputOptions options;
+    options.block_numbers = switches[w];
+    const Entity ws = entity(10 + w, "CL_OPERATION", "OP" + std::to_string(w));
+    calls.emplace_back(Begin{Scope::Workingstep, ws, options});
+    for (int n = 0; n < feeds; ++n)
+      calls.emplace_back(StraightFeed{{double(10 * w + n), double(w), -1, {}, {}}});
+    calls.emplace_back(End{Scope::Workingstep, ws});
+  }
+  calls.emplace_back(ProgramEnd{});
+  calls.emplace_back(End{Scope::Project, entity(1, "PROJECT", "OPTIONS")});
+  return calls;
+}
+
+// block_numbers on a workingstep overrides the profile's numbering for that workingstep's
+// blocks only, with elements and with motion runs, batched or not, and the counter goes on.
+TEST_F(RenderTest, BlockNumbersOptionPerWorkingstep) {
+  for (const char* id : {"fanuc-0i", "linuxcnc", "siemens-840d", "hnc-21"}) {
+    auto p = builtin(id);
+    ASSERT_TRUE(p);
+    const bool numbered = p->profile.block.numbered;
+    const auto calls = numbering_program(4);
+    std::vector<diag::FileDiagnostic> d;
+    const std::string text = render_program(*p, calls, d);
+    EXPECT_TRUE(d.empty()) << id << ": " << (d.empty() ? "" : diag::format(d[0]));
+    // Each motion block of workingstep w (after its "OPw" comment) carries N exactly when its
+    // option, or for the unset one the profile, says so.
+    bool saw_off = false, saw_on = false;
+    std::size_t start = 0;
+    int w = -1;
+    while (start < text.size()) {
+      const std::size_t end = std::min(text.find('\n', start), text.size());
+      const std::string line = text.substr(start, end - start);
+      start = end + 1;
+      if (line.find("OP0") != std::string::npos) w = 0;
+      if (line.find("OP1") != std::string::npos) w = 1;
+      if (line.find("OP2") != std::string::npos) w = 2;
+      const bool motion =
+          line.find("G1 ") != std::string::npos || line.find("G01 ") != std::string::npos;
+      if (!motion || w < 0) continue;
+      const bool has_n = line.rfind("N", 0) == 0;
+      const bool want = w == 0 ? false : w == 2 ? true : numbered;
+      EXPECT_EQ(has_n, want) << id << " workingstep " << w << ": " << line;
+      saw_off |= w == 0;
+      saw_on |= w == 2;
+    }
+    EXPECT_TRUE(saw_off && saw_on) << id << "\n" << text;
+    expect_chunked_equals_whole(*p, calls);
+  }
+}
+
+// A profile that cannot honour an option writes the workingstep without it and says so once.
+TEST_F(RenderTest, OptionTheProfileCannotHonourIsAWarning) {
+  auto p = builtin("heidenhain-tnc640");
+  ASSERT_TRUE(p);
+  const auto calls = numbering_program(2);
+  std::vector<diag::FileDiagnostic> d;
+  const std::string text = render_program(*p, calls, d);
+  ASSERT_EQ(d.size(), 1u) << diag::format(d[1]);
+  EXPECT_EQ(d[0].diagnostic.code, diag::Code::RenderOutputOption);
+  EXPECT_EQ(d[0].diagnostic.severity, diag::Severity::Warning);
+  EXPECT_NE(d[0].diagnostic.message.find("workingstep #10 'OP0' asks for block_numbers=off"),
+            std::string::npos)
+      << d[0].diagnostic.message;
+  EXPECT_NE(d[0].diagnostic.message.find("'heidenhain-tnc640'"), std::string::npos);
+  // The same text as without any option.
+  auto plain = calls;
+  for (auto& c : plain)
+    if (auto* b = std::get_if<canon::Begin>(&c)) b->options = {};
+  std::vector<diag::FileDiagnostic> none;
+  EXPECT_EQ(text, render_program(*p, plain, none));
+  EXPECT_TRUE(none.empty());
 }
 
 TEST_F(RenderTest, LimitViolationNamesTheWorkingstep) {

@@ -18,6 +18,8 @@
 #include <variant>
 #include <vector>
 
+#include "ncpost/canon/output_options.hpp"
+
 namespace ncpost::canon {
 
 // ---- Small geometric values --------------------------------------------------------------
@@ -234,6 +236,8 @@ struct Entity {
 struct Begin {
   Scope scope = Scope::Project;
   Entity entity{};
+  // Workingsteps only: how the renderer is to write it (output_options.hpp); empty elsewhere.
+  OutputOptions options{};
   friend bool operator==(const Begin&, const Begin&) = default;
 };
 struct End {

@@ -106,8 +106,8 @@ class XmlChunkWriter {
   void close(XmlEvents& out);
 
  private:
-  std::optional<Entity> open_workingstep_;
-  bool open_here_ = false;  // a <workingstep> element is open in the current chunk
+  std::optional<Begin> open_workingstep_;  // its entity and output options
+  bool open_here_ = false;                 // a <workingstep> element is open in the current chunk
 };
 
 // A ChunkSink that hands the XML text of each chunk to a callback (for rendering chunk by

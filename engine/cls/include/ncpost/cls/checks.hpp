@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "ncpost/canon/output_options.hpp"
 #include "ncpost/diag/diagnostic.hpp"
 
 namespace re2 {
@@ -58,6 +59,7 @@ struct OperationRule {
   std::shared_ptr<const re2::RE2> regex;
   std::string head;
   std::vector<std::pair<std::string, std::string>> options;
+  canon::OutputOptions output;  // the same options, typed (canon/output_options.hpp)
 };
 
 // Sizes the section may have (every limit named; the schema states the same).

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ncpost/canon/output_options.hpp"
 #include "ncpost/diag/diagnostic.hpp"
 #include "ncpost/xslt/xslt.hpp"
 
@@ -112,6 +113,14 @@ struct Profile {
   CannedCycles canned_cycles = CannedCycles::Expand;
   NurbsMode nurbs = NurbsMode::Linearize;
   double chord_tolerance = 0.001;  // program length units
+  // capabilities.output_options: the output options (canon/output_options.hpp) the stylesheet
+  // honours. A workingstep that asks for another is written without it, with RENDER-011.
+  std::vector<canon::OutputOption> output_options;
+  [[nodiscard]] bool honours(canon::OutputOption o) const noexcept {
+    for (const auto h : output_options)
+      if (h == o) return true;
+    return false;
+  }
   xslt::SetupTransform setup{};
   Limits limits{};
   // render.motion_runs: the motions the renderer hands to ext:motion-run() as runs instead of

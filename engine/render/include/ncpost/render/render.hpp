@@ -86,6 +86,7 @@ class Renderer final : public canon::Sink {
   class ChunkRenderer;
   class TreeEvents;
   class RunTaker;
+  [[nodiscard]] std::optional<canon::Call> honoured_options(const canon::Begin& b);
   void forward(const canon::Call& call);
   void pass(const canon::Call& call);
   void check_limits(const canon::Call& call);
@@ -114,6 +115,7 @@ class Renderer final : public canon::Sink {
   std::unique_ptr<canon::Chunker> chunker_;
   std::vector<diag::FileDiagnostic> diagnostics_;
   std::optional<canon::Entity> workingstep_;
+  std::uint8_t options_reported_ = 0;  // RENDER-011 given, per canon::OutputOption bit
   // The profile's kinematics (profile.json "kinematics"): every call is converted before the
   // limits are checked and the stylesheet sees it (docs/kinematics.md). Null without.
   std::unique_ptr<KinematicsConverter> kinematics_;

@@ -1,0 +1,23 @@
+%
+(PROJECT # program)
+G21 G17 G90 G94 G40 G49 G80 G91.1
+(GOTO/ with tool axes  kept on every motion once stated , and an MSYS/ that rotates and moves)
+(WS #4 FIVE_AXIS)
+(TOOL BALL-10)
+T1
+T1 M6
+G43 H1
+S8000
+M3
+F1000.
+G0 X0. Y0. Z50. A0. C0.
+G1 X10. Y115. Z-25.8142 A-30. C0.
+G1 X182.6346 Y0. Z-62.3654 A-45. C-90.
+G1 X192.6346 Y0. Z-62.3654 A-45. C-90.
+G1 X270. Y0. Z-225. A-90. C-90.
+(WS #16 ROTATED)
+G1 X100. Y60. Z5. A0. C-90.
+G1 X90. Y290. Z-225. A90. C-180.
+G2 X100. Y280. Z-225. I0. J-10.
+M2
+%
