@@ -112,7 +112,7 @@ std::string post_cl(const fs::path& file, const std::string& profile_id) {
 }
 
 // Every CL file of the corpus posted for LinuxCNC (tests/interop runs the same posts through
-// rs274, motion for motion): tests/golden/post/linuxcnc/cls/<file>.ngc.
+// rs274, motion for motion): tests/golden/post/linuxcnc/cls-<file>.ngc.
 TEST(GoldenPost, ClCorpus) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
   std::size_t files = 0;
@@ -121,8 +121,8 @@ TEST(GoldenPost, ClCorpus) {
     SCOPED_TRACE(entry.path().filename().string());
     ++files;
     expect_golden(post_cl(entry.path(), "linuxcnc"),
-                  test::source_dir() / "tests" / "golden" / "post" / "linuxcnc" / "cls" /
-                      (entry.path().filename().string() + ".ngc"));
+                  test::source_dir() / "tests" / "golden" / "post" / "linuxcnc" /
+                      ("cls-" + entry.path().filename().string() + ".ngc"));
   }
   EXPECT_GE(files, 4u);
 }
