@@ -67,9 +67,10 @@ const scratch = mkdtempSync(path.join(os.tmpdir(), "ncpost-web-"));
 const broken = path.join(scratch, "broken-ex1E.stp");
 writeFileSync(broken, text.join("\n"), "latin1");
 
-// A copy of ex1E whose first milling technology asks for a spindle speed above linuxcnc's
-// limit (24,000 rpm; a warning there): a renderer diagnostic that names an output block.
-const fast = readFileSync(ex1e, "latin1").replace(/(MILLING_TECHNOLOGY\([^,]*,[^,]*,[^,]*,)-?[0-9.]+/, "$1-500.");
+// A copy of ex1E whose first milling technology asks for a feed above linuxcnc's limit
+// (10,000 mm/min; a warning there): a renderer diagnostic that names an output block. (A
+// spindle speed out of reach would not do: the units check reads an absurd rev/s as rpm.)
+const fast = readFileSync(ex1e, "latin1").replace(/(MILLING_TECHNOLOGY\()[0-9.]+/, "$10.200");
 assert.notEqual(fast, readFileSync(ex1e, "latin1"));
 const fastFile = path.join(scratch, "fast-ex1E.stp");
 writeFileSync(fastFile, fast, "latin1");
@@ -247,7 +248,7 @@ try {
   console.log(`ok: diagnostic jumps to input line ${diagnosticLine}`);
   await page.screenshot({ path: path.join(out, "diagnostic.png") });
 
-  // -- a renderer diagnostic (a spindle speed above linuxcnc's limit) jumps to its output line
+  // -- a renderer diagnostic (a feed above linuxcnc's limit) jumps to its output line
   const fastForm = new FormData();
   fastForm.append("file", new Blob([readFileSync(fastFile)]), "fast-ex1E.stp");
   const fastMap = await (await fetch(`${server.url}/v1/posts?profile=linuxcnc&motions=true`, {
@@ -255,7 +256,7 @@ try {
   const warning = fastMap.diagnostics.find((d) => d.code === "RENDER-001" && d.output_line > 0);
   assert.ok(warning, "the server names the output line of the renderer's warning");
   const fastLines = fastMap.program.split("\n");
-  assert.match(fastLines[warning.output_line - 1], /S30000/, "that line holds the spindle speed");
+  assert.match(fastLines[warning.output_line - 1], /F12000/, "that line holds the feed");
   await page.setInputFiles("#file", fastFile);
   await page.selectOption("#profile", "linuxcnc");
   await page.click("button[type=submit]");

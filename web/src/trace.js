@@ -60,7 +60,14 @@ export class TraceReader {
     const traceLine = r.n;
     if (name === "WORKINGSTEP_BEGIN") {
       this.workingstep = this.workingsteps++;
-      this.onWorkingstep({ index: this.workingstep, id: r.id ?? 0, type: r.type ?? "", name: r.name, traceLine });
+      this.onWorkingstep({
+        index: this.workingstep,
+        id: r.id ?? 0,
+        type: r.type ?? "",
+        name: r.name,
+        options: r.options ?? {},
+        traceLine,
+      });
       return;
     }
     if (name === "WORKINGSTEP_END") {

@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "format.hpp"
+#include "ncpost/canon/output_options.hpp"
 #include "ncpost/xmltext/utf8.hpp"
 
 namespace ncpost::canon {
@@ -53,7 +54,24 @@ class JsonPrinter {
   void operator()(const Dwell& c) { number("seconds", c.seconds); }
   void operator()(const Comment& c) { text("text", c.text); }
   void operator()(const Message& c) { text("text", c.text); }
-  void operator()(const Begin& c) { entity(c.entity); }
+  void operator()(const Begin& c) {
+    entity(c.entity);
+    // A workingstep's output options, as in the text trace: only those set.
+    if (c.options.empty()) return;
+    key("options");
+    out_ += '{';
+    bool first = true;
+    for (const auto& entry : kOutputOptions) {
+      const Switch s = c.options.get(entry.option);
+      if (s == Switch::Unset) continue;
+      if (!first) out_ += ',';
+      first = false;
+      append_json_string(out_, entry.name);
+      out_ += ':';
+      append_json_string(out_, switch_name(s));
+    }
+    out_ += '}';
+  }
   void operator()(const End& c) { entity(c.entity); }
   void operator()(const Cycle& c) {
     detail::cycle_arguments(*this, c);

@@ -96,7 +96,9 @@ TEST_F(PostJobTest, MotionMarksKeepTheTextAndFollowTheMotions) {
   std::size_t profiles = 0;
   for (const auto& entry : fs::directory_iterator(test::source_dir() / "stylesheets")) {
     const std::string id = entry.path().filename().string();
-    if (!fs::exists(entry.path() / "profile.json") || id == "heidenhain-tnc640") continue;
+    // The Klartext templates (common/heidenhain-tnc640.xsl, both TNC 640 profiles) look ahead.
+    if (!fs::exists(entry.path() / "profile.json") || id.rfind("heidenhain-tnc640", 0) == 0)
+      continue;
     const auto p = builtin(id);
     if (!p || p->profile.mode == profile::Mode::Raw) continue;
     ++profiles;
