@@ -51,6 +51,26 @@ export class TraceReader {
     this.calls = 0;
   }
 
+  // The calls that change the reader's state rather than draw, read the same from either form
+  // of the trace: `marker()` gives a WORKINGSTEP_BEGIN's {id, type, name, options}, `plane()`
+  // a SELECT_PLANE's plane. True when `name` was one of them.
+  state(name, traceLine, marker, plane) {
+    if (name === "WORKINGSTEP_BEGIN") {
+      this.workingstep = this.workingsteps++;
+      this.onWorkingstep({ index: this.workingstep, ...marker(), traceLine });
+      return true;
+    }
+    if (name === "WORKINGSTEP_END") {
+      this.workingstep = -1;
+      return true;
+    }
+    if (name === "SELECT_PLANE") {
+      this.plane = plane();
+      return true;
+    }
+    return false;
+  }
+
   // One record of the JSON trace: the header ({format, version, stock}) and the end record
   // ({end, ok, diagnostics}) are the caller's; a call ({n, call, ...}) is read here.
   record(r) {
@@ -58,26 +78,8 @@ export class TraceReader {
     if (!name) return;
     this.calls += 1;
     const traceLine = r.n;
-    if (name === "WORKINGSTEP_BEGIN") {
-      this.workingstep = this.workingsteps++;
-      this.onWorkingstep({
-        index: this.workingstep,
-        id: r.id ?? 0,
-        type: r.type ?? "",
-        name: r.name,
-        options: r.options ?? {},
-        traceLine,
-      });
-      return;
-    }
-    if (name === "WORKINGSTEP_END") {
-      this.workingstep = -1;
-      return;
-    }
-    if (name === "SELECT_PLANE") {
-      this.plane = r.plane;
-      return;
-    }
+    const marker = () => ({ id: r.id ?? 0, type: r.type ?? "", name: r.name, options: r.options ?? {} });
+    if (this.state(name, traceLine, marker, () => r.plane)) return;
     if (!MOTION_CALLS.has(name)) return;
     const rapid = name === "STRAIGHT_TRAVERSE";
     if (name === "STRAIGHT_TRAVERSE" || name === "STRAIGHT_FEED") this.straight(r.x, r.y, r.z, rapid);
@@ -104,27 +106,16 @@ export class TraceReader {
     const traceLine = Number(m[1]);
     const name = m[2];
     const args = m[3];
-    if (name === "WORKINGSTEP_BEGIN") {
-      const marker = MARKER.exec(args);
-      this.workingstep = this.workingsteps++;
-      this.onWorkingstep({
-        index: this.workingstep,
-        id: marker && marker[1] !== "$" ? Number(marker[1]) : 0,
-        type: marker ? marker[2] : "",
-        name: marker ? marker[3] : args,
-        options: marker ? markerOptions(marker[4]) : {},
-        traceLine,
-      });
-      return;
-    }
-    if (name === "WORKINGSTEP_END") {
-      this.workingstep = -1;
-      return;
-    }
-    if (name === "SELECT_PLANE") {
-      this.plane = args.trim();
-      return;
-    }
+    const marker = () => {
+      const m = MARKER.exec(args);
+      return {
+        id: m && m[1] !== "$" ? Number(m[1]) : 0,
+        type: m ? m[2] : "",
+        name: m ? m[3] : args,
+        options: m ? markerOptions(m[4]) : {},
+      };
+    };
+    if (this.state(name, traceLine, marker, () => args.trim())) return;
     if (!MOTION_CALLS.has(name)) return;
     const rapid = name === "STRAIGHT_TRAVERSE";
     switch (name) {
