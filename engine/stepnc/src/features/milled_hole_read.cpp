@@ -38,17 +38,39 @@ std::optional<Taper> read_taper(Reader& reader, const Instance& hole, double dia
   return out;
 }
 
+namespace {
+
+// What both milled readers need first: the hole's diameter and its bottom condition, or the
+// report that the hole lacks them (nullopt).
+struct HoleOutline {
+  double diameter;
+  const Instance* bottom;
+};
+
+std::optional<HoleOutline> read_hole_outline(Reader& reader) {
+  const Instance& hole = reader.feature();
+  const auto diameter = reader.toleranced(hole, "diameter");
+  const Instance* bottom = reader.ref(hole, "bottom_condition", "hole_bottom_condition");
+  if (!diameter || !(diameter->size > 0) || bottom == nullptr) {
+    (void)reader.report().bad(
+        reader.subject(hole),
+        reader.name(hole) + " needs a positive diameter and a bottom_condition");
+    return std::nullopt;
+  }
+  return HoleOutline{diameter->size, bottom};
+}
+
+}  // namespace
+
 bool read_milled_hole(Reader& reader, RegionSpec& spec) {
   Report& report = reader.report();
   const Instance& hole = reader.feature();
   const Instance& op = reader.operation();
-  const auto diameter = reader.toleranced(hole, "diameter");
-  const Instance* bottom = reader.ref(hole, "bottom_condition", "hole_bottom_condition");
-  if (!diameter || !(diameter->size > 0) || bottom == nullptr)
-    return report.bad(reader.subject(hole),
-                      reader.name(hole) + " needs a positive diameter and a bottom_condition");
+  const auto outline = read_hole_outline(reader);
+  if (!outline) return false;
+  const Instance* bottom = outline->bottom;
   Region region;
-  region.shape = Shape::circle(diameter->size / 2);
+  region.shape = Shape::circle(outline->diameter / 2);
   region.walls_only = reader.is(&op, "side_milling");
   if (reader.is(bottom, "through_bottom_condition")) {
     region.through = true;
@@ -67,14 +89,12 @@ bool read_milled_taper(Reader& reader, MilledTaperSpec& spec) {
   Report& report = reader.report();
   const Instance& hole = reader.feature();
   const Instance& op = reader.operation();
-  const auto diameter = reader.toleranced(hole, "diameter");
-  const Instance* bottom = reader.ref(hole, "bottom_condition", "hole_bottom_condition");
-  if (!diameter || !(diameter->size > 0) || bottom == nullptr)
-    return report.bad(reader.subject(hole),
-                      reader.name(hole) + " needs a positive diameter and a bottom_condition");
+  const auto outline = read_hole_outline(reader);
+  if (!outline) return false;
+  const Instance* bottom = outline->bottom;
   const auto depth = reader.read_depth();
   if (!depth) return false;
-  const auto taper = read_taper(reader, hole, diameter->size, *depth);
+  const auto taper = read_taper(reader, hole, outline->diameter, *depth);
   if (!taper) return false;
   const auto shape = [&] {
     return reader.name(hole) + " with " + taper->subject.name() + " (diameter " +
