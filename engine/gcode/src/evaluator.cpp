@@ -1,6 +1,5 @@
 #include "evaluator.hpp"
 
-#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -32,62 +31,6 @@ Evaluator::Evaluator(const Dialect& dialect, Parameters& parameters, std::size_t
     : dialect_(dialect), parameters_(parameters), max_depth_(max_depth) {}
 
 namespace {
-
-// The count of leading decimal digits among the eight bytes at `p` (0 to 8), and their value
-// in `value`: one pass over a 64-bit word instead of a branch per digit. Little-endian only
-// (the first byte is the lowest); other machines take the byte loop.
-int leading_digits(const char* p, std::uint64_t& value) noexcept {
-  constexpr std::uint64_t kZeros = 0x3030303030303030ull;  // "00000000"
-  constexpr std::uint64_t kHighNibbles = 0xF0F0F0F0F0F0F0F0ull;
-  constexpr std::uint64_t kLow7 = 0x7F7F7F7F7F7F7F7Full;
-  std::uint64_t chunk = 0;
-  std::memcpy(&chunk, p, 8);
-  // A byte is a digit when its high nibble is 3, also after adding 6 (which carries out of
-  // 0x3A..0x3F). A byte that carries into its neighbour is itself no digit, and only the
-  // digits before the first non-digit count.
-  const std::uint64_t other = ((chunk & kHighNibbles) ^ kZeros) |
-                              (((chunk + 0x0606060606060606ull) & kHighNibbles) ^ kZeros);
-  // The high bit of each byte of `other` that is not zero.
-  const std::uint64_t nonzero = (((other & kLow7) + kLow7) | other) & ~kLow7;
-  const int count = std::countr_zero(nonzero) / 8;
-  if (count == 0) {
-    value = 0;
-    return 0;
-  }
-  // The digits as numbers, moved up so that missing leading ones are zeros.
-  std::uint64_t d = chunk - kZeros;
-  if (count < 8) d = (d & ((std::uint64_t{1} << (8 * count)) - 1)) << (64 - 8 * count);
-  // Pairs, then fours, then all eight (the first byte is the most significant digit).
-  d = (d * 10 + (d >> 8)) & 0x00FF00FF00FF00FFull;
-  d = (d * 100 + (d >> 16)) & 0x0000FFFF0000FFFFull;
-  d = (d * 10000 + (d >> 32)) & 0xFFFFFFFFull;
-  value = d;
-  return count;
-}
-
-constexpr std::uint64_t kIntegerPow10[] = {1,      10,      100,      1000,     10000,
-                                           100000, 1000000, 10000000, 100000000};
-
-// Reads the digits at text[i...] into `mantissa` while it holds at most 19 of them (more are
-// counted, not kept: the caller then reads the number another way).
-void digit_run(std::string_view text, std::size_t& i, std::uint64_t& mantissa,
-               std::size_t& digits) noexcept {
-  if constexpr (std::endian::native == std::endian::little) {
-    while (i + 8 <= text.size()) {
-      std::uint64_t value = 0;
-      const int count = leading_digits(text.data() + i, value);
-      const auto n = static_cast<std::size_t>(count);
-      if (digits + n > 19) break;  // the byte loop keeps the first 19
-      mantissa = mantissa * kIntegerPow10[n] + value;
-      i += n, digits += n;
-      if (count < 8) return;
-    }
-  }
-  while (i < text.size() && is_digit(text[i])) {
-    if (digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(text[i] - '0');
-    ++i, ++digits;
-  }
-}
 
 // Numbers of more than 15 digits (rare): correctly rounded by from_chars.
 [[gnu::noinline, gnu::cold]] bool long_number(const char* first, const char* last,
@@ -122,29 +65,36 @@ bool Evaluator::scan_number(std::string_view text, std::size_t& pos, double& out
   // Exact powers of ten (every one up to 1e22 is a double).
   static constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                       1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  std::size_t i = pos;
-  std::size_t digits = 0;
-  std::uint64_t mantissa = 0;  // the digits as an integer, while they fit
-  digit_run(text, i, mantissa, digits);
+  const char* const first = text.data() + pos;
+  const char* const end = text.data() + text.size();
+  const char* p = first;
+  // The digits as an integer; it may wrap past 19 digits, but then the number is read another
+  // way.
+  std::uint64_t mantissa = 0;
+  const auto digit_run = [&] {
+    for (; p < end && static_cast<unsigned char>(*p - '0') < 10; ++p)
+      mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
+  };
+  digit_run();
+  const auto integer_digits = static_cast<std::size_t>(p - first);
   std::size_t fraction_digits = 0;
   integer = true;
-  if (i < text.size() && text[i] == '.') {
+  if (p < end && *p == '.') {
     integer = false;
-    ++i;
-    const std::size_t before = digits;
-    digit_run(text, i, mantissa, digits);
-    fraction_digits = digits - before;
+    const char* const point = p++;
+    digit_run();
+    fraction_digits = static_cast<std::size_t>(p - point - 1);
   }
+  const std::size_t digits = integer_digits + fraction_digits;
   if (digits == 0) return false;
   if (digits <= 15) {
     // Up to 15 digits the mantissa and the power of ten are exact doubles, and one division of
     // exact operands is correctly rounded: the same value from_chars gives, without its cost.
     out = static_cast<double>(mantissa) / kPow10[fraction_digits];
-    pos = i;
-    return true;
+  } else if (!long_number(first, p, out)) {
+    return false;
   }
-  if (!long_number(text.data() + pos, text.data() + i, out)) return false;
-  pos = i;
+  pos += static_cast<std::size_t>(p - first);
   return true;
 }
 

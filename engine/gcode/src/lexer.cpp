@@ -64,6 +64,18 @@ Lexing::Lexing(const Dialect& d) : dialect(d), squeeze(d.ignore_whitespace) {
     else if (ch == ' ')
       plain[c] = PlainBlank;
   }
+  for (std::uint8_t before = PlainLetter; before <= PlainBlank; ++before) {
+    for (std::uint8_t after = PlainLetter; after <= PlainBlank; ++after) {
+      // Where blanks are dropped, a letter is followed by its number, and a number after a
+      // blank would join the word before it.
+      const bool joins = (before == PlainLetter && after != PlainNumber) ||
+                         (before == PlainBlank && after == PlainNumber);
+      plain_pair[before * 4u + after] = squeeze && joins ? 0 : 1;
+    }
+  }
+  plain_first[PlainLetter] = plain_first[PlainNumber] = 1;
+  plain_last[PlainNumber] = 1;
+  plain_last[PlainLetter] = squeeze ? 0 : 1;
 }
 
 namespace {
@@ -72,36 +84,15 @@ namespace {
 // numbers and blanks, none first or last. Where blanks are dropped they must also stand only
 // between words of one letter and a number ("X1 Y-2", not "G 1", "X1 2" or "O100 SUB"), so
 // that keeping them changes how no word reads (the block reader steps over blanks between
-// words).
+// words). Without a branch per byte: each pair of neighbours is looked up in a table.
 bool is_plain(std::string_view raw, const Lexing& lexing) noexcept {
   const std::size_t n = raw.size();
   if (n == 0) return true;
-  const auto kind = [&](std::size_t i) { return lexing.plain[static_cast<unsigned char>(raw[i])]; };
-  if (kind(0) == Lexing::PlainBlank || kind(n - 1) == Lexing::PlainBlank) return false;
-  if (!lexing.squeeze) {
-    for (std::size_t i = 0; i < n; ++i)
-      if (kind(i) == Lexing::NotPlain) return false;
-    return true;
-  }
-  std::uint8_t previous = Lexing::PlainLetter;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t k = kind(i);
-    switch (k) {
-      case Lexing::PlainLetter:
-        if (i + 1 >= n || kind(i + 1) != Lexing::PlainNumber) return false;
-        break;
-      case Lexing::PlainNumber:
-        if (previous == Lexing::PlainBlank) return false;
-        break;
-      case Lexing::PlainBlank:
-        if (previous == Lexing::PlainLetter) return false;
-        break;
-      default:
-        return false;
-    }
-    previous = k;
-  }
-  return true;
+  const auto* const bytes = reinterpret_cast<const unsigned char*>(raw.data());
+  unsigned ok = lexing.plain_first[lexing.plain[bytes[0]]];
+  for (std::size_t i = 1; i < n; ++i)
+    ok &= lexing.plain_pair[lexing.plain[bytes[i - 1]] * 4u + lexing.plain[bytes[i]]];
+  return (ok & lexing.plain_last[lexing.plain[bytes[n - 1]]]) != 0;
 }
 
 }  // namespace

@@ -74,6 +74,11 @@ struct Lexing {
   // single blanks between words): Other (not in such a line), Letter, Number, Blank.
   enum Plain : std::uint8_t { NotPlain, PlainLetter, PlainNumber, PlainBlank };
   std::array<std::uint8_t, 256> plain{};
+  // 1 where a line of plain bytes may have these neighbours (before × 4 + after), may start
+  // with, and may end with this kind of byte.
+  std::array<std::uint8_t, 16> plain_pair{};
+  std::array<std::uint8_t, 4> plain_first{};
+  std::array<std::uint8_t, 4> plain_last{};
   bool squeeze = false;  // blanks may stand inside words, and are dropped
 };
 
