@@ -415,8 +415,10 @@ void Converter::set_translation(const Axes& offset) {
 
 // ---- Motion primitives -----------------------------------------------------------------------
 
-void Converter::check_limits(const Axes& p, const Where& where, std::uint32_t column) {
-  if (!options_.limits) return;
+// False when `p` is past the target's travel and the profile makes that an error: the motion
+// is then not made (the renderer would only report it again, without the line).
+bool Converter::check_limits(const Axes& p, const Where& where, std::uint32_t column) {
+  if (!options_.limits) return true;
   const auto& l = *options_.limits;
   const std::array<const std::optional<MachineLimits::Range>*, 3> ranges = {&l.x, &l.y, &l.z};
   for (int k = 0; k < 3; ++k) {
@@ -430,9 +432,10 @@ void Converter::check_limits(const Axes& p, const Where& where, std::uint32_t co
                   std::string(1, kAxisLetters[static_cast<std::size_t>(k)]) + " " + number_text(v) +
                       " beyond the travel [" + number_text(r->min) + ", " + number_text(r->max) +
                       "]");
-      return;
+      return !l.errors;
     }
   }
+  return true;
 }
 
 bool Converter::check_feed_motion(const Where& where, std::uint32_t column, double own_feed) {
@@ -459,7 +462,7 @@ bool Converter::check_feed_motion(const Where& where, std::uint32_t column, doub
 
 bool Converter::rapid(const Axes& target, const Where& where, std::uint32_t column) {
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   pos_ = target;
   emit_move<canon::StraightTraverse>();
   return true;
@@ -468,7 +471,7 @@ bool Converter::rapid(const Axes& target, const Where& where, std::uint32_t colu
 bool Converter::linear(const Axes& target, const Where& where, std::uint32_t column) {
   if (!check_feed_motion(where, column)) return false;
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   if (feed_mode_ == FeedMode::InverseTime) {
     // The canonical feed is per minute: the move takes 1/F minutes.
     double length = 0;
@@ -486,7 +489,7 @@ bool Converter::arc(const Axes& target, double centre_first, double centre_secon
                     canon::Plane plane, const Where& where, std::uint32_t column) {
   if (!check_feed_motion(where, column)) return false;
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   const PlaneAxes pa = plane_axes(plane);
   canon::PlaneArc p;
   p.plane = plane;
@@ -516,7 +519,7 @@ bool Converter::cycle(const CycleCall& c, const Where& where, std::uint32_t colu
   Axes t = pos_;
   t[0] = to_mm(c.x);
   t[1] = to_mm(c.y);
-  check_limits(t, where, column);
+  if (!check_limits(t, where, column)) return false;
   canon::Cycle cy;
   cy.x = c.x;
   cy.y = c.y;
@@ -634,7 +637,7 @@ bool Converter::convert_arc_through(const Block& b, const Where& where) {
   arc.turns = 1;
   if (!check_feed_motion(where, column)) return false;
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   arc.end = pose(target);
   pos_ = target;
   emit(arc);
@@ -667,7 +670,7 @@ bool Converter::add_spline_point(const Block& b, const Where& where) {
   if (w <= 0)
     return error(where, column, diag::Code::GcodeBadWordValue,
                  "a spline weight (PW) must be positive");
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return false;
   spline_->points.push_back({from_mm(target[0]), from_mm(target[1]), from_mm(target[2]), w});
   spline_->intervals.push_back(pl);
   spline_->end = target;
@@ -705,7 +708,7 @@ bool Converter::add_nurbs_point(const Block& b, const Where& where) {
     if (w <= 0)
       return error(where, column, diag::Code::GcodeBadWordValue,
                    "a NURBS weight (R) must be positive");
-    check_limits(target, where, column);
+    if (!check_limits(target, where, column)) return false;
     spline_->points.push_back({from_mm(target[0]), from_mm(target[1]), from_mm(target[2]), w});
     spline_->end = target;
   }
@@ -1127,7 +1130,7 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
     Axes t = pos_;
     t[fi] = a;
     t[si] = bb;
-    check_limits(t, where, column);
+    if (!check_limits(t, where, column)) return false;
     // Above the level the cycle returns to (G99 from higher up): over the hole at the current
     // level first, then down — the canonical cycle travels at its safe level, which is R here.
     if (pos_[di] > to_mm(clear) + 1e-9) {

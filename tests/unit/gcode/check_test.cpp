@@ -66,6 +66,13 @@ TEST(Checks, Limits) {
   EXPECT_TRUE(r.result.ok());  // warnings unless the limits say errors
   o.limits->errors = true;
   EXPECT_FALSE(read("G0 X150\nM2\n", "linuxcnc", o).result.ok());
+  // A motion past the travel, where that is an error, is not made (the renderer would report it
+  // again, without its line); the blocks after it go on from where it would have ended.
+  const auto refused = read("G0 X50\nG0 X150\nG91 G0 X-60\nM2\n", "linuxcnc", o);
+  EXPECT_EQ(refused.codes(), "GCODE-036 2:1\n");
+  EXPECT_EQ(
+      refused.motions(),
+      "STRAIGHT_TRAVERSE(50.0000, 0.0000, 0.0000)\nSTRAIGHT_TRAVERSE(90.0000, 0.0000, 0.0000)\n");
 }
 
 TEST(Checks, RefusedByName) {
