@@ -666,12 +666,14 @@ TEST(FeaturesOwn, GeneralSlotSections) {
   const Generated refused = run(cases() / "slot-section-refused.stp");
   EXPECT_EQ(refused.count("STEPNC-101"), 3u);  // dovetail, lopsided radiused, along an arc
   EXPECT_EQ(refused.count("STEPNC-102"), 1u);  // ball too large
-  EXPECT_EQ(refused.count("STEPNC-103"), 1u);  // short walls
+  EXPECT_EQ(refused.count("STEPNC-103"), 2u);  // short walls, negative allowance
+  EXPECT_EQ(refused.count("STEPNC-011"), 1u);  // a Bezier curve of 5 points and degree 3
   expect_named(refused.text("slot-section-refused"),
                {"(POLYLINE) turns back across the slot at x -5, y 0 (an undercut",
                 "(BEZIER_CURVE) is not symmetric about the course of travel",
                 "(radius 8, corner radius 8) cannot reach the section #", "(QUASI_UNIFORM_CURVE)",
-                "ends 1.25 below the top at x -8",
+                "ends 1.25 below the top at x -8", "leaves a negative allowance (-0.5 on the sides",
+                "5 control points do not make a curve of degree 3",
                 "(PARTIAL_CIRCULAR_PATH) (a general section is generated along a linear path)"});
 }
 

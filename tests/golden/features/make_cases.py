@@ -948,7 +948,7 @@ def section_cases():
              ("REAM INTO THE SPHERE", sphere, drill_op(p, "REAMING", "REAM SPHERE", reamer, tech, cutting_depth="12.000", extra=",.F.,$,$")),
              ("DRILL BELOW THE FILLET", fillet, drill_op(p, "DRILLING", "DRILL FILLET", drill8, tech, cutting_depth="12.300"))])
 
-    p = program("slot-section-refused", "general slot sections the generator refuses, each naming the instance: a dovetail (undercut), an asymmetric section with radiused ends, a ball too large for the groove, a section that does not reach the top, a general section along an arc")
+    p = program("slot-section-refused", "general slot sections the generator refuses, each naming the instance: a negative allowance, a Bezier curve whose points do not make whole segments, a dovetail (undercut), an asymmetric section with radiused ends, a ball too large for the groove, a section that does not reach the top, a general section along an arc")
     ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
     ball16 = p.tool("BALL 16", "BALL_ENDMILL", 16, edge_length=20.0, edge_radius=8.0)
     tech = p.tech(0.02, -50.0)
@@ -964,8 +964,13 @@ def section_cases():
     ogee = bspline(p, 3, [(-10, 0), (-8, -4), (-3, -6), (3, -6), (8, -4), (10, 0)])
     arc = p.add(f"PARTIAL_CIRCULAR_PATH($,{p.length(40)},90.0)")
     ar = slot_feature(p, "SPLINE ALONG ARC", 100, 0, arc, p.add(f"GENERAL_PROFILE($,{ogee})"), [radiused, radiused], 5.875)
+    broken = bspline(p, 3, [(-8, 0), (-6, -6), (0, -6), (6, -6), (8, 0)], kind="BEZIER_CURVE")
+    br = slot_feature(p, "FIVE POINT BEZIER", 0, 120, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{broken})"), [radiused, radiused], 5)
     centre = p.add("CENTER_MILLING($,.T.)")
-    p.write([("DOVETAIL", d, bs(p, "FINISH", "DOVETAIL", ball6, tech, centre, None, None, None, None)),
+    og = slot_feature(p, "SPLINE GROOVE", 0, 150, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{ogee})"), [radiused, radiused], 5.875)
+    p.write([("NEGATIVE ALLOWANCE", og, bs(p, "ROUGH", "NEGATIVE", ball6, tech, centre, None, None, -0.5, 0.0)),
+             ("FIVE POINT BEZIER", br, bs(p, "FINISH", "BEZIER 5", ball6, tech, centre, None, None, None, None)),
+             ("DOVETAIL", d, bs(p, "FINISH", "DOVETAIL", ball6, tech, centre, None, None, None, None)),
              ("LOPSIDED RADIUSED", a, bs(p, "FINISH", "LOPSIDED", ball6, tech, centre, None, None, None, None)),
              ("BALL TOO LARGE", n, bs(p, "FINISH", "NARROW", ball16, tech, centre, None, None, None, None)),
              ("SHORT WALLS", sh, bs(p, "FINISH", "SHORT", ball6, tech, centre, None, None, None, None)),

@@ -282,6 +282,11 @@ bool check_section_slot(Reader& reader, const SlotBasics& basics, const Tool& to
           " is not symmetric about the course of travel (a radiused end turns the section "
           "about the end of the course of travel, which only a symmetric section defines)");
   }
+  if (operation.allowance_side < 0 || operation.allowance_bottom < 0)
+    return report.bad(operation.subject,
+                      operation.subject.name() + " leaves a negative allowance (" +
+                          fmt(operation.allowance_side) + " on the sides, " +
+                          fmt(operation.allowance_bottom) + " at the bottom) on " + f());
   if (reader.is(&reader.operation(), "side_milling"))
     return report.not_implemented(operation.subject.name() + " on " + f() + " with " + swept() +
                                   " (its walls and bottom are one surface, made by "
