@@ -345,6 +345,8 @@ double Cavity::u(Vec2 p) const {
       return std::min((p - e0).length(), (p - e1).length());
     }
     case Spine::Circle:
+      // An asymmetric section: its left (of the counter-clockwise course) is inside.
+      if (across_signed_) return radius_ - (p - a_).length();
       return std::abs((p - a_).length() - radius_);
     case Spine::Point:
       return (p - a_).length();
@@ -451,6 +453,9 @@ double Cavity::general_distance(Vec2 p) const {
   // The lower side is ordered by u: only pieces within the best distance so far across can be
   // nearer (the same answer as the region's, without visiting every piece).
   double best = segment_distance(p, {lo_, 0}, {hi_, 0});
+  // The lower side straight above or below p is on it too: a first bound that keeps the scan
+  // short.
+  if (p.x >= lo_ && p.x <= hi_) best = std::min(best, std::abs(p.y - section_floor(p.x)));
   const auto it = std::lower_bound(lower_.begin(), lower_.end(), p.x,
                                    [](const Vec2& q, double x) { return q.x < x; });
   const auto at = static_cast<std::size_t>(it - lower_.begin());

@@ -115,6 +115,28 @@ std::vector<Vec2> section_points(const Reader& r, const p21::Instance& curve, st
   return out;
 }
 
+// The points of a finely sampled curve that keep every dropped point within kSectionChord of
+// the chord that replaces it (greedy, a bounded look-ahead): the distances to the section visit
+// its pieces, so fewer pieces where it is straight keep them fast.
+std::vector<Vec2> simplify(const std::vector<Vec2>& points) {
+  if (points.size() < 3) return points;
+  std::vector<Vec2> out{points.front()};
+  std::size_t from = 0;
+  while (from + 1 < points.size()) {
+    std::size_t to = from + 1;
+    for (std::size_t j = from + 2; j < points.size() && j < from + 400; ++j) {
+      bool near = true;
+      for (std::size_t k = from + 1; k < j && near; ++k)
+        near = segment_distance(points[k], points[from], points[j]) <= kSectionChord;
+      if (!near) break;
+      to = j;
+    }
+    out.push_back(points[to]);
+    from = to;
+  }
+  return out;
+}
+
 // A GENERAL_PROFILE: x across the slot (to the left of its travel), y up; its lowest point on
 // the depth plane, its ends at the top or above (docs/verify.md).
 bool general_section(const Reader& r, const p21::Instance& shape, double depth, Cavity& c,
@@ -124,7 +146,7 @@ bool general_section(const Reader& r, const p21::Instance& shape, double depth, 
     f.reason = "its general section has no curve";
     return false;
   }
-  std::vector<Vec2> points = section_points(r, *curve, f.reason);
+  std::vector<Vec2> points = simplify(section_points(r, *curve, f.reason));
   if (points.size() < 2) return false;
   if (points.back().x < points.front().x) std::reverse(points.begin(), points.end());
   double lowest = 0;
@@ -265,8 +287,11 @@ bool read_profiled_slot(const Reader& r, const p21::Instance& feature, Feature& 
     }
   }
   // A placed course of travel is in f.frame already (model.cpp, place_travel).
-  if (cavity->signed_across() && !r.is_a(*travel, "linear_path")) {
-    f.reason = "its general section is not symmetric and its course of travel is not a line";
+  if (cavity->signed_across() && !r.is_a(*travel, "linear_path") &&
+      !r.is_a(*travel, "complete_circular_path")) {
+    f.reason =
+        "its general section is not symmetric and its course of travel is not a line or "
+        "a whole circle";
     return false;
   }
   if (r.is_a(*travel, "complete_circular_path")) {

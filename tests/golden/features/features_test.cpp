@@ -674,7 +674,8 @@ TEST(FeaturesOwn, GeneralSlotSections) {
                 "(radius 8, corner radius 8) cannot reach the section #", "(QUASI_UNIFORM_CURVE)",
                 "ends 1.25 below the top at x -8", "leaves a negative allowance (-0.5 on the sides",
                 "5 control points do not make a curve of degree 3",
-                "(PARTIAL_CIRCULAR_PATH) (a general section is generated along a linear path)"});
+                "(PARTIAL_CIRCULAR_PATH) (a general section is generated along a linear path or a "
+                "complete circle)"});
 }
 
 // Drilling depths against blind bottoms: an 8 mm drill's point (118 degrees) reaches the lowest

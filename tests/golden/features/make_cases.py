@@ -906,7 +906,7 @@ def bspline(p, degree, pts, knots=None, kind="B_SPLINE_CURVE_WITH_KNOTS"):
 def section_cases():
     """Slots whose swept shape is a GENERAL_PROFILE (issue 17, part 4): the section in the
     profile's xy plane, x across the slot (left of the travel), y up, its top at y = 0."""
-    p = program("slot-general-section", "slots whose section is a general profile: a symmetric B-spline with radiused ends (a ball in rings, two levels), an asymmetric Bezier curve between open ends (a ball in straight passes), a stepped polyline with radiused ends (an end mill in rings)")
+    p = program("slot-general-section", "slots whose section is a general profile: a symmetric B-spline with radiused ends (a ball in rings, two levels), an asymmetric Bezier curve between open ends (a ball in straight passes), a stepped polyline with a radiused and an open end (an end mill in rings), the Bezier curve round a complete circle (a ball in circles)")
     ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
     ball4 = p.tool("BALL 4", "BALL_ENDMILL", 4, edge_length=12.0, edge_radius=2.0)
     mill6 = mill(p, 6, 15)
@@ -921,11 +921,15 @@ def section_cases():
     stepped = polyline(p, [(-9, 0), (-9, -2), (-4, -2), (-4, -5), (4, -5), (4, -2), (9, -2), (9, 0)], close=False)
     s3 = slot_feature(p, "STEPPED SLOT", 40, 60, line_path(p, 30), p.add(f"GENERAL_PROFILE($,{stepped})"),
                       [radiused, opened], 5)
+    ring = p.add(f"COMPLETE_CIRCULAR_PATH($,{p.length(20)})")
+    s4 = slot_feature(p, "BEZIER RING", 110, 0, ring, p.add(f"GENERAL_PROFILE($,{lopsided})"),
+                      [p.add("LOOP_SLOT_END_TYPE()")], 4.5)
     centre = p.add("CENTER_MILLING($,.T.)")
     cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
     p.write([("SPLINE GROOVE", s1, bs(p, "FINISH", "SPLINE", ball6, tech, cp, 3.0, None, None, None)),
              ("BEZIER CHANNEL", s2, bs(p, "FINISH", "BEZIER", ball4, tech, centre, None, None, None, None)),
-             ("STEPPED SLOT", s3, bs(p, "ROUGH", "STEPPED", mill6, tech, cp, 2.5, None, 0.0, 0.0))])
+             ("STEPPED SLOT", s3, bs(p, "ROUGH", "STEPPED", mill6, tech, cp, 2.5, None, 0.0, 0.0)),
+             ("BEZIER RING", s4, bs(p, "FINISH", "BEZIER RING", ball4, tech, centre, 2.5, None, None, None))])
 
     p = program("hole-bottoms-blind", "drilling depths checked against blind bottoms: a drill to the lowest point of a spherical bottom and of a flat-with-radius bottom (its point clear of the sphere and of the fillet), a drill through a through hole by its point and the clearance")
     drill8 = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)

@@ -209,7 +209,7 @@ TEST(VerifyCavityPrograms, GeneralSectionsPass) {
   const Program p = load("slot-general-section");
   const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
   EXPECT_TRUE(r.ok()) << dump(r);
-  ASSERT_EQ(r.features.size(), 3u);
+  ASSERT_EQ(r.features.size(), 4u);
   for (const auto& f : r.features) EXPECT_TRUE(f.checked) << f.name << ": " << f.not_checked_reason;
 }
 

@@ -2,7 +2,7 @@
 // - straight passes (a section between two open ends): from beyond one end to beyond the other
 //   and back, each pass at its offset, the tool crossing between passes beyond the ends at the
 //   height that clears the section between them; the next level comes back through the passes
-//   in the other order;
+//   in the other order; round a complete circle the same with whole circles;
 // - rings (a section symmetric about the course of travel, with a radiused end): the course of
 //   travel out and back, then each offset as a ring about it, half circles about radiused ends
 //   (the section turned about the end), crossings over the section beyond an open end.
@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "motion.hpp"
 #include "slot.hpp"
@@ -62,9 +63,17 @@ class SectionPasses {
   // or a ramp along the course of travel towards `inward`) or in the air past an open end.
   void descend(double u, double v, double z, double from_z, bool first, bool in_material,
                double inward);
+  // Each level's passes, in the other order than the level before (the next level starts where
+  // the last ended), then up: `visit(pass, z, first, previous pass)` draws each.
+  using Visit = std::function<void(std::size_t, double, bool, std::size_t)>;
+  bool back_and_forth(const Visit& visit);
   bool straight();
   bool rings();
+  bool circle();
   void ring(double e, double z, double height);
+  // A note, once, that the tool goes down into the material along its axis when no approach
+  // is named.
+  void plunge_note();
 
   const SectionSlotSpec& spec_;
   Draft& draft_;
@@ -73,6 +82,14 @@ class SectionPasses {
   double top_ = 0;
   bool noted_ = false;
 };
+
+void SectionPasses::plunge_note() {
+  if (noted_ || spec_.entry.strategy) return;
+  noted_ = true;
+  draft_.report().note(spec_.feature, spec_.tool.name() + " machines " + spec_.feature.name() +
+                                          " in passes along its course of travel; it enters "
+                                          "along its axis, as there is no room for a helix");
+}
 
 std::vector<std::size_t> SectionPasses::level_passes(std::size_t level) const {
   std::vector<std::size_t> out;
@@ -124,22 +141,14 @@ void SectionPasses::descend(double u, double v, double z, double from_z, bool fi
     return;
   }
   const double from = first ? clear_ : from_z;
-  if (spec_.entry.kind == Entry::Kind::Plunge && !noted_ && !spec_.entry.strategy) {
-    noted_ = true;
-    draft_.report().note(spec_.feature, spec_.tool.name() + " machines " + spec_.feature.name() +
-                                            " in passes along its course of travel; it enters "
-                                            "along its axis, as there is no room for a helix");
-  }
+  if (spec_.entry.kind == Entry::Kind::Plunge) plunge_note();
   const Vec3 dir = at(inward, 0, 0);
   double length = spec_.path.length;
   if (spec_.entry.width > 0) length = std::min(length, spec_.entry.width);
   enter(draft_, spec_.entry, at(u, v, from), dir, dir, length, spec_.ccw, from, z);
 }
 
-bool SectionPasses::straight() {
-  // Passes from right to left on the first level, back on the next, and so on; each pass runs
-  // from the end where the last one ended.
-  int side = 0;
+bool SectionPasses::back_and_forth(const Visit& visit) {
   bool first = true;
   bool reverse = false;
   std::size_t previous = 0;
@@ -147,18 +156,9 @@ bool SectionPasses::straight() {
     std::vector<std::size_t> passes = level_passes(level);
     if (reverse) std::reverse(passes.begin(), passes.end());
     reverse = !reverse;
-    for (std::size_t i = 0; i < passes.size(); ++i) {
-      const std::size_t k = passes[i];
-      const double v = spec_.passes[k].offset;
-      const double z = z_of(k, level);
-      if (first) {
-        descend(beyond(side), v, z, clear_, true, false, 0);
-        first = false;
-      } else {
-        over(beyond(side), v, std::max(cross(previous, k), z), z);
-      }
-      side = 1 - side;
-      draft_.feed(at(beyond(side), v, z));
+    for (const std::size_t k : passes) {
+      visit(k, z_of(k, level), first, previous);
+      first = false;
       previous = k;
       if (draft_.too_many()) return draft_.limit_reached();
     }
@@ -166,6 +166,20 @@ bool SectionPasses::straight() {
   const Vec3 end = draft_.here();
   draft_.rapid({end.x, end.y, top_});
   return true;
+}
+
+bool SectionPasses::straight() {
+  // Each pass runs from the end where the last one ended.
+  int side = 0;
+  return back_and_forth([&](std::size_t k, double z, bool first, std::size_t previous) {
+    const double v = spec_.passes[k].offset;
+    if (first)
+      descend(beyond(side), v, z, clear_, true, false, 0);
+    else
+      over(beyond(side), v, std::max(cross(previous, k), z), z);
+    side = 1 - side;
+    draft_.feed(at(beyond(side), v, z));
+  });
 }
 
 void SectionPasses::ring(double e, double z, double height) {
@@ -230,11 +244,37 @@ bool SectionPasses::rings() {
   return true;
 }
 
+bool SectionPasses::circle() {
+  // Each pass a whole circle about the centre, of the path's radius less its offset (the left
+  // of a counter-clockwise course is its inside), starting and ending on the +x axis, where the
+  // tool crosses to the next over the section.
+  const double radius = spec_.path.radius;
+  const auto on = [&](double v, double z) { return Vec3{radius - v, 0, z}; };
+  return back_and_forth([&](std::size_t k, double z, bool first, std::size_t previous) {
+    const double v = spec_.passes[k].offset;
+    if (first) {
+      draft_.rapid(on(v, top_));
+      if (top_ > clear_) draft_.rapid(on(v, clear_));
+      plunge_note();
+      draft_.feed(on(v, z));
+    } else {
+      const double height = std::max(cross(previous, k), z);
+      const Vec3 here = draft_.here();
+      if (height > here.z + kEps) draft_.feed({here.x, here.y, height});
+      draft_.feed(on(v, height));
+      if (z < height - kEps) draft_.feed(on(v, z));
+    }
+    draft_.arc(on(v, z), {0, 0, z}, spec_.ccw ? 1 : -1);
+  });
+}
+
 bool SectionPasses::run() {
   clear_ = options_.clearance;
   top_ = std::max(spec_.retract_plane.value_or(clear_), clear_);
   if (spec_.passes.empty() || spec_.levels.empty()) return true;
-  const bool ok = spec_.rings ? rings() : straight();
+  const bool ok = spec_.path.kind == SlotPath::Kind::Circle ? circle()
+                  : spec_.rings                             ? rings()
+                                                            : straight();
   if (ok && spec_.exit_strategy)
     draft_.report().note(spec_.exit_strategy,
                          spec_.exit_strategy.name() + ": the last pass of " + spec_.feature.name() +

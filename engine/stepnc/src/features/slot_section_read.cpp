@@ -267,10 +267,17 @@ bool check_section_slot(Reader& reader, const SlotBasics& basics, const Tool& to
   Report& report = reader.report();
   const auto f = [&] { return reader.name(reader.feature()); };
   const auto swept = [&] { return basics.swept.name(); };
-  if (basics.path.kind != SlotPath::Kind::Line)
+  const bool circle = basics.path.kind == SlotPath::Kind::Circle;
+  if (basics.path.kind != SlotPath::Kind::Line && !circle)
     return report.not_implemented(f() + " with " + swept() + " along " + basics.travel.name() +
-                                  " (a general section is generated along a linear path)");
+                                  " (a general section is generated along a linear path or a "
+                                  "complete circle)");
+  if (circle && operation.approach && !reader.is(operation.approach, "plunge_toolaxis"))
+    return report.not_implemented(operation.approach.name() + " into " + f() + " with " + swept() +
+                                  " along " + basics.travel.name() +
+                                  " (the tool goes down along its axis there)");
   for (const SlotEnd& e : basics.end) {
+    if (circle) break;  // a loop (read_slot_basics)
     if (e.kind != SlotEnd::Kind::Radiused && e.kind != SlotEnd::Kind::Open)
       return report.not_implemented(
           f() + " with " + swept() + " and the end " + e.subject.name() +
@@ -429,9 +436,11 @@ std::optional<std::vector<std::size_t>> choose_passes(const Fit& fit, const Sect
   };
   std::vector<std::size_t> chosen;
   std::size_t i = 0;
-  while (i <= fit.count && !(fit.tip[i] < 0)) ++i;
+  // From the first offset where the tool cuts deeper than the tolerance (above, what is left
+  // is within it anyway; the last round adds a pass if not).
+  while (i < fit.count && !(fit.tip[i] < -tol)) ++i;
   std::size_t last = fit.count;
-  while (last > i && !(fit.tip[last] < 0)) --last;
+  while (last > i && !(fit.tip[last] < -tol)) --last;
   chosen.push_back(i);
   const auto window =
       static_cast<std::size_t>(std::ceil(2 * (cutter.radius + cutter.allowance) / fit.spacing)) + 2;
@@ -468,6 +477,25 @@ std::optional<std::vector<std::size_t>> choose_passes(const Fit& fit, const Sect
   return chosen;
 }
 
+// The passes, and the height at which the tool crosses to each: the tip of a tool whose flat
+// spans both offsets (rings: the course of travel and the pass). Returns the deepest tip's depth.
+double add_passes(const Fit& fit, const std::vector<std::size_t>& chosen,
+                  const std::vector<SectionPoint>& boundary, const SectionCutter& cutter,
+                  bool rings, SectionSlotSpec& spec) {
+  double deepest = 0;
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    const double v = fit.v[chosen[k]];
+    const double tip = fit.tip[chosen[k]];
+    spec.passes.push_back({std::abs(v) < 1e-9 ? 0.0 : v, -tip});
+    deepest = std::max(deepest, -tip);
+    const double a = rings ? -v : k == 0 ? v : fit.v[chosen[k - 1]];
+    SectionCutter span = cutter;
+    span.radius += (v - a) / 2;
+    spec.cross.push_back(section_tip(boundary, span, (a + v) / 2));
+  }
+  return deepest;
+}
+
 }  // namespace
 
 bool read_section_slot(Reader& reader, const SlotBasics& basics, SectionSlotSpec& spec) {
@@ -498,8 +526,10 @@ bool read_section_slot(Reader& reader, const SlotBasics& basics, SectionSlotSpec
                            fmt(lowest) + ") is put on its depth plane, " + fmt(*depth) +
                            " below the top");
   const std::vector<SectionPoint> boundary = below_top(shifted);
-  const bool rings = section.symmetric && (basics.end[0].kind == SlotEnd::Kind::Radiused ||
-                                           basics.end[1].kind == SlotEnd::Kind::Radiused);
+  const bool circle = basics.path.kind == SlotPath::Kind::Circle;
+  const bool rings = !circle && section.symmetric &&
+                     (basics.end[0].kind == SlotEnd::Kind::Radiused ||
+                      basics.end[1].kind == SlotEnd::Kind::Radiused);
   SectionCutter cutter{tool->radius,
                        reader.is(tool->body, "ball_endmill")
                            ? tool->radius
@@ -509,6 +539,12 @@ bool read_section_slot(Reader& reader, const SlotBasics& basics, SectionSlotSpec
   const double reach = cutter.radius + cutter.allowance;
   const double from = rings ? 0 : boundary.front().u - reach;
   const double to = boundary.back().u + reach;
+  // Round a circle the section's left (inner) side and the tool must stay clear of its centre.
+  if (circle && !(basics.path.radius - to > 0))
+    return report.bad(curve, curve.name() + ", the section of " + f() + ", reaches " + fmt(to) +
+                                 " to the left of " + basics.travel.name() + " with " +
+                                 tool->subject.name() + ", beyond the centre of its radius " +
+                                 fmt(basics.path.radius));
   if ((to - from) / tol > static_cast<double>(options.max_moves))
     return report.limit_reached(options.max_moves);
   const Fit fit = fit_offsets(boundary, cutter, rings, from, to, tol);
@@ -531,19 +567,7 @@ bool read_section_slot(Reader& reader, const SlotBasics& basics, SectionSlotSpec
   }
   const auto chosen = choose_passes(fit, cutter, rings, tol, options.max_moves);
   if (!chosen) return report.limit_reached(options.max_moves);
-  // The passes, and the height at which the tool crosses to each: the tip of a tool whose flat
-  // spans both offsets (rings: the course of travel and the pass).
-  double deepest = 0;
-  for (std::size_t k = 0; k < chosen->size(); ++k) {
-    const double v = fit.v[(*chosen)[k]];
-    const double tip = fit.tip[(*chosen)[k]];
-    spec.passes.push_back({std::abs(v) < 1e-9 ? 0.0 : v, -tip});
-    deepest = std::max(deepest, -tip);
-    const double a = rings ? -v : k == 0 ? v : fit.v[(*chosen)[k - 1]];
-    SectionCutter span = cutter;
-    span.radius += (v - a) / 2;
-    spec.cross.push_back(section_tip(boundary, span, (a + v) / 2));
-  }
+  const double deepest = add_passes(fit, *chosen, boundary, cutter, rings, spec);
   if (static_cast<double>(spec.passes.size()) * 10 > static_cast<double>(options.max_moves))
     return report.limit_reached(options.max_moves);
   // The passes of the levels above the deepest: the stepover apart at most.
