@@ -73,8 +73,10 @@ std::vector<Vec2> spline_points(const Reader& r, const p21::Instance& curve, std
   double polygon = 0;
   for (std::size_t k = 1; k < points.size(); ++k)
     polygon += std::hypot(points[k][0] - points[k - 1][0], points[k][1] - points[k - 1][1]);
-  const int count =
-      std::clamp(static_cast<int>(std::ceil(polygon / kSectionSpacing)), 64 * n, 1000000);
+  // At least every kSectionSpacing of the control polygon and 32 times per control point, at
+  // most 100,000 times.
+  const int count = static_cast<int>(
+      std::min(std::max(std::ceil(polygon / kSectionSpacing), 32.0 * n), 100000.0));
   const double u0 = knots[static_cast<std::size_t>(d)];
   const double u1 = knots[static_cast<std::size_t>(n)];
   std::vector<Vec2> out;

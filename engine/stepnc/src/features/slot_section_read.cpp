@@ -24,6 +24,10 @@ constexpr double kEps = 1e-9;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Bisections of a curve's parameter interval at most: 2^-30 of a span is below any tolerance.
 constexpr int kMaxSplits = 30;
+// Offsets at most on the grid across a general section: FeatureOptions::profile_tolerance apart
+// up to a section (with the tool's reach on both sides) 500 mm wide, further apart beyond, so
+// that the work stays bounded.
+constexpr std::size_t kMaxOffsets = 100'000;
 
 // De Boor's algorithm in homogeneous coordinates: the point at parameter t of a clamped
 // (rational) B-spline whose knots are expanded by multiplicity.
@@ -382,7 +386,9 @@ Fit fit_offsets(const std::vector<SectionPoint>& boundary, const SectionCutter& 
                 double from, double to, double tol) {
   Fit fit;
   const double reach = cutter.radius + cutter.allowance;
-  fit.count = static_cast<std::size_t>(std::ceil((to - from) / tol));
+  // Offsets `tol` apart, or kMaxOffsets across a section too wide for that.
+  fit.count = static_cast<std::size_t>(
+      std::min(std::ceil((to - from) / tol), static_cast<double>(kMaxOffsets)));
   fit.from = from;
   fit.spacing = (to - from) / static_cast<double>(fit.count);
   for (std::size_t i = 0; i <= fit.count; ++i) {
@@ -390,7 +396,7 @@ Fit fit_offsets(const std::vector<SectionPoint>& boundary, const SectionCutter& 
     fit.v.push_back(v);
     fit.tip.push_back(section_tip(boundary, cutter, v));
   }
-  fit.probe = probes(boundary, tol);
+  fit.probe = probes(boundary, std::max(tol, fit.spacing));
   if (rings) std::erase_if(fit.probe, [](const SectionPoint& p) { return p.u < -1e-12; });
   for (std::size_t k = 0; k < fit.probe.size(); ++k) {
     const SectionPoint p = fit.probe[k];
@@ -545,8 +551,6 @@ bool read_section_slot(Reader& reader, const SlotBasics& basics, SectionSlotSpec
                                  " to the left of " + basics.travel.name() + " with " +
                                  tool->subject.name() + ", beyond the centre of its radius " +
                                  fmt(basics.path.radius));
-  if ((to - from) / tol > static_cast<double>(options.max_moves))
-    return report.limit_reached(options.max_moves);
   const Fit fit = fit_offsets(boundary, cutter, rings, from, to, tol);
   const auto shape = [&] {
     return tool->subject.name() + " (radius " + fmt(cutter.radius) + ", corner radius " +
