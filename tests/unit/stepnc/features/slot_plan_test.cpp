@@ -179,5 +179,30 @@ TEST_F(SectionSlotPlan, RingsTurnAboutRadiusedEnds) {
   for (const Move& m : moves()) EXPECT_GE(m.to.z, -3 - 1e-12);
 }
 
+TEST_F(SectionSlotPlan, RampsDownAlongTheCourseOfTravel) {
+  // Both ends radiused and a 10-degree ramp asked for: the tool goes down along the course of
+  // travel (z changes only while x does), never below the first ring, and says nothing.
+  SectionSlotSpec spec = channel();
+  spec.end[0].kind = SlotEnd::Kind::Radiused;
+  spec.end[1].kind = SlotEnd::Kind::Radiused;
+  spec.rings = true;
+  spec.passes = {{0, 3}, {2, 2}};
+  spec.cross = {-3, -2};
+  spec.levels = {-3};
+  spec.entry.kind = Entry::Kind::Ramp;
+  spec.entry.angle = 10 * std::numbers::pi / 180;
+  ASSERT_TRUE(plan_section_slot(spec, draft_));
+  EXPECT_TRUE(findings().empty());
+  Vec3 at = moves().front().to;
+  for (std::size_t i = 1; i < moves().size(); ++i) {
+    const Move& m = moves()[i];
+    if (m.kind == Move::Kind::Feed && m.to.z < at.z - 1e-9 && m.to.z < 0) {
+      EXPECT_GT(std::abs(m.to.x - at.x), 1e-6) << "a plunge at move " << i;
+    }
+    EXPECT_GE(m.to.z, -3 - 1e-12);
+    at = m.to;
+  }
+}
+
 }  // namespace
 }  // namespace ncpost::stepnc::features
