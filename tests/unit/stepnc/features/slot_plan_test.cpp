@@ -137,6 +137,17 @@ class SectionSlotPlan : public test::Planning {
     spec.entry.kind = Entry::Kind::Plunge;
     return spec;
   }
+  // The same slot with radiused ends and a symmetric section: the course of travel 3 deep and a
+  // ring at offset 2, 2 deep, in one level.
+  SectionSlotSpec rings() const {
+    SectionSlotSpec spec = channel();
+    for (SlotEnd& e : spec.end) e.kind = SlotEnd::Kind::Radiused;
+    spec.rings = true;
+    spec.passes = {{0, 3}, {2, 2}};
+    spec.cross = {-3, -2};
+    spec.levels = {-3};
+    return spec;
+  }
 };
 
 TEST_F(SectionSlotPlan, StraightPassesCrossOverTheSectionBeyondTheEnds) {
@@ -157,13 +168,7 @@ TEST_F(SectionSlotPlan, StraightPassesCrossOverTheSectionBeyondTheEnds) {
 TEST_F(SectionSlotPlan, RingsTurnAboutRadiusedEnds) {
   // A symmetric section with radiused ends: the course of travel (plunged into at the end) and
   // a ring at offset 2 whose half circles are arcs about the ends of the course of travel.
-  SectionSlotSpec spec = channel();
-  spec.end[0].kind = SlotEnd::Kind::Radiused;
-  spec.end[1].kind = SlotEnd::Kind::Radiused;
-  spec.rings = true;
-  spec.passes = {{0, 3}, {2, 2}};
-  spec.cross = {-3, -2};
-  spec.levels = {-3};
+  SectionSlotSpec spec = rings();
   ASSERT_TRUE(plan_section_slot(spec, draft_));
   EXPECT_EQ(count(Move::Kind::Arc), 2u);
   for (const Move& m : moves()) {
@@ -182,13 +187,7 @@ TEST_F(SectionSlotPlan, RingsTurnAboutRadiusedEnds) {
 TEST_F(SectionSlotPlan, RampsDownAlongTheCourseOfTravel) {
   // Both ends radiused and a 10-degree ramp asked for: the tool goes down along the course of
   // travel (z changes only while x does), never below the first ring, and says nothing.
-  SectionSlotSpec spec = channel();
-  spec.end[0].kind = SlotEnd::Kind::Radiused;
-  spec.end[1].kind = SlotEnd::Kind::Radiused;
-  spec.rings = true;
-  spec.passes = {{0, 3}, {2, 2}};
-  spec.cross = {-3, -2};
-  spec.levels = {-3};
+  SectionSlotSpec spec = rings();
   spec.entry.kind = Entry::Kind::Ramp;
   spec.entry.angle = 10 * std::numbers::pi / 180;
   ASSERT_TRUE(plan_section_slot(spec, draft_));
