@@ -5,9 +5,13 @@
 // server killed with SIGKILL while uploads are under way restarts with one complete version.
 
 #include <gtest/gtest.h>
+#include <sys/mount.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <regex>
@@ -437,6 +441,168 @@ TEST_F(ProfileAdmin, KillNineDuringUploadsLeavesOneCompleteVersion) {
   ASSERT_EQ(last.status, 200) << last.body;
   const std::string version = unquote(last.header("ETag"));
   EXPECT_TRUE(version == versions[0] || version == versions[1]) << version;
+}
+
+// ---- the fault matrix (docs/reliability.md): profiles ----------------------------------------
+
+// The entries of a directory, by name.
+std::vector<std::string> entries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A tmpfs of `size` mounted on a folder, unmounted when the object goes away. Needs
+// CAP_SYS_ADMIN (root in most containers); mounted() says whether it worked.
+class SmallDisk {
+ public:
+  SmallDisk(fs::path where, const std::string& size) : where_(std::move(where)) {
+    fs::create_directories(where_);
+    if (::mount("tmpfs", where_.c_str(), "tmpfs", 0, ("size=" + size).c_str()) == 0)
+      mounted_ = true;
+    else
+      why_ = std::strerror(errno);
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  ~SmallDisk() {
+    if (mounted_) ::umount2(where_.c_str(), MNT_DETACH);
+  }
+  [[nodiscard]] bool mounted() const { return mounted_; }
+  [[nodiscard]] const std::string& why() const { return why_; }
+  // Writes a file until the disk is full; false when it never filled (not a small disk).
+  bool fill(const fs::path& file) const {
+    std::ofstream out(file, std::ios::binary);
+    const std::string block(64 << 10, 'f');
+    for (int i = 0; i < 1 << 14; ++i)
+      if (!out.write(block.data(), static_cast<std::streamsize>(block.size())).flush()) return true;
+    return false;
+  }
+
+ private:
+  fs::path where_;
+  bool mounted_ = false;
+  std::string why_;
+};
+
+TEST_F(ProfileAdmin, DiskFullDuringAPutKeepsTheOldVersionAndWritesNothingHalf) {
+  SmallDisk disk(profiles_, "1m");
+  if (!disk.mounted())
+    GTEST_SKIP() << "cannot mount a small tmpfs here (" << disk.why()
+                 << "): the disk-full case needs CAP_SYS_ADMIN";
+  const auto xsl = write(files_ / "post.xsl", stylesheet());
+  const auto a = write(files_ / "a.json", profile_json("full", "Version A"));
+  const auto b = write(files_ / "b.json", profile_json("full", "Version B"));
+  ServerProcess server(writable());
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto first = put(server, "full", a, xsl);
+  ASSERT_EQ(first.status, 201) << first.body;
+  const std::string version = unquote(first.header("ETag"));
+  // Everything but the store's own files: the disk is full from here on.
+  const fs::path filler = profiles_ / ".filler";
+  ASSERT_TRUE(disk.fill(filler));
+  const auto before = entries(profiles_);
+
+  const auto refused = put(server, "full", b, xsl);
+  EXPECT_EQ(refused.status, 500) << refused.body;
+  EXPECT_EQ(refused.header("Content-Type"), "application/problem+json");
+  EXPECT_NE(refused.body.find("PROFILE-007"), std::string::npos) << refused.body;
+  EXPECT_NE(refused.body.find("No space left on device"), std::string::npos) << refused.body;
+  EXPECT_EQ(refused.body.find(profiles_.string()), std::string::npos)
+      << "the server's paths stay out of the answer: " << refused.body;
+  // Nothing half-written: no new version folder, no temporary left behind.
+  EXPECT_EQ(entries(profiles_), before);
+  const auto still = curl({server.url("/v1/profiles/full")});
+  EXPECT_EQ(still.status, 200);
+  EXPECT_EQ(unquote(still.header("ETag")), version);
+  EXPECT_NE(still.body.find("Version A"), std::string::npos);
+  EXPECT_EQ(post(server, "full").status, 200);
+  EXPECT_EQ(curl({server.url("/readyz")}).status, 200);
+
+  // Space again: the same PUT goes through.
+  fs::remove(filler);
+  const auto again = put(server, "full", b, xsl);
+  EXPECT_EQ(again.status, 200) << again.body;
+  EXPECT_NE(curl({server.url("/v1/profiles/full")}).body.find("Version B"), std::string::npos);
+}
+
+// A one-worker server without a queue over the store.
+ServerOptions one_worker(const fs::path& profiles, std::vector<std::string> more = {}) {
+  std::vector<std::string> args = {"--profiles", profiles.string(), "--workers",
+                                   "1",          "--queue",         "0"};
+  args.insert(args.end(), more.begin(), more.end());
+  return options(std::move(args), {{"NCPOST_ADMIN_TOKEN", kToken}});
+}
+// Stores profile `id` with the text stylesheet `templates`, posts the example with it and
+// expects a problem+json of `status` and `code`; returns how long the post took.
+Clock::duration post_expecting_problem(const ServerProcess& server, const fs::path& files,
+                                       const std::string& id, const std::string& templates,
+                                       int status, const std::string& code) {
+  const auto stored = put(server, id, write(files / (id + ".json"), profile_json(id, id)),
+                          write(files / (id + ".xsl"),
+                                "<xsl:stylesheet version=\"1.0\" "
+                                "xmlns:xsl=\"http://www.w3.org/1999/XSL/Transform\">\n"
+                                "<xsl:output method=\"text\"/>\n" +
+                                    templates + "</xsl:stylesheet>\n"));
+  EXPECT_LT(stored.status, 300) << stored.body;
+  const auto started = Clock::now();
+  const auto r = post(server, id);
+  const auto took = Clock::now() - started;
+  EXPECT_EQ(r.status, status) << r.body;
+  EXPECT_EQ(r.header("Content-Type"), "application/problem+json");
+  EXPECT_NE(r.body.find(code), std::string::npos) << r.body;
+  return took;
+}
+
+// A stylesheet that recurses without end: the depth limit stops it, the post is a 422 problem
+// naming the limit, within seconds, and the worker serves the next post.
+TEST_F(ProfileAdmin, ALoopingStylesheetIsABoundedProblem) {
+  ServerProcess server(one_worker(profiles_));
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto took = post_expecting_problem(
+      server, files_, "loops",
+      "<xsl:template match=\"/\"><xsl:call-template name=\"again\"/></xsl:template>\n"
+      "<xsl:template name=\"again\"><xsl:param name=\"n\" select=\"0\"/>\n"
+      "  <xsl:call-template name=\"again\"><xsl:with-param name=\"n\" select=\"$n + 1\"/>"
+      "</xsl:call-template>\n</xsl:template>\n",
+      422, "XSLT-020");
+  EXPECT_LT(took, 10s);
+  EXPECT_EQ(post(server, "linuxcnc").status, 200) << server.log();
+}
+
+// A job stuck in its stylesheet (a transform of 2^40 template calls) past --job-timeout: the
+// client gets a 504 problem at the time limit; the worker comes back when the transform's own
+// step limit ends it (xslt::Limits::max_steps, about 2 s), and then serves the next post.
+TEST_F(ProfileAdmin, AJobStuckPastTheTimeLimitIs504AndItsWorkerComesBack) {
+  ServerProcess server(one_worker(profiles_, {"--job-timeout", "0.3"}));
+  ASSERT_TRUE(server.started()) << server.log();
+  const auto started = Clock::now();
+  const auto took = post_expecting_problem(
+      server, files_, "busy",
+      "<xsl:template match=\"/\"><xsl:call-template name=\"busy\"/></xsl:template>\n"
+      "<xsl:template name=\"busy\"><xsl:param name=\"d\" select=\"40\"/>\n"
+      "  <xsl:if test=\"$d &gt; 0\">\n"
+      "    <xsl:call-template name=\"busy\"><xsl:with-param name=\"d\" select=\"$d - 1\"/>"
+      "</xsl:call-template>\n"
+      "    <xsl:call-template name=\"busy\"><xsl:with-param name=\"d\" select=\"$d - 1\"/>"
+      "</xsl:call-template>\n  </xsl:if>\n</xsl:template>\n",
+      504, "HTTP-005");
+  EXPECT_LT(took, 5s);
+  // One worker, no queue: a 503 while the stuck job holds it, a 200 once it let go.
+  const auto deadline = Clock::now() + 30s;
+  CurlResult next;
+  do {
+    next = post(server, "linuxcnc");
+    if (next.status == 200) break;
+    EXPECT_EQ(next.status, 503) << next.body;
+    std::this_thread::sleep_for(100ms);
+  } while (Clock::now() < deadline);
+  EXPECT_EQ(next.status, 200) << server.log();
+  RecordProperty(
+      "worker_back_after_ms",
+      std::to_string(
+          std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - started).count()));
 }
 
 }  // namespace

@@ -11,8 +11,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <regex>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "corpus.hpp"
@@ -145,6 +148,28 @@ inline std::size_t count_of(std::string_view text, std::string_view needle) {
 inline std::string post_head(std::string_view target, std::size_t length) {
   return "POST " + std::string(target) +
          " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: " + std::to_string(length) + "\r\n\r\n";
+}
+
+// A gauge of /metrics without labels (ncpost_jobs_active, ncpost_jobs_queued); nullopt when
+// the server did not answer.
+inline std::optional<long long> gauge(const ServerProcess& server, const std::string& name) {
+  const auto r = curl({server.url("/metrics")});
+  std::smatch m;
+  const std::regex line("\n" + name + " ([0-9]+)\n");
+  if (r.status != 200 || !std::regex_search(r.body, m, line)) return std::nullopt;
+  return std::stoll(m[1]);
+}
+
+// How long until no job runs, polling /metrics; nullopt when `limit` passes first.
+inline std::optional<std::chrono::milliseconds> until_idle(const ServerProcess& server,
+                                                           std::chrono::milliseconds limit) {
+  const auto start = Clock::now();
+  while (Clock::now() - start < limit) {
+    if (gauge(server, "ncpost_jobs_active") == 0)
+      return std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return std::nullopt;
 }
 
 inline const std::string kCurves = "tests/golden/trace/cases/curves.stp";

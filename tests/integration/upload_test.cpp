@@ -23,27 +23,6 @@ using namespace std::chrono_literals;
 
 const std::string kEx1E = "p21/nist_toolkit_ex1E.stp";
 
-// ncpost_jobs_active from /metrics; nullopt when the server did not answer.
-std::optional<int> active_jobs(const ServerProcess& server) {
-  const auto r = curl({server.url("/metrics")});
-  std::smatch m;
-  static const std::regex line("\nncpost_jobs_active ([0-9]+)\n");
-  if (r.status != 200 || !std::regex_search(r.body, m, line)) return std::nullopt;
-  return std::stoi(m[1]);
-}
-
-// How long until no job runs, polling /metrics; nullopt when `limit` passes first.
-std::optional<std::chrono::milliseconds> until_idle(const ServerProcess& server,
-                                                    std::chrono::milliseconds limit) {
-  const auto start = Clock::now();
-  while (Clock::now() - start < limit) {
-    if (active_jobs(server) == 0)
-      return std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start);
-    std::this_thread::sleep_for(10ms);
-  }
-  return std::nullopt;
-}
-
 // A Server-Timing metric's duration in ms ("read;dur=12.5"), or -1.
 double timing(const std::string& head, const std::string& metric) {
   std::smatch m;

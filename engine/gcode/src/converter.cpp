@@ -12,7 +12,7 @@ namespace ncpost::gcode::detail {
 
 namespace {
 
-constexpr WordId kX = letter_word('X'), kY = letter_word('Y'), kZ = letter_word('Z');
+constexpr WordId kX = letter_word('X'), kY = letter_word('Y');
 constexpr WordId kI = letter_word('I'), kJ = letter_word('J'), kK = letter_word('K');
 constexpr WordId kF = letter_word('F'), kS = letter_word('S'), kT = letter_word('T');
 constexpr WordId kH = letter_word('H'), kL = letter_word('L'), kP = letter_word('P');
@@ -654,7 +654,7 @@ bool Converter::add_spline_point(const Block& b, const Where& where) {
   if (!spline_) {
     if (!check_feed_motion(where, column)) return false;
     ensure_section(where);
-    spline_.emplace();
+    spline_ = Spline{};  // not emplace(): clang 14 (the fuzz build) rejects it here
     spline_->points.push_back({from_mm(pos_[0]), from_mm(pos_[1]), from_mm(pos_[2]), 1.0});
     spline_->degree = 3;
     if (spline_words_[2] != kNoWord && b.has(spline_words_[2]))
@@ -690,7 +690,7 @@ bool Converter::add_nurbs_point(const Block& b, const Where& where) {
     ensure_section(where);
     if (!b.has(kP))
       return error(where, column, diag::Code::GcodeMissingWord, "G06.2 without its order P");
-    spline_.emplace();
+    spline_ = Spline{};  // not emplace(): clang 14 (the fuzz build) rejects it here
     spline_->explicit_knots = true;
     spline_->degree = static_cast<int>(std::lround(b.value(kP))) - 1;
     spline_->where_file = std::string(where.file);

@@ -31,7 +31,6 @@ using p21::ValueKind;
 constexpr std::string_view kLateNamespace = "urn:ncpost:iso10303-28:late-binding";
 constexpr std::string_view kExNamespace =
     "urn:iso.org:standard:10303:part(28):version(2):xmlschema:common";
-constexpr std::string_view kXsiNamespace = "http://www.w3.org/2001/XMLSchema-instance";
 
 // The namespaces of ISO 10303-28's common elements, over the generations of the standard.
 bool is_common_namespace(std::string_view ns) {

@@ -19,7 +19,10 @@ double distance_to_segment(const canon::Point& p, const canon::Point& a, const c
   return std::sqrt(qx * qx + qy * qy + qz * qz);
 }
 
-void subdivide(const canon::NurbsFeed& n, double u0, const canon::Point& p0, double u1,
+// Appends the end points of pieces within `tolerance` of the curve from u0 to u1. False when the
+// curve cannot be followed: a deviation that is not a number (geometry so large that distances
+// overflow), or more pieces than kMaxNurbsPoints.
+bool subdivide(const canon::NurbsFeed& n, double u0, const canon::Point& p0, double u1,
                const canon::Point& p1, double tolerance, int depth,
                std::vector<canon::Point>& out) {
   const double um = 0.5 * (u0 + u1);
@@ -29,12 +32,15 @@ void subdivide(const canon::NurbsFeed& n, double u0, const canon::Point& p0, dou
   const canon::Point pb = nurbs_point(n, 0.5 * (um + u1));
   const double dev = std::max({distance_to_segment(pm, p0, p1), distance_to_segment(pa, p0, p1),
                                distance_to_segment(pb, p0, p1)});
+  if (!std::isfinite(dev) || !std::isfinite(p1.x) || !std::isfinite(p1.y) || !std::isfinite(p1.z))
+    return false;
   if (depth >= 24 || dev <= tolerance) {
+    if (out.size() >= kMaxNurbsPoints) return false;
     out.push_back(p1);
-    return;
+    return true;
   }
-  subdivide(n, u0, p0, um, pm, tolerance, depth + 1, out);
-  subdivide(n, um, pm, u1, p1, tolerance, depth + 1, out);
+  return subdivide(n, u0, p0, um, pm, tolerance, depth + 1, out) &&
+         subdivide(n, um, pm, u1, p1, tolerance, depth + 1, out);
 }
 
 }  // namespace
@@ -83,7 +89,7 @@ std::vector<canon::Point> linearize(const canon::NurbsFeed& n, double tolerance)
     for (int s = 1; s <= kStart; ++s) {
       const double u1 = s == kStart ? U[i + 1] : U[i] + (U[i + 1] - U[i]) * s / kStart;
       const canon::Point p1 = nurbs_point(n, u1);
-      subdivide(n, u0, p0, u1, p1, tolerance, 0, out);
+      if (!subdivide(n, u0, p0, u1, p1, tolerance, 0, out)) return {};
       u0 = u1;
       p0 = p1;
     }

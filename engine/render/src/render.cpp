@@ -295,7 +295,10 @@ void Renderer::call(const canon::Call& incoming) {
       nurbs && caps.nurbs == profile::NurbsMode::Linearize) {
     const auto points = linearize(*nurbs, caps.chord_tolerance);
     if (points.empty()) {
-      report(diag::Code::RenderNurbs, diag::Severity::Error, "invalid NURBS (" + where(call) + ")");
+      report(diag::Code::RenderNurbs, diag::Severity::Error,
+             "invalid NURBS, or one that cannot be followed within the chord tolerance " +
+                 std::to_string(caps.chord_tolerance) + " in " + std::to_string(kMaxNurbsPoints) +
+                 " line segments (" + where(call) + ")");
       return;
     }
     for (const auto& p : points)

@@ -84,8 +84,9 @@ void account_free(Budget& b, std::size_t usable) noexcept {
 // slower paths: about a quarter of a transform's instructions. Blocks stay glibc blocks (any
 // thread may free or realloc them), a block handed out has exactly the usable size glibc would
 // give for the request (so the accounting is unchanged), and the cache is bounded. Off under
-// AddressSanitizer, which must see every free.
-#if defined(__SANITIZE_ADDRESS__)
+// AddressSanitizer, which must see every free, and ThreadSanitizer, which would take a block
+// that one thread cached and another reused for a race.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 constexpr bool kBlockCache = false;
 #else
 constexpr bool kBlockCache = true;

@@ -286,6 +286,24 @@ TEST(Nurbs, LinearizeStaysWithinChordTolerance) {
   EXPECT_TRUE(linearize(bad, 0.01).empty());
 }
 
+// Found by the render fuzz target: a valid NURBS whose distances overflow (control points near
+// 1e308) had a deviation that was never within tolerance, so each of its pieces was halved 24
+// times, 2^24 points a piece, until the process ran out of memory. Such a curve, and one that
+// needs more than kMaxNurbsPoints pieces, is now refused (RENDER-003) at once.
+TEST(Nurbs, CurvesThatCannotBeFollowedAreRefusedNotHalvedWithoutEnd) {
+  canon::NurbsFeed huge;
+  huge.degree = 1;
+  huge.points = {{0, 0, 0, 1}, {1e308, 1e308, 0, 1}};
+  huge.knots = {0, 0, 1, 1};
+  ASSERT_TRUE(canon::valid(huge));
+  EXPECT_TRUE(linearize(huge, 0.01).empty());
+  // A quarter circle of radius 5 needs some 2,000 pieces at 1e-6, some 500,000 at 1e-11.
+  const auto fine = linearize(quarter_circle(), 1e-11);
+  EXPECT_TRUE(fine.empty()) << fine.size() << " points";
+  EXPECT_FALSE(linearize(quarter_circle(), 1e-6).empty());
+  EXPECT_LE(linearize(quarter_circle(), 1e-6).size(), kMaxNurbsPoints);
+}
+
 // Three workingsteps: block numbers switched off, left as the profile has them, switched on.
 std::vector<canon::Call> numbering_program(int feeds) {
   using namespace canon;

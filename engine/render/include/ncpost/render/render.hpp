@@ -28,9 +28,12 @@ using TextSink = std::function<void(std::string_view)>;
 // Evaluates a rational B-spline (clamped, as canon::NurbsFeed) at parameter u with de Boor's
 // algorithm on homogeneous coordinates.
 [[nodiscard]] canon::Point nurbs_point(const canon::NurbsFeed& nurbs, double u);
+// The most line segments one NURBS becomes (a bound on time and memory whatever the curve).
+inline constexpr std::size_t kMaxNurbsPoints = std::size_t{1} << 16;
 // STRAIGHT_FEED end points that follow the curve within `tolerance` (chord deviation measured
 // at midpoints of each piece, recursively). The last point is the curve's end. Empty when the
-// NURBS is not valid (canon::valid).
+// NURBS is not valid (canon::valid), when its geometry is so large that distances overflow
+// (control points near 1e308, weights near 0), or when it needs more than kMaxNurbsPoints.
 [[nodiscard]] std::vector<canon::Point> linearize(const canon::NurbsFeed& nurbs, double tolerance);
 
 struct RenderOptions {
