@@ -52,6 +52,16 @@ void append_instance(const Model& m, const Instance& inst, std::uint64_t shift, 
   out += '#';
   out += std::to_string(inst.id + shift);
   out += '=';
+  if (inst.keyword == Model::kComplexKeyword) {
+    // (A(..)B(..)): each partial record is a typed value whose child is its parameter list.
+    out += '(';
+    for (Value record : m.params(inst)) {
+      out += m.keyword(record.keyword_id());
+      append_shifted(m, m.typed_child(record), shift, out);
+    }
+    out += ");\n";
+    return;
+  }
   out += m.type_name(inst);
   out += '(';
   bool first = true;

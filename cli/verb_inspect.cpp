@@ -23,13 +23,15 @@ int run_inspect(Args args) {
 
   auto job = prepare_job(options);
   if (!job) return kExitRejected;
-  const pipeline::Inspection inspection = pipeline::inspect(std::move(job->input), job->context);
+  pipeline::Inspection inspection;
   if (format == "json") {
-    pipeline::write_inspection_json(inspection, [](std::string_view piece) {
-      std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
-    });
+    inspection =
+        pipeline::inspect_to_json(std::move(job->input), job->context, [](std::string_view piece) {
+          std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
+        });
     std::cout << '\n';
   } else {
+    inspection = pipeline::inspect(std::move(job->input), job->context);
     std::cout << pipeline::inspection_text(inspection);
   }
   std::cout.flush();

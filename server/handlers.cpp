@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "auth.hpp"
@@ -100,20 +101,34 @@ class Coalescer {
   bool alive_ = true;
 };
 
-// A streamed answer whose head goes out with the first piece, so that a job that fails before
-// any output is still an ordinary problem response; the pieces are coalesced.
+// A streamed answer whose head goes out once `hold_back` bytes of it are there (with the first
+// piece when 0), so that a job that fails before that is still an ordinary problem response;
+// the pieces are coalesced. `before_head` may complete the head just before it goes out.
 class LateStream {
  public:
-  LateStream(Exchange& exchange, StreamHead head)
-      : exchange_(exchange), head_(std::move(head)), out_(exchange) {}
+  LateStream(Exchange& exchange, StreamHead head, std::uint64_t hold_back = 0,
+             std::function<void(StreamHead&)> before_head = {})
+      : exchange_(exchange),
+        head_(std::move(head)),
+        hold_back_(hold_back),
+        before_head_(std::move(before_head)),
+        out_(exchange) {}
   void operator()(std::string_view piece) {
-    if (!begun_) {
-      begun_ = true;
-      if (!exchange_.begin_stream(std::move(head_))) return;
-    }
-    out_(piece);
+    if (begun_) return out_(piece);
+    held_.append(piece);
+    if (held_.size() >= hold_back_) (void)begin();
   }
   [[nodiscard]] bool begun() const { return begun_; }
+  // Sends the head and what is held: a job that ended with less than the hold-back (or no
+  // output at all: still a complete, empty answer). False when the client has gone.
+  bool begin() {
+    begun_ = true;
+    if (before_head_) before_head_(head_);
+    if (!exchange_.begin_stream(std::move(head_))) return false;
+    out_(held_);
+    held_ = std::string();
+    return true;
+  }
   // Ends a begun stream: whole (with the trailer) when `whole` and every piece went out.
   void end(bool whole, http::fields trailer = {}) {
     out_.flush();
@@ -126,6 +141,9 @@ class LateStream {
  private:
   Exchange& exchange_;
   StreamHead head_;
+  std::uint64_t hold_back_;
+  std::function<void(StreamHead&)> before_head_;
+  std::string held_;
   Coalescer out_;
   bool begun_ = false;
 };
@@ -654,14 +672,6 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
   head.set("X-Ncpost-Profile-Version", loaded_profile->version);
   head.set(http::field::vary, "Accept");
   head.set(http::field::trailer, "Ncpost-Warnings, Ncpost-Diagnostics");
-  // The head goes out once --hold-back bytes of text are there (or the job ends), so that an
-  // error found before that is still an ordinary problem+json response. That matters for
-  // inputs read as they are interpreted (G-code, CL), whose errors can follow the first
-  // blocks; it costs a small program's first byte nothing, a large one's 64 KiB.
-  const std::uint64_t hold_back = services.config.hold_back;
-  std::string held;
-  bool begun = false;
-  bool alive = true;
   pipeline::PostOptions options;
   options.shop_checks = *shop_checks;
   // One thread per job: --workers bounds the threads doing CPU work, which a render thread of
@@ -675,7 +685,7 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
         "read;dur=" + timing_ms(read.read_time) + ", check;dur=" + timing_ms(read.check_time);
     render_started = Clock::now();
   };
-  const auto begin = [&] {
+  const auto server_timing = [&](StreamHead& h) {
     std::string timing;
     if (exchange.received != Clock::time_point{})
       timing = "queue;dur=" + timing_ms(job_started - exchange.received) + ", ";
@@ -686,53 +696,34 @@ void handle_post(Request& request, Services& services, Exchange& exchange) {
                                std::max<std::size_t>(1, streamed->size())) +
                 "% while arriving\", ";
     timing += read_timing + ", first-text;dur=" + timing_ms(Clock::now() - render_started);
-    head.set("Server-Timing", timing);
-    return exchange.begin_stream(head);
+    h.set("Server-Timing", timing);
   };
+  // The head goes out once --hold-back bytes of text are there (or the job ends), so that an
+  // error found before that is still an ordinary problem+json response. That matters for
+  // inputs read as they are interpreted (G-code, CL), whose errors can follow the first
+  // blocks; it costs a small program's first byte nothing, a large one's 64 KiB.
+  LateStream out(exchange, std::move(head), services.config.hold_back, server_timing);
   const pipeline::PostJobResult result = pipeline::post(
-      job_input(*upload), *context, *loaded_profile,
-      [&](std::string_view piece) {
-        if (!alive) return;
-        if (!begun) {
-          held.append(piece);
-          if (held.size() < hold_back) return;
-          begun = true;
-          alive = begin() && exchange.write(held);
-          held = std::string();
-          return;
-        }
-        alive = exchange.write(piece);
-      },
+      job_input(*upload), *context, *loaded_profile, [&out](std::string_view piece) { out(piece); },
       options, on_read);
   record_read(*services.metrics, result.read);
   record_post_stages(*services.metrics, result.post.interpret, result.post.render,
                      result.post.interpret_and_render);
   const auto diagnostics = services.profiles->without_server_paths(result.diagnostics());
-  if (begun) {
-    if (result.ok())
-      exchange.end_stream(true, diagnostics_trailer(diagnostics));
-    else
-      exchange.end_stream(false);
-    return;
+  if (!out.begun()) {
+    if (stop_if_cancelled(exchange)) return;
+    if (!result.read.ok) {
+      exchange.respond(input_rejected(diagnostics));
+      return;
+    }
+    if (!result.ok()) {
+      exchange.respond(problem(422, "post-failed", "The program could not be posted",
+                               "the post stopped before any output; see diagnostics", diagnostics));
+      return;
+    }
+    if (!out.begin()) return;
   }
-  if (stop_if_cancelled(exchange)) return;
-  if (!result.read.ok) {
-    exchange.respond(input_rejected(diagnostics));
-    return;
-  }
-  if (!result.ok()) {
-    exchange.respond(problem(422, "post-failed", "The program could not be posted",
-                             "the post stopped before any output; see diagnostics", diagnostics));
-    return;
-  }
-  // A program shorter than what is held back, or one that renders to nothing (still a
-  // complete, empty program).
-  if (!begin()) return;
-  const bool written = held.empty() || exchange.write(held);
-  if (written)
-    exchange.end_stream(true, diagnostics_trailer(diagnostics));
-  else
-    exchange.end_stream(false);
+  out.end(result.ok(), diagnostics_trailer(diagnostics));
 }
 
 void handle_conversion(Request& request, Services& services, Exchange& exchange) {

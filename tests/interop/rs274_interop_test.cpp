@@ -157,14 +157,16 @@ TEST(Rs274Interop, LinuxcncProfile) {
 // Programs whose paths the feature generator makes (tests/golden/features/cases): thread
 // drilling's multi-turn helices (G2/G3 with P), helical ramps round a ring groove, helical
 // retracts out of a pocket; slots along placed paths, pockets with placed profiles, milled and
-// tapered holes, roughing into tight corners.
+// tapered holes, roughing into tight corners, slots with general sections, drilling depths
+// against blind bottoms.
 TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
   NCPOST_REQUIRE_RS274_OR_SKIP();
   const fs::path cases = test::source_dir() / "tests" / "golden" / "features" / "cases";
   for (const char* name : {"thread-drilling", "slot-circular", "pocket-retract",
                            // geometry other systems write (issue 17)
                            "slot-placed-travel", "pocket-placed-profile", "hole-milled",
-                           "hole-bottoms-taper", "pocket-rough-corners", "geometry-combined"}) {
+                           "hole-bottoms-taper", "pocket-rough-corners", "geometry-combined",
+                           "slot-general-section", "hole-bottoms-blind"}) {
     SCOPED_TRACE(name);
     const auto o = compare_with_rs274(cases / (std::string(name) + ".stp"), name, "linuxcnc");
     EXPECT_GT(o.compared, 0u);

@@ -415,8 +415,10 @@ void Converter::set_translation(const Axes& offset) {
 
 // ---- Motion primitives -----------------------------------------------------------------------
 
-void Converter::check_limits(const Axes& p, const Where& where, std::uint32_t column) {
-  if (!options_.limits) return;
+// False when `p` is past the target's travel and the profile makes that an error: the motion
+// is then not made (the renderer would only report it again, without the line).
+bool Converter::check_limits(const Axes& p, const Where& where, std::uint32_t column) {
+  if (!options_.limits) return true;
   const auto& l = *options_.limits;
   const std::array<const std::optional<MachineLimits::Range>*, 3> ranges = {&l.x, &l.y, &l.z};
   for (int k = 0; k < 3; ++k) {
@@ -430,9 +432,10 @@ void Converter::check_limits(const Axes& p, const Where& where, std::uint32_t co
                   std::string(1, kAxisLetters[static_cast<std::size_t>(k)]) + " " + number_text(v) +
                       " beyond the travel [" + number_text(r->min) + ", " + number_text(r->max) +
                       "]");
-      return;
+      return !l.errors;
     }
   }
+  return true;
 }
 
 bool Converter::check_feed_motion(const Where& where, std::uint32_t column, double own_feed) {
@@ -459,7 +462,7 @@ bool Converter::check_feed_motion(const Where& where, std::uint32_t column, doub
 
 bool Converter::rapid(const Axes& target, const Where& where, std::uint32_t column) {
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   pos_ = target;
   emit_move<canon::StraightTraverse>();
   return true;
@@ -468,7 +471,7 @@ bool Converter::rapid(const Axes& target, const Where& where, std::uint32_t colu
 bool Converter::linear(const Axes& target, const Where& where, std::uint32_t column) {
   if (!check_feed_motion(where, column)) return false;
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   if (feed_mode_ == FeedMode::InverseTime) {
     // The canonical feed is per minute: the move takes 1/F minutes.
     double length = 0;
@@ -486,7 +489,7 @@ bool Converter::arc(const Axes& target, double centre_first, double centre_secon
                     canon::Plane plane, const Where& where, std::uint32_t column) {
   if (!check_feed_motion(where, column)) return false;
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   const PlaneAxes pa = plane_axes(plane);
   canon::PlaneArc p;
   p.plane = plane;
@@ -516,7 +519,7 @@ bool Converter::cycle(const CycleCall& c, const Where& where, std::uint32_t colu
   Axes t = pos_;
   t[0] = to_mm(c.x);
   t[1] = to_mm(c.y);
-  check_limits(t, where, column);
+  if (!check_limits(t, where, column)) return false;
   canon::Cycle cy;
   cy.x = c.x;
   cy.y = c.y;
@@ -634,7 +637,7 @@ bool Converter::convert_arc_through(const Block& b, const Where& where) {
   arc.turns = 1;
   if (!check_feed_motion(where, column)) return false;
   ensure_section(where);
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return stop_at(target);
   arc.end = pose(target);
   pos_ = target;
   emit(arc);
@@ -667,7 +670,7 @@ bool Converter::add_spline_point(const Block& b, const Where& where) {
   if (w <= 0)
     return error(where, column, diag::Code::GcodeBadWordValue,
                  "a spline weight (PW) must be positive");
-  check_limits(target, where, column);
+  if (!check_limits(target, where, column)) return false;
   spline_->points.push_back({from_mm(target[0]), from_mm(target[1]), from_mm(target[2]), w});
   spline_->intervals.push_back(pl);
   spline_->end = target;
@@ -705,7 +708,7 @@ bool Converter::add_nurbs_point(const Block& b, const Where& where) {
     if (w <= 0)
       return error(where, column, diag::Code::GcodeBadWordValue,
                    "a NURBS weight (R) must be positive");
-    check_limits(target, where, column);
+    if (!check_limits(target, where, column)) return false;
     spline_->points.push_back({from_mm(target[0]), from_mm(target[1]), from_mm(target[2]), w});
     spline_->end = target;
   }
@@ -1127,7 +1130,7 @@ bool Converter::convert_cycle(const CodeSpec& motion, const Block& b, const Wher
     Axes t = pos_;
     t[fi] = a;
     t[si] = bb;
-    check_limits(t, where, column);
+    if (!check_limits(t, where, column)) return false;
     // Above the level the cycle returns to (G99 from higher up): over the hole at the current
     // level first, then down — the canonical cycle travels at its safe level, which is R here.
     if (pos_[di] > to_mm(clear) + 1e-9) {
@@ -1419,6 +1422,7 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     const auto a = static_cast<std::uint8_t>(c.spec->action);
     actions[a >> 6] |= std::uint64_t{1} << (a & 63);
   }
+  const bool other_codes = non_motion_count > 0;
   auto find = [&](Action a) -> const CodeRef* {
     const auto i = static_cast<std::uint8_t>(a);
     if (((actions[i >> 6] >> (i & 63)) & 1) == 0) return nullptr;
@@ -1426,9 +1430,13 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
       if (c.spec->action == a) return &c;
     return nullptr;
   };
-  if (find(Action::FeedInverseTime)) feed_mode_ = FeedMode::InverseTime;
-  if (find(Action::FeedPerMinute)) feed_mode_ = FeedMode::PerMinute;
-  if (find(Action::FeedPerRevolution)) feed_mode_ = FeedMode::PerRevolution;
+  // A block of motion words and codes alone (most blocks of a CAM program) has none of the
+  // look-ups below to make.
+  if (other_codes) {
+    if (find(Action::FeedInverseTime)) feed_mode_ = FeedMode::InverseTime;
+    if (find(Action::FeedPerMinute)) feed_mode_ = FeedMode::PerMinute;
+    if (find(Action::FeedPerRevolution)) feed_mode_ = FeedMode::PerRevolution;
+  }
   // Sinumerik G4 F2: the F is the dwell's time, not a feed.
   bool f_is_dwell = false;
   if (find(Action::Dwell))
@@ -1459,12 +1467,14 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
                    "a tool number must be an integer");
     select_tool(static_cast<int>(std::lround(t)), where, b.word(kT).column);
   }
-  if (const CodeRef* c = find(Action::SetTool)) {
-    const double q = b.value(kQ);
-    tool_selected_ = tool_in_spindle_ = static_cast<int>(std::lround(q));
-    (void)c;
+  if (other_codes) {
+    if (const CodeRef* c = find(Action::SetTool)) {
+      const double q = b.value(kQ);
+      tool_selected_ = tool_in_spindle_ = static_cast<int>(std::lround(q));
+      (void)c;
+    }
+    if (const CodeRef* c = find(Action::ToolChange)) change_tool(where, c->column);
   }
-  if (const CodeRef* c = find(Action::ToolChange)) change_tool(where, c->column);
   // Sinumerik D: the tool offset (its length) on, or off with D0.
   if (b.has(kD) && dialect_.words[kD].kind == WordKind::ToolOffset) {
     if (b.value(kD) == 0)
@@ -1472,153 +1482,157 @@ bool Converter::execute(const Block& b, std::span<const Comment> comments, const
     else
       tool_length(true, tool_in_spindle_, where);
   }
-  if (find(Action::SpindleCw)) spindle(1);
-  if (find(Action::SpindleCcw)) spindle(-1);
-  if (find(Action::SpindleStop)) spindle(0);
-  {
-    const bool mist = find(Action::MistOn) != nullptr;
-    const bool flood = find(Action::FloodOn) != nullptr;
-    const bool off = find(Action::CoolantOff) != nullptr;
-    if (mist || flood || off) coolant(mist, flood, off);
-  }
-  if (const CodeRef* c = find(Action::Dwell)) {
-    double seconds = 0;
-    bool found = false;
-    for (const DwellWord& d : dialect_.dwell.words) {
-      if (b.has(d.word)) {
-        const bool integer = b.word(d.word).integer_literal && d.integer_scale > 0;
-        seconds = b.value(d.word) * (integer ? d.integer_scale : d.scale);
-        found = true;
-        break;
+  if (other_codes) {
+    if (find(Action::SpindleCw)) spindle(1);
+    if (find(Action::SpindleCcw)) spindle(-1);
+    if (find(Action::SpindleStop)) spindle(0);
+    {
+      const bool mist = find(Action::MistOn) != nullptr;
+      const bool flood = find(Action::FloodOn) != nullptr;
+      const bool off = find(Action::CoolantOff) != nullptr;
+      if (mist || flood || off) coolant(mist, flood, off);
+    }
+    if (const CodeRef* c = find(Action::Dwell)) {
+      double seconds = 0;
+      bool found = false;
+      for (const DwellWord& d : dialect_.dwell.words) {
+        if (b.has(d.word)) {
+          const bool integer = b.word(d.word).integer_literal && d.integer_scale > 0;
+          seconds = b.value(d.word) * (integer ? d.integer_scale : d.scale);
+          found = true;
+          break;
+        }
       }
-    }
-    if (!found)
-      return error(where, c->column, diag::Code::GcodeMissingWord,
-                   c->spec->text + " without its time");
-    if (seconds < 0)
-      return error(where, c->column, diag::Code::GcodeBadWordValue, "negative dwell time");
-    dwell(seconds);
-  }
-  if (find(Action::PlaneXy)) select_plane(canon::Plane::Xy);
-  if (find(Action::PlaneXz)) select_plane(canon::Plane::Xz);
-  if (find(Action::PlaneYz)) select_plane(canon::Plane::Yz);
-  if (find(Action::UnitsInch)) set_metric(false);
-  if (find(Action::UnitsMm)) set_metric(true);
-  if (find(Action::CutterCompOff)) {
-  }
-  if (const CodeRef* c = find(Action::ToolLengthOffset)) {
-    const int h = b.has(kH) ? static_cast<int>(std::lround(b.value(kH))) : tool_in_spindle_;
-    tool_length(true, h, where);
-    (void)c;
-  }
-  if (find(Action::ToolLengthCancel)) tool_length(false, 0, where);
-  if (const CodeRef* c = find(Action::WorkOffset)) {
-    int index = c->spec->index;
-    if (index == 0) {
-      // G54.1 P1..P48: the additional work offsets, after the nine standard ones.
-      // Okuma's G15 H1 names its offset with H.
-      const WordId iw = c->spec->index_word != kNoWord ? c->spec->index_word : kP;
-      if (!b.has(iw))
+      if (!found)
         return error(where, c->column, diag::Code::GcodeMissingWord,
-                     c->spec->text + " without " + dialect_.words[iw].name);
-      const double p = b.value(iw);
-      if (p < 1 || p > kWorkOffsets - 10 || std::abs(p - std::round(p)) > 1e-9)
-        return error(where, b.word(iw).column, diag::Code::GcodeBadWordValue,
-                     c->spec->text + " P must be 1 to " + std::to_string(kWorkOffsets - 10));
-      index = 9 + static_cast<int>(std::lround(p));
+                     c->spec->text + " without its time");
+      if (seconds < 0)
+        return error(where, c->column, diag::Code::GcodeBadWordValue, "negative dwell time");
+      dwell(seconds);
     }
-    const Axes before = total_offset();
-    work_index_ = index;
-    const Axes now = total_offset();
-    for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
-    if (started_) emit_offsets();
+    if (find(Action::PlaneXy)) select_plane(canon::Plane::Xy);
+    if (find(Action::PlaneXz)) select_plane(canon::Plane::Xz);
+    if (find(Action::PlaneYz)) select_plane(canon::Plane::Yz);
+    if (find(Action::UnitsInch)) set_metric(false);
+    if (find(Action::UnitsMm)) set_metric(true);
+    if (find(Action::CutterCompOff)) {
+    }
+    if (const CodeRef* c = find(Action::ToolLengthOffset)) {
+      const int h = b.has(kH) ? static_cast<int>(std::lround(b.value(kH))) : tool_in_spindle_;
+      tool_length(true, h, where);
+      (void)c;
+    }
+    if (find(Action::ToolLengthCancel)) tool_length(false, 0, where);
+    if (const CodeRef* c = find(Action::WorkOffset)) {
+      int index = c->spec->index;
+      if (index == 0) {
+        // G54.1 P1..P48: the additional work offsets, after the nine standard ones.
+        // Okuma's G15 H1 names its offset with H.
+        const WordId iw = c->spec->index_word != kNoWord ? c->spec->index_word : kP;
+        if (!b.has(iw))
+          return error(where, c->column, diag::Code::GcodeMissingWord,
+                       c->spec->text + " without " + dialect_.words[iw].name);
+        const double p = b.value(iw);
+        if (p < 1 || p > kWorkOffsets - 10 || std::abs(p - std::round(p)) > 1e-9)
+          return error(where, b.word(iw).column, diag::Code::GcodeBadWordValue,
+                       c->spec->text + " P must be 1 to " + std::to_string(kWorkOffsets - 10));
+        index = 9 + static_cast<int>(std::lround(p));
+      }
+      const Axes before = total_offset();
+      work_index_ = index;
+      const Axes now = total_offset();
+      for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
+      if (started_) emit_offsets();
+    }
+    if (find(Action::WorkOffsetNone)) {
+      const Axes before = total_offset();
+      work_index_ = 0;
+      const Axes now = total_offset();
+      for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
+      emit_offsets();
+    }
+    if (find(Action::Absolute)) incremental_ = false;
+    if (find(Action::Incremental)) incremental_ = true;
+    if (find(Action::ArcCentreAbsolute)) centre_absolute_ = true;
+    if (find(Action::ArcCentreIncremental)) centre_absolute_ = false;
+    if (find(Action::RetractInitial)) retract_r_ = false;
+    if (find(Action::RetractR)) retract_r_ = true;
   }
-  if (find(Action::WorkOffsetNone)) {
-    const Axes before = total_offset();
-    work_index_ = 0;
-    const Axes now = total_offset();
-    for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
-    emit_offsets();
-  }
-  if (find(Action::Absolute)) incremental_ = false;
-  if (find(Action::Incremental)) incremental_ = true;
-  if (find(Action::ArcCentreAbsolute)) centre_absolute_ = true;
-  if (find(Action::ArcCentreIncremental)) centre_absolute_ = false;
-  if (find(Action::RetractInitial)) retract_r_ = false;
-  if (find(Action::RetractR)) retract_r_ = true;
 
   // Group 0: coordinate data, reference moves, axis offsets.
   bool machine_coordinates = false;
-  if (const CodeRef* c = find(Action::MachineCoordinates)) {
-    if (incremental_)
-      return error(where, c->column, diag::Code::GcodeUnsupported,
-                   c->spec->text + " in incremental mode");
-    machine_coordinates = true;
-  }
-  if (const CodeRef* c = find(Action::SetCoordinateData))
-    if (!convert_g10(b, where, c->column, *c->spec)) return false;
-  if (const CodeRef* c = find(Action::Home))
-    if (!convert_home(*c->spec, b, where)) return false;
-  if (const CodeRef* c = find(Action::Home2))
-    if (!convert_home(*c->spec, b, where)) return false;
-  if (find(Action::AxisOffset) || find(Action::LocalOffset)) {
-    const bool local = find(Action::LocalOffset) != nullptr;
-    const Axes before = total_offset();
-    for (int k = 0; k < kAxes; ++k) {
-      const WordId w = axis_word(k);
-      if (!b.has(w)) continue;
-      const auto i = static_cast<std::size_t>(k);
-      const double v = is_rotary(k) ? scaled(b, w) : length_word(b, w);
-      if (local) {
-        axis_offset_[i] = v;
-      } else {
-        // G92: the current position becomes v.
-        axis_offset_[i] = pos_[i] + axis_offset_[i] - v;
+  if (other_codes) {
+    if (const CodeRef* c = find(Action::MachineCoordinates)) {
+      if (incremental_)
+        return error(where, c->column, diag::Code::GcodeUnsupported,
+                     c->spec->text + " in incremental mode");
+      machine_coordinates = true;
+    }
+    if (const CodeRef* c = find(Action::SetCoordinateData))
+      if (!convert_g10(b, where, c->column, *c->spec)) return false;
+    if (const CodeRef* c = find(Action::Home))
+      if (!convert_home(*c->spec, b, where)) return false;
+    if (const CodeRef* c = find(Action::Home2))
+      if (!convert_home(*c->spec, b, where)) return false;
+    if (find(Action::AxisOffset) || find(Action::LocalOffset)) {
+      const bool local = find(Action::LocalOffset) != nullptr;
+      const Axes before = total_offset();
+      for (int k = 0; k < kAxes; ++k) {
+        const WordId w = axis_word(k);
+        if (!b.has(w)) continue;
+        const auto i = static_cast<std::size_t>(k);
+        const double v = is_rotary(k) ? scaled(b, w) : length_word(b, w);
+        if (local) {
+          axis_offset_[i] = v;
+        } else {
+          // G92: the current position becomes v.
+          axis_offset_[i] = pos_[i] + axis_offset_[i] - v;
+        }
       }
+      const Axes now = total_offset();
+      for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
+      emit_offsets();
     }
-    const Axes now = total_offset();
-    for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
-    emit_offsets();
-  }
-  if (const CodeRef* c = find(Action::OnlyWithoutWords)) {
-    // ROT, SCALE, MIRROR ...: alone they reset what this reader never sets; with values they
-    // would rotate, scale or mirror the coordinates.
-    bool words = false;
-    for (std::size_t w = 0; w < dialect_.words.size(); ++w) {
-      const WordKind k = dialect_.words[w].kind;
-      words = words || (b.has(static_cast<WordId>(w)) && k != WordKind::LineNumber &&
-                        k != WordKind::GCode && k != WordKind::MCode);
+    if (const CodeRef* c = find(Action::OnlyWithoutWords)) {
+      // ROT, SCALE, MIRROR ...: alone they reset what this reader never sets; with values they
+      // would rotate, scale or mirror the coordinates.
+      bool words = false;
+      for (std::size_t w = 0; w < dialect_.words.size(); ++w) {
+        const WordKind k = dialect_.words[w].kind;
+        words = words || (b.has(static_cast<WordId>(w)) && k != WordKind::LineNumber &&
+                          k != WordKind::GCode && k != WordKind::MCode);
+      }
+      if (words)
+        return error(
+            where, c->column, diag::Code::GcodeUnsupported,
+            c->spec->text + ": " + (c->spec->refusal.empty() ? "not supported" : c->spec->refusal));
     }
-    if (words)
-      return error(
-          where, c->column, diag::Code::GcodeUnsupported,
-          c->spec->text + ": " + (c->spec->refusal.empty() ? "not supported" : c->spec->refusal));
-  }
-  if (find(Action::Translate) || find(Action::TranslateAdd)) {
-    // Sinumerik TRANS replaces the programmable offset (TRANS alone cancels it), ATRANS adds
-    // to it; in the program's unit, along the current coordinate system.
-    Axes t{};
-    const bool add = find(Action::TranslateAdd) != nullptr;
-    for (int k = 0; k < kAxes; ++k) {
-      const auto i = static_cast<std::size_t>(k);
-      const double current = is_rotary(k) ? translation_[i] : from_mm(translation_[i]);
-      const WordId w = axis_word(k);
-      const double v = b.has(w) ? scaled(b, w) : 0;
-      t[i] = add ? current + v : v;
+    if (find(Action::Translate) || find(Action::TranslateAdd)) {
+      // Sinumerik TRANS replaces the programmable offset (TRANS alone cancels it), ATRANS adds
+      // to it; in the program's unit, along the current coordinate system.
+      Axes t{};
+      const bool add = find(Action::TranslateAdd) != nullptr;
+      for (int k = 0; k < kAxes; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        const double current = is_rotary(k) ? translation_[i] : from_mm(translation_[i]);
+        const WordId w = axis_word(k);
+        const double v = b.has(w) ? scaled(b, w) : 0;
+        t[i] = add ? current + v : v;
+      }
+      set_translation(t);
     }
-    set_translation(t);
-  }
-  if (find(Action::AxisOffsetCancel) || find(Action::AxisOffsetRestore)) {
-    const Axes before = total_offset();
-    if (find(Action::AxisOffsetRestore)) {
-      axis_offset_ = axis_offset_saved_;
-    } else {
-      axis_offset_saved_ = axis_offset_;
-      axis_offset_ = Axes{};
+    if (find(Action::AxisOffsetCancel) || find(Action::AxisOffsetRestore)) {
+      const Axes before = total_offset();
+      if (find(Action::AxisOffsetRestore)) {
+        axis_offset_ = axis_offset_saved_;
+      } else {
+        axis_offset_saved_ = axis_offset_;
+        axis_offset_ = Axes{};
+      }
+      const Axes now = total_offset();
+      for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
+      emit_offsets();
     }
-    const Axes now = total_offset();
-    for (std::size_t i = 0; i < pos_.size(); ++i) pos_[i] += before[i] - now[i];
-    emit_offsets();
   }
 
   // Motion.

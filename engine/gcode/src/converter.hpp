@@ -149,7 +149,13 @@ class Converter final : public StateView {
   bool error(const Where& where, std::uint32_t column, diag::Code code, std::string message);
   void warn(const Where& where, std::uint32_t column, diag::Code code, std::string message);
   bool check_feed_motion(const Where& where, std::uint32_t column, double own_feed = 0);
-  void check_limits(const Axes& p, const Where& where, std::uint32_t column);
+  [[nodiscard]] bool check_limits(const Axes& p, const Where& where, std::uint32_t column);
+  // A motion refused by check_limits: not made, but the blocks after it go on from its end, as
+  // the program has them. False, for the caller to return.
+  bool stop_at(const Axes& target) {
+    pos_ = target;
+    return false;
+  }
 
   // Word-address conversion steps.
   bool word_target(const Block& b, Axes& target, bool machine) const;

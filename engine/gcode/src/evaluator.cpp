@@ -30,38 +30,11 @@ Value combine(double number, const Value& a, const Value& b) {
 Evaluator::Evaluator(const Dialect& dialect, Parameters& parameters, std::size_t max_depth)
     : dialect_(dialect), parameters_(parameters), max_depth_(max_depth) {}
 
-bool Evaluator::scan_number(std::string_view text, std::size_t& pos, double& out,
-                            bool& integer) noexcept {
-  // Exact powers of ten (every one up to 1e22 is a double).
-  static constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                      1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  std::size_t i = pos;
-  std::size_t digits = 0;
-  std::size_t fraction_digits = 0;
-  std::uint64_t mantissa = 0;  // the digits as an integer, while they fit
-  while (i < text.size() && is_digit(text[i])) {
-    if (digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(text[i] - '0');
-    ++i, ++digits;
-  }
-  integer = true;
-  if (i < text.size() && text[i] == '.') {
-    integer = false;
-    ++i;
-    while (i < text.size() && is_digit(text[i])) {
-      if (digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(text[i] - '0');
-      ++i, ++digits, ++fraction_digits;
-    }
-  }
-  if (digits == 0) return false;
-  if (digits <= 15) {
-    // Up to 15 digits the mantissa and the power of ten are exact doubles, and one division of
-    // exact operands is correctly rounded: the same value from_chars gives, without its cost.
-    out = static_cast<double>(mantissa) / kPow10[fraction_digits];
-    pos = i;
-    return true;
-  }
-  const char* first = text.data() + pos;
-  const char* last = text.data() + i;
+namespace {
+
+// Numbers of more than 15 digits (rare): correctly rounded by from_chars.
+[[gnu::noinline, gnu::cold]] bool long_number(const char* first, const char* last,
+                                              double& out) noexcept {
   if (*first == '.') {
     // from_chars wants a digit first; ".5" is read as "0.5" (correctly rounded), and one too
     // long for the buffer as its digits over a power of ten.
@@ -71,20 +44,57 @@ bool Evaluator::scan_number(std::string_view text, std::size_t& pos, double& out
       buffer[0] = '0';
       std::memcpy(buffer + 1, first, length);
       const auto r = std::from_chars(buffer, buffer + length + 1, out, std::chars_format::fixed);
-      if (r.ec != std::errc{}) return false;
-    } else {
-      double frac = 0;
-      const auto r = std::from_chars(first + 1, last, frac);
-      (void)r;
-      double scale = 1;
-      for (const char* p = first + 1; p < last; ++p) scale *= 10;
-      out = frac / scale;
+      return r.ec == std::errc{};
     }
-  } else {
-    const auto r = std::from_chars(first, last, out, std::chars_format::fixed);
-    if (r.ec != std::errc{}) return false;
+    double frac = 0;
+    const auto r = std::from_chars(first + 1, last, frac);
+    (void)r;
+    double scale = 1;
+    for (const char* p = first + 1; p < last; ++p) scale *= 10;
+    out = frac / scale;
+    return true;
   }
-  pos = i;
+  const auto r = std::from_chars(first, last, out, std::chars_format::fixed);
+  return r.ec == std::errc{};
+}
+
+}  // namespace
+
+bool Evaluator::scan_number(std::string_view text, std::size_t& pos, double& out,
+                            bool& integer) noexcept {
+  // Exact powers of ten (every one up to 1e22 is a double).
+  static constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  const char* const first = text.data() + pos;
+  const char* const end = text.data() + text.size();
+  const char* p = first;
+  // The digits as an integer; it may wrap past 19 digits, but then the number is read another
+  // way.
+  std::uint64_t mantissa = 0;
+  const auto digit_run = [&] {
+    for (; p < end && static_cast<unsigned char>(*p - '0') < 10; ++p)
+      mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
+  };
+  digit_run();
+  const auto integer_digits = static_cast<std::size_t>(p - first);
+  std::size_t fraction_digits = 0;
+  integer = true;
+  if (p < end && *p == '.') {
+    integer = false;
+    const char* const point = p++;
+    digit_run();
+    fraction_digits = static_cast<std::size_t>(p - point - 1);
+  }
+  const std::size_t digits = integer_digits + fraction_digits;
+  if (digits == 0) return false;
+  if (digits <= 15) {
+    // Up to 15 digits the mantissa and the power of ten are exact doubles, and one division of
+    // exact operands is correctly rounded: the same value from_chars gives, without its cost.
+    out = static_cast<double>(mantissa) / kPow10[fraction_digits];
+  } else if (!long_number(first, p, out)) {
+    return false;
+  }
+  pos += static_cast<std::size_t>(p - first);
   return true;
 }
 

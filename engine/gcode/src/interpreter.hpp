@@ -47,6 +47,8 @@ struct Position {
   std::uint32_t line = 1;  // its number
 };
 
+[[nodiscard]] std::uint32_t long_word_initials(const Dialect& dialect) noexcept;
+
 class Interpreter {
  public:
   Interpreter(std::string_view text, const Dialect& dialect, canon::Sink& sink,
@@ -157,6 +159,9 @@ class Interpreter {
 
   const Dialect& dialect_;
   const Lexing lexing_{dialect_};
+  // Bit k: some multi-letter word of the dialect (Sinumerik CR, TURN) starts with letter 'A'+k,
+  // so a word starting with it must be matched against them (most dialects have none).
+  const std::uint32_t long_word_initials_ = long_word_initials(dialect_);
   const ReadOptions& options_;
   BlockObserver* observer_;
   Report report_;

@@ -15,8 +15,32 @@ std::string_view LineCursor::next(std::uint32_t& number) noexcept {
   return text_.substr(start, end - start);
 }
 
-Lexing::Lexing(const Dialect& d) : dialect(d) {
-  const bool squeeze = d.ignore_whitespace;
+Line& Line::operator=(const Line& other) {
+  if (this == &other) return *this;
+  number = other.number;
+  raw = other.raw;
+  buffer = other.buffer;
+  text = other.text_is_raw ? other.text : std::string_view(buffer).substr(0, other.text.size());
+  columns = other.columns;
+  text_is_raw = other.text_is_raw;
+  comments = other.comments;
+  block_delete = other.block_delete;
+  has_error = other.has_error;
+  error = other.error;
+  return *this;
+}
+
+void Line::set_text(std::string_view edited) {
+  if (text_is_raw) {
+    if (columns.size() < text.size()) columns.resize(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i) columns[i] = static_cast<std::uint32_t>(i + 1);
+  }
+  buffer.assign(edited);
+  text = buffer;
+  text_is_raw = false;
+}
+
+Lexing::Lexing(const Dialect& d) : dialect(d), squeeze(d.ignore_whitespace) {
   for (std::size_t c = 0; c < 256; ++c) {
     const char ch = static_cast<char>(c);
     upper[c] = ch == '\t' ? ' ' : ncpost::gcode::detail::upper(ch);
@@ -33,8 +57,45 @@ Lexing::Lexing(const Dialect& d) : dialect(d) {
     else if (ch == '"' && !squeeze)
       k = Quote;
     classes[c] = k;
+    if (ch >= 'A' && ch <= 'Z')
+      plain[c] = PlainLetter;
+    else if (is_digit(ch) || ch == '.' || ch == '-' || ch == '+')
+      plain[c] = PlainNumber;
+    else if (ch == ' ')
+      plain[c] = PlainBlank;
   }
+  for (std::uint8_t before = PlainLetter; before <= PlainBlank; ++before) {
+    for (std::uint8_t after = PlainLetter; after <= PlainBlank; ++after) {
+      // Where blanks are dropped, a letter is followed by its number, and a number after a
+      // blank would join the word before it.
+      const bool joins = (before == PlainLetter && after != PlainNumber) ||
+                         (before == PlainBlank && after == PlainNumber);
+      plain_pair[before * 4u + after] = squeeze && joins ? 0 : 1;
+    }
+  }
+  plain_first[PlainLetter] = plain_first[PlainNumber] = 1;
+  plain_last[PlainNumber] = 1;
+  plain_last[PlainLetter] = squeeze ? 0 : 1;
 }
+
+namespace {
+
+// True when normalising `raw` would leave it as it is, blanks aside: only upper-case letters,
+// numbers and blanks, none first or last. Where blanks are dropped they must also stand only
+// between words of one letter and a number ("X1 Y-2", not "G 1", "X1 2" or "O100 SUB"), so
+// that keeping them changes how no word reads (the block reader steps over blanks between
+// words). Without a branch per byte: each pair of neighbours is looked up in a table.
+bool is_plain(std::string_view raw, const Lexing& lexing) noexcept {
+  const std::size_t n = raw.size();
+  if (n == 0) return true;
+  const auto* const bytes = reinterpret_cast<const unsigned char*>(raw.data());
+  unsigned ok = lexing.plain_first[lexing.plain[bytes[0]]];
+  for (std::size_t i = 1; i < n; ++i)
+    ok &= lexing.plain_pair[lexing.plain[bytes[i - 1]] * 4u + lexing.plain[bytes[i]]];
+  return (ok & lexing.plain_last[lexing.plain[bytes[n - 1]]]) != 0;
+}
+
+}  // namespace
 
 void normalise(std::string_view raw, const Lexing& lexing, Line& line) {
   const Dialect& dialect = lexing.dialect;
@@ -43,18 +104,24 @@ void normalise(std::string_view raw, const Lexing& lexing, Line& line) {
   line.block_delete = false;
   line.has_error = false;
   line.error = {};
+  if (is_plain(raw, lexing)) {
+    line.text = raw;
+    line.text_is_raw = true;
+    return;
+  }
+  line.text_is_raw = false;
   // The text is at most as long as the raw line: written by index into buffers sized once (the
   // Line is reused from line to line, so this allocates only for a longer line than before).
   const std::size_t n = raw.size();
-  line.text.resize(n);
+  line.buffer.resize(n);
   if (line.columns.size() < n) line.columns.resize(n);
-  char* text = line.text.data();
+  char* text = line.buffer.data();
   std::uint32_t* columns = line.columns.data();
   std::size_t out = 0;
   auto finish = [&]() {
     // Trailing blanks carry nothing.
     while (out > 0 && text[out - 1] == ' ') --out;
-    line.text.resize(out);
+    line.text = std::string_view(line.buffer).substr(0, out);
   };
   std::size_t i = 0;
   while (i < n && (raw[i] == ' ' || raw[i] == '\t')) ++i;

@@ -31,18 +31,32 @@ struct LexError {
 struct Line {
   std::uint32_t number = 0;  // 1-based line number in its file
   std::string_view raw;      // the line as written, without the line end
-  std::string text;          // normalised
-  // columns[i]: 1-based column of text[i] in raw, for i < text.size() (the vector only grows:
-  // entries past the text are left from longer lines, and not zeroed for every line).
+  // Normalised: `raw` itself when normalising would change nothing (most lines a CAM system
+  // writes), else `buffer`.
+  std::string_view text;
+  std::string buffer;
+  // columns[i]: 1-based column of text[i] in raw, for i < text.size(), unless text is raw (the
+  // vector only grows: entries past the text are left from longer lines, and not zeroed for
+  // every line).
   std::vector<std::uint32_t> columns;
+  bool text_is_raw = false;
   std::vector<Comment> comments;
   bool block_delete = false;  // '/' first
   bool has_error = false;
   LexError error{};
 
+  Line() = default;
+  Line(const Line& other) { *this = other; }
+  Line& operator=(const Line& other);
+  Line(Line&&) = delete;  // a moved buffer need not keep its address: copy instead
+  Line& operator=(Line&&) = delete;
+
+  // Replaces the text with `edited`, of the same length, each character keeping its column.
+  void set_text(std::string_view edited);
   // 1-based column in `raw` of normalised position `i` (the end of the line past the text).
   [[nodiscard]] std::uint32_t column(std::size_t i) const noexcept {
-    return i < text.size() ? columns[i] : static_cast<std::uint32_t>(raw.size() + 1);
+    if (i >= text.size()) return static_cast<std::uint32_t>(raw.size() + 1);
+    return text_is_raw ? static_cast<std::uint32_t>(i + 1) : columns[i];
   }
 };
 
@@ -56,6 +70,16 @@ struct Lexing {
   std::array<char, 256> upper{};  // a Plain or Space byte as written into the text
   // 0 for a byte that is dropped (a blank where blanks may stand inside words), else 1.
   std::array<std::uint8_t, 256> advance{};
+  // What a byte is in a line that normalising leaves as it is (upper-case letters, numbers and
+  // single blanks between words): Other (not in such a line), Letter, Number, Blank.
+  enum Plain : std::uint8_t { NotPlain, PlainLetter, PlainNumber, PlainBlank };
+  std::array<std::uint8_t, 256> plain{};
+  // 1 where a line of plain bytes may have these neighbours (before × 4 + after), may start
+  // with, and may end with this kind of byte.
+  std::array<std::uint8_t, 16> plain_pair{};
+  std::array<std::uint8_t, 4> plain_first{};
+  std::array<std::uint8_t, 4> plain_last{};
+  bool squeeze = false;  // blanks may stand inside words, and are dropped
 };
 
 // Normalises `raw` into `line` (its number is left as set).

@@ -533,7 +533,7 @@ bool Interpreter::sinumerik_statement(std::size_t pos, bool& handled) {
         if (close == std::string_view::npos)
           return error(column(p), diag::Code::GcodeUnclosedComment, "string not closed");
         // The string as written (the normaliser kept its case).
-        message += std::string(line_->raw.substr(line_->columns[p], close - p - 1));
+        message += std::string(line_->raw.substr(line_->column(p), close - p - 1));
         p = close + 1;
       } else if (t.compare(p, 2, "<<") == 0) {
         p += 2;

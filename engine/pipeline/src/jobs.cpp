@@ -88,10 +88,10 @@ json to_json(const stepnc::Executable& x) {
   return j;
 }
 
-json header_json(const stepnc::ProgramInfo& info) {
+json header_json(const stepnc::Header& h) {
   json header;
-  for (const auto& [name, value] : info.header.fields) header[name] = to_json(value);
-  header["schemas"] = info.header.schemas;
+  for (const auto& [name, value] : h.fields) header[name] = to_json(value);
+  header["schemas"] = h.schemas;
   return header;
 }
 
@@ -134,7 +134,7 @@ json statistics_json(const stepnc::ProgramInfo& info) {
 
 json to_json(const stepnc::ProgramInfo& info) {
   json out;
-  out["header"] = header_json(info);
+  out["header"] = header_json(info.header);
   if (info.project) {
     json& project = out["project"];
     project["id"] = info.project->id;
@@ -233,90 +233,126 @@ void write_ref_members(IndentedJsonWriter& w, const stepnc::EntityRef& ref) {
   w.value(ref.name ? json(*ref.name) : json(nullptr));
 }
 
-// The same members in the same order as to_json(Executable); recursion is bounded by the
-// inspector's nesting limit.
-void write_executable(IndentedJsonWriter& w, const stepnc::Executable& x) {
-  using Shape = stepnc::Executable::Shape;
-  if (x.missing) return w.value(nullptr);
-  w.begin('{');
-  write_ref_members(w, x.self);
-  const auto member = [&w](std::string_view name, const stepnc::Executable& child) {
-    w.key(name);
-    write_executable(w, child);
-  };
-  const auto children = [&](std::string_view name) {
-    w.key(name);
-    w.begin('[');
-    for (const auto& child : x.children) write_executable(w, child);
-    w.end();
-  };
-  const auto ref = [&w](std::string_view name, const auto& optional_ref) {
-    if (!optional_ref) return;
-    w.key(name);
-    w.value(to_json(*optional_ref));
-  };
-  switch (x.shape) {
-    case Shape::Workingstep:
-      ref("feature", x.feature);
-      ref("operation", x.operation);
-      ref("tool", x.tool);
-      break;
-    case Shape::Sequence:
-      ref("setup", x.setup);
-      children("elements");
-      break;
-    case Shape::Parallel:
-      children("branches");
-      break;
-    case Shape::If:
-      member("true_branch", x.children.at(0));
-      member("false_branch", x.children.at(1));
-      break;
-    case Shape::While:
-      member("body", x.children.at(0));
-      break;
-    case Shape::Message:
-      if (x.text) {
-        w.key("text");
-        w.value(*x.text);
-      }
-      break;
-    case Shape::ToolChange:
-      ref("tool", x.tool);
-      break;
-    case Shape::Leaf:
-      break;
+// The workplan tree as JSON, written as the inspector walks it (or as a built tree is
+// replayed): the same members in the same order as to_json(Executable).
+class TreeJsonWriter final : public stepnc::TreeVisitor {
+ public:
+  explicit TreeJsonWriter(IndentedJsonWriter& w) : w_(w) {}
+
+  void begin_project(const stepnc::Project& project) override {
+    w_.begin('{');
+    w_.key("id");
+    w_.value(project.id);
+    w_.key("name");
+    w_.value(project.name);
+    w_.key("main_workplan");
+    root_written_ = false;
   }
-  w.end();
-}
+  void end_project() override {
+    if (!root_written_) w_.value(nullptr);
+    w_.end();
+  }
+
+  void enter(const stepnc::Executable& x) override {
+    using Shape = stepnc::Executable::Shape;
+    if (!open_.empty()) {
+      // An If's and a While's children are members; the others' are array items.
+      Open& parent = open_.back();
+      if (parent.shape == Shape::If) w_.key(parent.children == 0 ? "true_branch" : "false_branch");
+      if (parent.shape == Shape::While) w_.key("body");
+      ++parent.children;
+    }
+    root_written_ = true;
+    open_.push_back({x.shape, x.missing});
+    if (x.missing) return w_.value(nullptr);
+    w_.begin('{');
+    write_ref_members(w_, x.self);
+    const auto ref = [this](std::string_view name, const auto& optional_ref) {
+      if (!optional_ref) return;
+      w_.key(name);
+      w_.value(to_json(*optional_ref));
+    };
+    switch (x.shape) {
+      case Shape::Workingstep:
+        ref("feature", x.feature);
+        ref("operation", x.operation);
+        ref("tool", x.tool);
+        break;
+      case Shape::Sequence:
+        ref("setup", x.setup);
+        w_.key("elements");
+        w_.begin('[');
+        break;
+      case Shape::Parallel:
+        w_.key("branches");
+        w_.begin('[');
+        break;
+      case Shape::Message:
+        if (x.text) {
+          w_.key("text");
+          w_.value(*x.text);
+        }
+        break;
+      case Shape::ToolChange:
+        ref("tool", x.tool);
+        break;
+      case Shape::If:
+      case Shape::While:
+      case Shape::Leaf:
+        break;
+    }
+  }
+
+  void leave(const stepnc::Executable&) override {
+    using Shape = stepnc::Executable::Shape;
+    const Open node = open_.back();
+    open_.pop_back();
+    if (node.missing) return;
+    if (node.shape == Shape::Sequence || node.shape == Shape::Parallel) w_.end();
+    w_.end();
+  }
+
+ private:
+  struct Open {
+    stepnc::Executable::Shape shape;
+    bool missing = false;
+    std::size_t children = 0;
+  };
+  IndentedJsonWriter& w_;
+  std::vector<Open> open_;
+  bool root_written_ = false;
+};
 
 // to_json(ProgramInfo) without the document: the workplan tree, the tools and the workpieces
 // member by member, the small parts dumped whole.
-void write_program_info(IndentedJsonWriter& w, const stepnc::ProgramInfo& info) {
+void write_header(IndentedJsonWriter& w, const stepnc::Header& header) {
   w.key("header");
-  w.value(header_json(info));
-  w.key("project");
-  if (info.project) {
-    w.begin('{');
-    w.key("id");
-    w.value(info.project->id);
-    w.key("name");
-    w.value(info.project->name);
-    w.key("main_workplan");
-    if (info.project->main_workplan)
-      write_executable(w, *info.project->main_workplan);
-    else
-      w.value(nullptr);
-    w.end();
-  } else {
-    w.value(nullptr);
-  }
+  w.value(header_json(header));
+}
+
+// What follows the project: workpieces, tools and statistics.
+void write_program_rest(IndentedJsonWriter& w, const stepnc::ProgramInfo& info) {
   w.key("workpieces");
   w.value(workpieces_json(info));
   w.key("tools");
   w.value(tools_json(info));
   w.key("statistics");
   w.value(statistics_json(info));
+}
+
+void write_program_info(IndentedJsonWriter& w, const stepnc::ProgramInfo& info) {
+  write_header(w, info.header);
+  w.key("project");
+  if (info.project) {
+    TreeJsonWriter tree(w);
+    stepnc::Project project_alone{info.project->id, info.project->name, std::nullopt};
+    tree.begin_project(project_alone);
+    if (info.project->main_workplan) stepnc::replay(*info.project->main_workplan, tree);
+    tree.end_project();
+  } else {
+    w.value(nullptr);
+  }
+  write_program_rest(w, info);
 }
 
 bool cancelled(const JobContext& context) {
@@ -419,7 +455,13 @@ std::vector<diag::FileDiagnostic> verify_diagnostics(const VerifyOutcome& outcom
   return out;
 }
 
-Inspection inspect(Input input, const JobContext& context) {
+namespace {
+
+// Reads the program and inspects it. With `json_out`, an ISO 14649 program's inspection is
+// written as JSON while the inspector walks the model, so that the workplan tree is never held
+// next to the model (issue 23: `ncpost inspect` of the 104 MB file); the returned main workplan
+// is then its root alone. Other inspections are written whole at the end.
+Inspection run_inspection(Input input, const JobContext& context, const TextSink* json_out) {
   ReadOptions options;
   options.name_what_is_not_a_program = false;  // the structure report below says it
   Program program = read(std::move(input), context, options);
@@ -428,18 +470,57 @@ Inspection inspect(Input input, const JobContext& context) {
       require_model(program, "inspect", "trace it (ncpost trace, POST /v1/traces) instead");
   Inspection inspection;
   inspection.job = read_result(program);
-  if (program.cancelled || !has_model) return inspection;
+  const auto finish = [&] {
+    inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);
+    if (json_out) write_inspection_json(inspection, *json_out);
+    return std::move(inspection);
+  };
+  if (program.cancelled || !has_model) {
+    if (json_out) write_inspection_json(inspection, *json_out);
+    return inspection;
+  }
   const auto started = Clock::now();
   const p21::Model& model = program.loaded.model;
-  stepnc::InspectOptions inspect_options;
-  inspect_options.mode = program.loaded.mode;
-  inspection.info = ap238::is_aim(model)
-                        ? ap238::inspect(model, *program.loaded.schema)
-                        : stepnc::inspect(model, *program.loaded.schema, inspect_options);
+  if (ap238::is_aim(model)) {
+    inspection.info = ap238::inspect(model, *program.loaded.schema);
+  } else if (json_out == nullptr) {
+    stepnc::InspectOptions inspect_options;
+    inspect_options.mode = program.loaded.mode;
+    inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
+  } else {
+    IndentedJsonWriter w(*json_out);
+    w.begin('{');
+    write_header(w, stepnc::read_header(model));
+    w.key("project");
+    TreeJsonWriter tree(w);
+    stepnc::InspectOptions inspect_options;
+    inspect_options.mode = program.loaded.mode;
+    inspect_options.visitor = &tree;
+    inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
+    if (!inspection.info.project) w.value(nullptr);
+    write_program_rest(w, inspection.info);
+    inspection.job.work_time = Clock::now() - started;
+    append(inspection.job.diagnostics, diag::with_file(inspection.info.diagnostics, program.name));
+    inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);
+    w.key("diagnostics");
+    w.value(diagnostics_json(inspection.job.diagnostics));
+    w.end();
+    w.finish();
+    return inspection;
+  }
   inspection.job.work_time = Clock::now() - started;
   append(inspection.job.diagnostics, diag::with_file(inspection.info.diagnostics, program.name));
-  inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);
-  return inspection;
+  return finish();
+}
+
+}  // namespace
+
+Inspection inspect(Input input, const JobContext& context) {
+  return run_inspection(std::move(input), context, nullptr);
+}
+
+Inspection inspect_to_json(Input input, const JobContext& context, const TextSink& out) {
+  return run_inspection(std::move(input), context, &out);
 }
 
 nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info) {

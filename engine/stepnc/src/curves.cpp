@@ -81,11 +81,14 @@ std::optional<std::vector<Segment>> CurveReader::curve_segments(const p21::Insta
   if (geometry_.is_a(curve, "polyline")) return polyline(curve);
   if (geometry_.is_a(curve, "trimmed_curve")) return trimmed(curve);
   if (geometry_.is_a(curve, "composite_curve")) return composite(curve, depth);
-  if (geometry_.is_a(curve, "b_spline_curve_with_knots")) return bspline(curve);
+  if (geometry_.is_a(curve, "b_spline_curve_with_knots") || geometry_.is_a(curve, "bezier_curve") ||
+      geometry_.is_a(curve, "quasi_uniform_curve"))
+    return bspline(curve);
   geometry_.error(diag::Code::StepncNotImplemented, curve,
                   describe(geometry_.model(), curve) +
                       " as a toolpath curve is not implemented (POLYLINE, TRIMMED_CURVE, "
-                      "COMPOSITE_CURVE and B_SPLINE_CURVE_WITH_KNOTS are)");
+                      "COMPOSITE_CURVE, B_SPLINE_CURVE_WITH_KNOTS, BEZIER_CURVE and "
+                      "QUASI_UNIFORM_CURVE are)");
   return std::nullopt;
 }
 
@@ -272,32 +275,71 @@ std::optional<std::vector<Segment>> CurveReader::composite(const p21::Instance& 
   return out;
 }
 
+namespace {
+
+// ISO 10303-42's implicit knots of a B_SPLINE_CURVE subtype without a knot list (n control
+// points of degree d): a BEZIER_CURVE is piecewise Bézier, knots 0 … (n − 1) / d with
+// multiplicity d + 1 at the ends and d inside; a QUASI_UNIFORM_CURVE is clamped uniform, knots
+// 0 … n − d with multiplicity d + 1 at the ends and 1 inside. Empty when n does not fit.
+std::vector<double> implicit_knots(bool bezier, int d, std::size_t n) {
+  std::vector<double> knots;
+  const auto count = static_cast<std::int64_t>(n);
+  if (d < 1 || count < d + 1 || count > 100000 || (bezier && (count - 1) % d != 0)) return knots;
+  const std::int64_t last = bezier ? (count - 1) / d : count - d;
+  for (std::int64_t i = 0; i <= last; ++i) {
+    const std::int64_t times = i == 0 || i == last ? d + 1 : bezier ? d : 1;
+    for (std::int64_t r = 0; r < times; ++r) knots.push_back(static_cast<double>(i));
+  }
+  return knots;
+}
+
+}  // namespace
+
 std::optional<std::vector<Segment>> CurveReader::bspline(const p21::Instance& curve) {
   const p21::Model& m = geometry_.model();
   Segment s;
   s.kind = Segment::Kind::Nurbs;
+  const bool explicit_knots = geometry_.is_a(curve, "b_spline_curve_with_knots");
   const auto degree = geometry_.get(curve, "degree");
   const auto points = geometry_.get(curve, "control_points_list");
-  const auto multiplicities = geometry_.get(curve, "knot_multiplicities");
-  const auto knots = geometry_.get(curve, "knots");
-  if (!degree || !points || !multiplicities || !knots || !points->is_list() ||
-      !multiplicities->is_list() || !knots->is_list() ||
-      multiplicities->count() != knots->count()) {
+  if (!degree || !points || !points->is_list()) {
     geometry_.error(diag::Code::StepncBadAttribute, curve,
                     describe(m, curve) + " lacks its degree, control points or knots");
     return std::nullopt;
   }
-  s.degree = static_cast<int>(m.as_integer(*degree));
+  s.degree = static_cast<int>(std::clamp<std::int64_t>(m.as_integer(*degree), -1, 64));
   for (p21::Value v : m.items(*points)) {
     auto p = geometry_.point(v);
     if (!p) return std::nullopt;
     s.control_points.push_back(*p);
   }
-  const auto mult = m.items(*multiplicities);
-  const auto k = m.items(*knots);
-  for (std::size_t i = 0; i < k.size(); ++i)
-    for (std::int64_t r = 0; r < m.as_integer(mult[i]) && r < 64; ++r)
-      s.knots.push_back(m.as_real(k[i]));
+  if (explicit_knots) {
+    const auto multiplicities = geometry_.get(curve, "knot_multiplicities");
+    const auto knots = geometry_.get(curve, "knots");
+    if (!multiplicities || !knots || !multiplicities->is_list() || !knots->is_list() ||
+        multiplicities->count() != knots->count()) {
+      geometry_.error(diag::Code::StepncBadAttribute, curve,
+                      describe(m, curve) + " lacks its degree, control points or knots");
+      return std::nullopt;
+    }
+    const auto mult = m.items(*multiplicities);
+    const auto k = m.items(*knots);
+    for (std::size_t i = 0; i < k.size(); ++i)
+      for (std::int64_t r = 0; r < m.as_integer(mult[i]) && r < 64; ++r)
+        s.knots.push_back(m.as_real(k[i]));
+  } else {
+    s.knots =
+        implicit_knots(geometry_.is_a(curve, "bezier_curve"), s.degree, s.control_points.size());
+    if (s.knots.empty()) {
+      geometry_.error(
+          diag::Code::StepncBadGeometry, curve,
+          describe(m, curve) + ": " + std::to_string(s.control_points.size()) +
+              " control points do not make a curve of degree " + std::to_string(s.degree) +
+              (geometry_.is_a(curve, "bezier_curve") ? " (a Bezier curve has degree × segments + 1)"
+                                                     : " (at least degree + 1)"));
+      return std::nullopt;
+    }
+  }
   s.weights.assign(s.control_points.size(), 1.0);
   if (const auto w = geometry_.get(curve, "weights_data"); w && w->is_list()) {
     const auto ws = m.items(*w);

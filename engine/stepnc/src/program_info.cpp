@@ -139,11 +139,13 @@ class Inspector {
     project.name = string_attribute(p, "its_id").value_or("");
     note_workpieces(p);
     const Instance* main = deref(attribute(p, "main_workplan"));
+    if (options_.visitor) options_.visitor->begin_project(project);
     if (main == nullptr || !attributes_.is_a(*main, "workplan"))
       report(diag::Code::StepncWrongType, p,
              "PROJECT " + name_of(p) + " attribute main_workplan does not refer to a WORKPLAN");
     else
       project.main_workplan = executable(*main, 0);
+    if (options_.visitor) options_.visitor->end_project();
     return project;
   }
 
@@ -162,58 +164,53 @@ class Inspector {
     }
   }
 
-  std::vector<Executable> elements(const Instance& owner, std::optional<Value> list,
-                                   unsigned depth) {
-    std::vector<Executable> out;
-    if (!list || !list->is_list()) {
-      if (list && !list->is_omitted())
-        report(diag::Code::StepncBadAttribute, owner,
-               name_of(owner) + " has an element list that is not a list");
-      return out;
-    }
-    // Exactly as many as the list holds: a workplan of 40,000 workingsteps would otherwise leave
-    // up to as many unused slots of a large struct (issue 23: 16, inspect's memory).
-    out.reserve(model_.items(*list).size());
-    for (Value v : model_.items(*list)) {
-      const Instance* e = v.is_reference() ? model_.find(v.id()) : nullptr;
-      if (e == nullptr) {
-        report(diag::Code::StepncBadAttribute, owner,
-               name_of(owner) + " has an element that is not a reference to an instance");
-        continue;
-      }
-      out.push_back(executable(*e, depth + 1));
-    }
-    return out;
-  }
+  // Where an executable's children are: the instances of a list attribute (a workplan's
+  // elements, a parallel's branches), or single attributes (an If's branches, a While's body).
+  struct Children {
+    std::string_view list;
+    std::vector<std::string_view> singles;
+    bool on_path = false;  // `e` was put on the path, and leaves it after its children
+  };
 
-  // An If branch or a While body: the executable, or a `missing` one when the file has none.
-  Executable branch(const Instance& owner, std::string_view attribute_name, unsigned depth) {
-    if (const Instance* b = deref(attribute(owner, attribute_name)))
-      return executable(*b, depth + 1);
-    Executable missing;
-    missing.missing = true;
-    return missing;
-  }
-
+  // `e` and everything under it: handed to the visitor as it is read, or returned whole.
   Executable executable(const Instance& e, unsigned depth) {
     Executable x;
+    const Children children = read_node(e, depth, x);
+    TreeVisitor* const visitor = options_.visitor;
+    if (visitor) visitor->enter(x);
+    if (!children.list.empty()) elements(e, attribute(e, children.list), depth, x);
+    for (std::string_view single : children.singles) add(x, branch(e, single, depth));
+    if (children.on_path) on_path_.erase(e.id);
+    if (visitor) visitor->leave(x);
+    return x;
+  }
+
+  // The child goes to the parent's children unless a visitor has had it.
+  void add(Executable& parent, Executable&& child) const {
+    if (!options_.visitor) parent.children.push_back(std::move(child));
+  }
+
+  // `e` into `x` without its children; which children it has.
+  Children read_node(const Instance& e, unsigned depth, Executable& x) {
     x.self = ref(e);
     if (!attributes_.is_executable(e)) {
       report(diag::Code::StepncUnknownExecutable, e,
              name_of(e) + " (" + std::string(model_.type_name(e)) +
                  ") is not an executable that this version understands");
-      return x;
+      return {};
     }
     if (depth > options_.max_nesting) {
       report(diag::Code::StepncTooDeep, e,
              name_of(e) + " is nested more than " + std::to_string(options_.max_nesting) +
                  " workplans deep");
-      return x;
+      return {};
     }
     if (!on_path_.insert(e.id).second) {
       report(diag::Code::StepncCycle, e, name_of(e) + " contains itself");
-      return x;
+      return {};
     }
+    Children children;
+    children.on_path = true;
     // Subtypes count: the schema decides what is a workplan, a workingstep, a tool change.
     const auto is = [&](std::string_view entity) { return attributes_.is_a(e, entity); };
     if (is("machining_workingstep")) {
@@ -232,17 +229,16 @@ class Inspector {
       }
     } else if (is("workplan") || is("non_sequential") || is("selective")) {
       x.shape = Executable::Shape::Sequence;
-      x.children = elements(e, attribute(e, "its_elements"), depth);
+      children.list = "its_elements";
     } else if (is("parallel")) {
       x.shape = Executable::Shape::Parallel;
-      x.children = elements(e, attribute(e, "branches"), depth);
+      children.list = "branches";
     } else if (is("if_statement")) {
       x.shape = Executable::Shape::If;
-      x.children.push_back(branch(e, "true_branch", depth));
-      x.children.push_back(branch(e, "false_branch", depth));
+      children.singles = {"true_branch", "false_branch"};
     } else if (is("while_statement")) {
       x.shape = Executable::Shape::While;
-      x.children.push_back(branch(e, "body", depth));
+      children.singles = {"body"};
     } else if (is("display_message")) {
       x.shape = Executable::Shape::Message;
       x.text = string_attribute(e, "its_text");
@@ -253,8 +249,42 @@ class Inspector {
         note_tool(*tool, e);
       }
     }
-    on_path_.erase(e.id);
-    return x;
+    return children;
+  }
+
+  void elements(const Instance& owner, std::optional<Value> list, unsigned depth,
+                Executable& parent) {
+    if (!list || !list->is_list()) {
+      if (list && !list->is_omitted())
+        report(diag::Code::StepncBadAttribute, owner,
+               name_of(owner) + " has an element list that is not a list");
+      return;
+    }
+    // Exactly as many as the list holds: a workplan of 40,000 workingsteps would otherwise leave
+    // up to as many unused slots of a large struct (issue 23: 16, inspect's memory).
+    if (!options_.visitor) parent.children.reserve(model_.items(*list).size());
+    for (Value v : model_.items(*list)) {
+      const Instance* e = v.is_reference() ? model_.find(v.id()) : nullptr;
+      if (e == nullptr) {
+        report(diag::Code::StepncBadAttribute, owner,
+               name_of(owner) + " has an element that is not a reference to an instance");
+        continue;
+      }
+      add(parent, executable(*e, depth + 1));
+    }
+  }
+
+  // An If branch or a While body: the executable, or a `missing` one when the file has none.
+  Executable branch(const Instance& owner, std::string_view attribute_name, unsigned depth) {
+    if (const Instance* b = deref(attribute(owner, attribute_name)))
+      return executable(*b, depth + 1);
+    Executable missing;
+    missing.missing = true;
+    if (options_.visitor) {
+      options_.visitor->enter(missing);
+      options_.visitor->leave(missing);
+    }
+    return missing;
   }
 
   void note_tool(const Instance& tool, const Instance& user) {
@@ -279,6 +309,25 @@ class Inspector {
 };
 
 }  // namespace
+
+void replay(const Executable& root, TreeVisitor& visitor) {
+  // Depth first without recursion: each node is entered when first seen and left after its
+  // children (the tree's depth is bounded by the inspector's nesting limit, but a replayed tree
+  // may come from elsewhere).
+  std::vector<std::pair<const Executable*, std::size_t>> stack{{&root, 0}};
+  visitor.enter(root);
+  while (!stack.empty()) {
+    auto& [node, next] = stack.back();
+    if (next < node->children.size()) {
+      const Executable& child = node->children[next++];
+      visitor.enter(child);
+      stack.emplace_back(&child, 0);
+    } else {
+      visitor.leave(*node);
+      stack.pop_back();
+    }
+  }
+}
 
 ProgramInfo inspect(const p21::Model& model, const express::SchemaSet& schema,
                     const InspectOptions& options) {

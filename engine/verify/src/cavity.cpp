@@ -180,6 +180,38 @@ void Cavity::vee(double angle, double radius, double depth) {
   top_ = top;
 }
 
+void Cavity::general(const std::vector<Vec2>& lower, bool symmetric) {
+  // Cut off above the top, without what lies above it before the first point below and after
+  // the last.
+  std::vector<Vec2> cut;
+  for (std::size_t i = 0; i < lower.size(); ++i) {
+    const Vec2 p = lower[i];
+    if (i > 0 && (lower[i - 1].y > 0) != (p.y > 0)) {
+      const Vec2 q = lower[i - 1];
+      cut.push_back({q.x + (p.x - q.x) * q.y / (q.y - p.y), 0});
+    }
+    cut.push_back({p.x, std::min(p.y, 0.0)});
+  }
+  std::size_t first = 0;
+  while (first + 1 < cut.size() && cut[first + 1].y >= 0) ++first;
+  std::size_t last = cut.size() - 1;
+  while (last > first && cut[last - 1].y >= 0) --last;
+  Builder b;
+  b.start(cut[first]);
+  for (std::size_t i = first + 1; i <= last; ++i) b.line(cut[i]);
+  b.close({});
+  section_ = b.region;
+  lower_ = b.lower;
+  build_open();
+  floor_ = 0;
+  for (const Vec2 p : lower_) floor_ = std::min(floor_, p.y);
+  lo_ = lower_.front().x;
+  hi_ = lower_.back().x;
+  top_ = std::max(std::abs(lo_), std::abs(hi_));
+  across_signed_ = !symmetric;
+  two_sided_ = true;
+}
+
 void Cavity::step(double angle, double radius, double depth) {
   // The wall rises from its foot (0, -depth) at `angle` from the floor, which runs towards -u.
   const Vec2 foot{0, -depth};
@@ -295,6 +327,7 @@ double Cavity::u(Vec2 p) const {
     case Spine::Segment: {
       const double s = (p - a_).dot(along_);
       const double t = (p - a_).dot(normal_);
+      if (across_signed_) return t;  // its ends are open: the section runs on past them
       // Past a radiused end the section turns about the end of the spine.
       if (s < 0 && !open_[0] && woodruff_[0] == 0) return std::hypot(s, t);
       if (s > length_ && !open_[1] && woodruff_[1] == 0) return std::hypot(s - length_, t);
@@ -312,6 +345,8 @@ double Cavity::u(Vec2 p) const {
       return std::min((p - e0).length(), (p - e1).length());
     }
     case Spine::Circle:
+      // An asymmetric section: its left (of the counter-clockwise course) is inside.
+      if (across_signed_) return radius_ - (p - a_).length();
       return std::abs((p - a_).length() - radius_);
     case Spine::Point:
       return (p - a_).length();
@@ -414,8 +449,29 @@ double Cavity::open_distance(Vec3 p) const {
   return in_section({u(p.xy()), p.z});
 }
 
+double Cavity::general_distance(Vec2 p) const {
+  // The lower side is ordered by u: only pieces within the best distance so far across can be
+  // nearer (the same answer as the region's, without visiting every piece).
+  double best = segment_distance(p, {lo_, 0}, {hi_, 0});
+  // The lower side straight above or below p is on it too: a first bound that keeps the scan
+  // short.
+  if (p.x >= lo_ && p.x <= hi_) best = std::min(best, std::abs(p.y - section_floor(p.x)));
+  const auto it = std::lower_bound(lower_.begin(), lower_.end(), p.x,
+                                   [](const Vec2& q, double x) { return q.x < x; });
+  const auto at = static_cast<std::size_t>(it - lower_.begin());
+  for (std::size_t k = at == 0 ? 0 : at - 1; k + 1 < lower_.size(); ++k) {
+    if (lower_[k].x - p.x > best) break;
+    best = std::min(best, segment_distance(p, lower_[k], lower_[k + 1]));
+  }
+  for (std::size_t k = at == 0 ? 0 : at - 1; k-- > 0;) {
+    if (p.x - lower_[k + 1].x > best) break;
+    best = std::min(best, segment_distance(p, lower_[k], lower_[k + 1]));
+  }
+  return best;
+}
+
 double Cavity::section_distance(Vec2 p) const {
-  const double d = section_.distance(p);
+  const double d = two_sided_ ? general_distance(p) : section_.distance(p);
   const bool below_top = p.y < 0;
   const bool within = !lower_.empty() && p.x >= lower_.front().x && p.x <= lower_.back().x;
   const bool inside = below_top && within && p.y > section_floor(p.x);
@@ -460,7 +516,8 @@ double Cavity::floor_distance(Vec2 p) const {
     const double uu = u(p);
     return std::min({-uu, uu + top_, s, length_ - s});
   }
-  double d = top_ - u(p);
+  const double across = u(p);
+  double d = two_sided_ ? std::min(across - lo_, hi_ - across) : top_ - across;
   if (spine_ == Spine::Segment) {
     const double s = (p - a_).dot(along_);
     const double t = (p - a_).dot(normal_);
@@ -593,7 +650,9 @@ double Cavity::violation(Vec3 q, const ToolShape& tool, const std::vector<Vec2>&
   for (const Vec2 o : outline) {
     const double z = q.z + o.y;
     if (z >= 0) continue;
-    const double v = std::min(allowance - section_distance({u0 + o.x, z}), -z);
+    double inside = section_distance({u0 + o.x, z});
+    if (two_sided_) inside = std::min(inside, section_distance({u0 - o.x, z}));
+    const double v = std::min(allowance - inside, -z);
     if (v > worst) {
       worst = v;
       worst_z = z;

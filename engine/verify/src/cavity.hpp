@@ -27,6 +27,12 @@ class Cavity {
   void rounded_u(double radius, double depth);
   bool partial_circle(double radius, double sweep, double depth);
   void vee(double angle, double radius, double depth);
+  // A general section: its lower side, u increasing (parts above the top are cut off there).
+  // Symmetric, it is measured from the spine as the others; otherwise u is signed (positive to
+  // the left of a segment spine) and the spine's ends must be open. The tool is checked on both
+  // sides of its axis: the section may rise again towards the spine.
+  void general(const std::vector<Vec2>& lower, bool symmetric);
+  [[nodiscard]] bool signed_across() const { return across_signed_; }
   // A step's section, u positive into its wall (whose foot is at u = 0), the floor reaching
   // far onto the open side.
   void step(double angle, double radius, double depth);
@@ -77,6 +83,7 @@ class Cavity {
   // below and the top (z = 0) above, so inside is "between the two" (the region's polygon
   // would be slower for the same answer).
   [[nodiscard]] double section_distance(Vec2 p) const;
+  [[nodiscard]] double general_distance(Vec2 p) const;  // unsigned, general sections
   [[nodiscard]] double woodruff_distance(Vec3 p, int end, double s, double t) const;
 
   // The section with its walls run on far above the top: what is added lies above the top (air)
@@ -89,8 +96,11 @@ class Cavity {
   Region raised_;
   std::vector<Vec2> lower_;  // the section's lower boundary, by increasing u
   double floor_ = 0;
-  double top_ = 0;  // half width at the top (slots), floor width (steps)
+  double top_ = 0;          // half width at the top (slots), floor width (steps)
+  double lo_ = 0, hi_ = 0;  // the section's extent across (general sections; else ±top_)
   bool signed_ = false;
+  bool across_signed_ = false;  // an asymmetric general section along a segment
+  bool two_sided_ = false;      // a general section: the tool's near side may touch it too
   // The last tool position's answer: along a pass parallel to the spine it does not change.
   mutable double cached_u_ = std::numeric_limits<double>::quiet_NaN();
   mutable double cached_z_ = 0;

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "cavity.hpp"
+#include "contour.hpp"
 #include "model.hpp"
 
 namespace ncpost::verify::detail {
@@ -17,6 +18,169 @@ constexpr double kDeg = std::numbers::pi / 180;
 
 const p21::Instance* item(const Reader& r, p21::Value v) {
   return v.is_reference() ? r.model().find(v.id()) : nullptr;
+}
+
+// Points of a section curve (the verifier's own reading): a POLYLINE, a B-spline (with knots,
+// or a BEZIER_CURVE / QUASI_UNIFORM_CURVE with ISO 10303-42's implicit knots; rational too)
+// evaluated by de Boor at least every 0.05 mm of its control polygon (and 32 times per control
+// point), or lines and circular arcs (contour.hpp) within 0.0005 mm. Empty with the reason when
+// it is none of those. The distances to the section are exact to its polyline, so it is kept
+// short enough for them to stay fast and fine enough to stay far within the tolerance.
+constexpr double kSectionSpacing = 0.05;
+constexpr double kSectionChord = 0.0005;
+
+std::vector<Vec2> spline_points(const Reader& r, const p21::Instance& curve, std::string& reason) {
+  const auto degree = r.number(curve, "degree");
+  std::vector<std::array<double, 4>> points;
+  if (const auto list = r.get(curve, "control_points_list"); list && list->is_list())
+    for (p21::Value v : r.model().items(*list)) {
+      const auto q = r.point(item(r, v));
+      if (!q) break;
+      points.push_back({q->x, q->y, q->z, 1});
+    }
+  if (const auto w = r.get(curve, "weights_data"); w && w->is_list()) {
+    const auto ws = r.model().items(*w);
+    for (std::size_t k = 0; k < ws.size() && k < points.size(); ++k)
+      points[k][3] = r.model().as_real(ws[k]);
+  }
+  const int d = degree ? static_cast<int>(std::clamp(*degree, 0.0, 64.0)) : 0;
+  const auto n = static_cast<int>(points.size());
+  std::vector<double> knots;
+  if (r.is_a(curve, "b_spline_curve_with_knots")) {
+    const auto mult = r.get(curve, "knot_multiplicities");
+    const auto values = r.get(curve, "knots");
+    if (mult && values && mult->is_list() && values->is_list() &&
+        mult->count() == values->count()) {
+      const auto m = r.model().items(*mult);
+      const auto k = r.model().items(*values);
+      for (std::size_t i = 0; i < k.size(); ++i)
+        for (std::int64_t t = 0; t < r.model().as_integer(m[i]) && t < 64; ++t)
+          knots.push_back(r.model().as_real(k[i]));
+    }
+  } else if (d >= 1 && n > d) {
+    // Bezier: segments of d + 1 points sharing their ends (knots 0..segments, d + 1 fold at the
+    // ends, d fold inside); quasi-uniform: clamped, one knot per interior point.
+    const bool bezier = r.is_a(curve, "bezier_curve");
+    const int spans = bezier ? ((n - 1) % d == 0 ? (n - 1) / d : 0) : n - d;
+    for (int i = 0; spans > 0 && i <= spans; ++i)
+      knots.insert(knots.end(), i == 0 || i == spans ? d + 1 : bezier ? d : 1, i);
+  }
+  if (d < 1 || n < d + 1 || knots.size() != static_cast<std::size_t>(n + d + 1) ||
+      std::any_of(points.begin(), points.end(), [](const auto& p) { return !(p[3] > 0); })) {
+    reason = "its general section's curve " + r.type(curve) + " cannot be evaluated";
+    return {};
+  }
+  double polygon = 0;
+  for (std::size_t k = 1; k < points.size(); ++k)
+    polygon += std::hypot(points[k][0] - points[k - 1][0], points[k][1] - points[k - 1][1]);
+  // At least every kSectionSpacing of the control polygon and 32 times per control point, at
+  // most 100,000 times.
+  const int count = static_cast<int>(
+      std::min(std::max(std::ceil(polygon / kSectionSpacing), 32.0 * n), 100000.0));
+  const double u0 = knots[static_cast<std::size_t>(d)];
+  const double u1 = knots[static_cast<std::size_t>(n)];
+  std::vector<Vec2> out;
+  for (int k = 0; k <= count; ++k) {
+    const Vec3 p = de_boor(points, knots, d, u0 + (u1 - u0) * k / count);
+    if (std::abs(p.z) > 1e-6) {
+      reason = "its general section's curve leaves the profile's xy plane";
+      return {};
+    }
+    out.push_back(p.xy());
+  }
+  return out;
+}
+
+std::vector<Vec2> section_points(const Reader& r, const p21::Instance& curve, std::string& reason) {
+  if (r.is_a(curve, "b_spline_curve")) return spline_points(r, curve, reason);
+  auto pieces = read_curve(r, curve, Frame{}, reason);
+  std::vector<Vec2> out;
+  if (!pieces) return out;
+  for (const Piece2& piece : *pieces) {
+    if (out.empty()) out.push_back(piece.a);
+    if (!piece.arc) {
+      out.push_back(piece.b);
+      continue;
+    }
+    const double from = std::atan2(piece.a.y - piece.centre.y, piece.a.x - piece.centre.x);
+    const double step = piece.radius > kSectionChord
+                            ? 2 * std::acos(1 - kSectionChord / piece.radius)
+                            : std::numbers::pi / 2;
+    const int count =
+        std::clamp(static_cast<int>(std::ceil(std::abs(piece.sweep) / step)), 1, 100000);
+    for (int k = 1; k <= count; ++k) {
+      const double a = from + piece.sweep * k / count;
+      out.push_back(k == count ? piece.b
+                               : piece.centre + Vec2{std::cos(a), std::sin(a)} * piece.radius);
+    }
+  }
+  return out;
+}
+
+// The points of a finely sampled curve that keep every dropped point within kSectionChord of
+// the chord that replaces it (greedy, a bounded look-ahead): the distances to the section visit
+// its pieces, so fewer pieces where it is straight keep them fast.
+std::vector<Vec2> simplify(const std::vector<Vec2>& points) {
+  if (points.size() < 3) return points;
+  std::vector<Vec2> out{points.front()};
+  std::size_t from = 0;
+  while (from + 1 < points.size()) {
+    std::size_t to = from + 1;
+    for (std::size_t j = from + 2; j < points.size() && j < from + 400; ++j) {
+      bool near = true;
+      for (std::size_t k = from + 1; k < j && near; ++k)
+        near = segment_distance(points[k], points[from], points[j]) <= kSectionChord;
+      if (!near) break;
+      to = j;
+    }
+    out.push_back(points[to]);
+    from = to;
+  }
+  return out;
+}
+
+// A GENERAL_PROFILE: x across the slot (to the left of its travel), y up; its lowest point on
+// the depth plane, its ends at the top or above (docs/verify.md).
+bool general_section(const Reader& r, const p21::Instance& shape, double depth, Cavity& c,
+                     Feature& f) {
+  const p21::Instance* curve = r.ref(shape, "its_profile");
+  if (curve == nullptr) {
+    f.reason = "its general section has no curve";
+    return false;
+  }
+  std::vector<Vec2> points = simplify(section_points(r, *curve, f.reason));
+  if (points.size() < 2) return false;
+  if (points.back().x < points.front().x) std::reverse(points.begin(), points.end());
+  double lowest = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (k > 0 && points[k].x < points[k - 1].x - 1e-3) {
+      f.reason = "its general section turns back across the slot (an undercut)";
+      return false;
+    }
+    if (k > 0) points[k].x = std::max(points[k].x, points[k - 1].x);
+    lowest = std::min(lowest, points[k].y - points.front().y);
+  }
+  lowest += points.front().y;
+  for (Vec2& p : points) p.y += -depth - lowest;
+  if (points.front().y < -0.005 || points.back().y < -0.005) {
+    f.reason =
+        "its general section does not reach the top once its lowest point is on the "
+        "depth plane";
+    return false;
+  }
+  // Symmetric: every point's mirror image within 0.005 mm of the curve.
+  const auto near_curve = [&](Vec2 m) {
+    for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+      if (points[k + 1].x < m.x - 0.01 || points[k].x > m.x + 0.01) continue;
+      if (segment_distance(m, points[k], points[k + 1]) <= 0.005) return true;
+    }
+    return false;
+  };
+  bool symmetric = true;
+  for (std::size_t k = 0; k < points.size() && symmetric; k += 7)
+    symmetric = near_curve({-points[k].x, points[k].y});
+  c.general(points, symmetric);
+  return true;
 }
 
 // The swept profile as a section; false with the reason.
@@ -78,6 +242,7 @@ bool slot_section(const Reader& r, const p21::Instance& shape, double depth, Cav
     }
     return true;
   }
+  if (r.is_a(shape, "general_profile")) return general_section(r, shape, depth, c, f);
   f.reason = "its swept shape " + r.type(shape) + " is not supported";
   return false;
 }
@@ -124,6 +289,13 @@ bool read_profiled_slot(const Reader& r, const p21::Instance& feature, Feature& 
     }
   }
   // A placed course of travel is in f.frame already (model.cpp, place_travel).
+  if (cavity->signed_across() && !r.is_a(*travel, "linear_path") &&
+      !r.is_a(*travel, "complete_circular_path")) {
+    f.reason =
+        "its general section is not symmetric and its course of travel is not a line or "
+        "a whole circle";
+    return false;
+  }
   if (r.is_a(*travel, "complete_circular_path")) {
     const auto radius = r.length(*travel, "radius");
     if (!radius || *radius <= 0 || (count > 0 && ends[0] != End::Loop)) {
@@ -147,6 +319,10 @@ bool read_profiled_slot(const Reader& r, const p21::Instance& feature, Feature& 
       return false;
     }
     for (int k = 0; k < 2; ++k) {
+      if (ends[k] == End::Radiused && cavity->signed_across()) {
+        f.reason = "its general section is not symmetric, so its radiused end is not defined";
+        return false;
+      }
       if (ends[k] == End::Radiused || ends[k] == End::Open) continue;
       if (ends[k] == End::Woodruff && woodruff[k] + 1e-9 >= depth) continue;
       f.reason = ends[k] == End::Woodruff ? "its woodruff end is less deep than the slot"

@@ -713,4 +713,29 @@ SetupFrames setup_frames(const Reader& r, const p21::Instance& setup) {
   return out;
 }
 
+Vec3 de_boor(const std::vector<std::array<double, 4>>& points, const std::vector<double>& knots,
+             int degree, double u) {
+  const int p = degree;
+  const int n = static_cast<int>(points.size()) - 1;
+  int k = p;
+  while (k < n && knots[static_cast<std::size_t>(k + 1)] <= u) ++k;
+  std::vector<std::array<double, 4>> d(static_cast<std::size_t>(p + 1));
+  for (int j = 0; j <= p; ++j) {
+    const auto& q = points[static_cast<std::size_t>(j + k - p)];
+    d[static_cast<std::size_t>(j)] = {q[0] * q[3], q[1] * q[3], q[2] * q[3], q[3]};
+  }
+  for (int r = 1; r <= p; ++r) {
+    for (int j = p; j >= r; --j) {
+      const double lo = knots[static_cast<std::size_t>(j + k - p)];
+      const double hi = knots[static_cast<std::size_t>(j + 1 + k - r)];
+      const double alpha = hi > lo ? (u - lo) / (hi - lo) : 0;
+      for (std::size_t m = 0; m < 4; ++m)
+        d[static_cast<std::size_t>(j)][m] = (1 - alpha) * d[static_cast<std::size_t>(j - 1)][m] +
+                                            alpha * d[static_cast<std::size_t>(j)][m];
+    }
+  }
+  const auto& h = d[static_cast<std::size_t>(p)];
+  return {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
+}
+
 }  // namespace ncpost::verify::detail

@@ -95,6 +95,11 @@ class Reader {
   p21::LineIndex lines_;
 };
 
+// De Boor's algorithm in homogeneous coordinates: the point at parameter u of a clamped B-spline
+// of `degree` with control points (x, y, z, weight) and knots expanded by multiplicity.
+[[nodiscard]] Vec3 de_boor(const std::vector<std::array<double, 4>>& points,
+                           const std::vector<double>& knots, int degree, double u);
+
 // A tool as a solid of revolution with its tip (the canonical position) at the origin: flat,
 // bull-nose, ball, or a cone with a rounded tip (countersinks, pointed cutters, drills).
 struct ToolShape {

@@ -540,29 +540,9 @@ std::vector<Piece> Verifier::nurbs_pieces(Vec3 start, const canon::NurbsFeed& nu
   const int n = static_cast<int>(P.size()) - 1;
   const double u0 = U[static_cast<std::size_t>(p)];
   const double u1 = U[static_cast<std::size_t>(n + 1)];
-  // De Boor's algorithm in homogeneous coordinates, at evenly spaced parameters.
-  const auto eval = [&](double u) {
-    int k = p;
-    while (k < n && U[static_cast<std::size_t>(k + 1)] <= u) ++k;
-    std::vector<std::array<double, 4>> d(static_cast<std::size_t>(p + 1));
-    for (int j = 0; j <= p; ++j) {
-      const auto& q = P[static_cast<std::size_t>(j + k - p)];
-      d[static_cast<std::size_t>(j)] = {q.x * q.weight, q.y * q.weight, q.z * q.weight, q.weight};
-    }
-    for (int rr = 1; rr <= p; ++rr) {
-      for (int j = p; j >= rr; --j) {
-        const double lo = U[static_cast<std::size_t>(j + k - p)];
-        const double hi = U[static_cast<std::size_t>(j + 1 + k - rr)];
-        const double alpha = hi > lo ? (u - lo) / (hi - lo) : 0;
-        for (int m = 0; m < 4; ++m)
-          d[static_cast<std::size_t>(j)][static_cast<std::size_t>(m)] =
-              (1 - alpha) * d[static_cast<std::size_t>(j - 1)][static_cast<std::size_t>(m)] +
-              alpha * d[static_cast<std::size_t>(j)][static_cast<std::size_t>(m)];
-      }
-    }
-    const auto& h = d[static_cast<std::size_t>(p)];
-    return Vec3{h[0] / h[3], h[1] / h[3], h[2] / h[3]};
-  };
+  std::vector<std::array<double, 4>> weighted;
+  for (const auto& q : P) weighted.push_back({q.x, q.y, q.z, q.weight});
+  const auto eval = [&](double u) { return detail::de_boor(weighted, U, p, u); };
   double polygon = 0;
   for (std::size_t k = 1; k < P.size(); ++k)
     polygon += (Vec3{P[k].x, P[k].y, P[k].z} - Vec3{P[k - 1].x, P[k - 1].y, P[k - 1].z}).length();

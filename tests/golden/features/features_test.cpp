@@ -79,13 +79,15 @@ struct Summary {
 };
 
 // The independent verifier (engine/verify, no code shared with the generator) on what the
-// generator made. A pointed drill cannot make a spherical or flat-with-radius bottom by itself:
-// that case must leave uncovered floor (VERIFY-004), and nothing else.
+// generator made. A pointed drill (or a reamer stopped by a fillet) cannot make a spherical or
+// flat-with-radius bottom by itself: those cases must leave uncovered floor (VERIFY-004), and
+// nothing else.
 void expect_verified(const fs::path& file, const std::vector<canon::Call>& calls) {
   const pipeline::LoadedModel loaded = pipeline::load(test::read_file(file), registry());
   const AttributeReader attributes(loaded.model, *loaded.schema);
   const verify::VerifyResult result = verify::verify_calls(loaded.model, attributes, calls);
-  const bool pointed = file.stem() == "holes-pointed-bottoms";
+  const bool pointed =
+      file.stem() == "holes-pointed-bottoms" || file.stem() == "hole-bottoms-blind";
   std::size_t uncovered = 0;
   for (const auto& f : result.findings) {
     if (f.diagnostic.severity != diag::Severity::Error) continue;
@@ -222,7 +224,8 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
   if (GetParam() != "wrong-tools" && GetParam() != "unsupported" && GetParam() != "hostile" &&
       GetParam() != "wrong-tools-general" && GetParam() != "hostile-general" &&
       GetParam() != "wrong-tools-shapes" && GetParam() != "hostile-shapes" &&
-      GetParam() != "retract-refused" && GetParam() != "geometry-refused") {
+      GetParam() != "retract-refused" && GetParam() != "geometry-refused" &&
+      GetParam() != "slot-section-refused" && GetParam() != "hole-bottoms-refused") {
     for (const auto& d : r.diagnostics)
       EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, GetParam());
     expect_verified(cases() / (GetParam() + ".stp"), r.calls);
@@ -231,17 +234,20 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, FeatureGolden,
-    ::testing::Values(
-        "face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
-        "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet", "pocket-raster",
-        "pocket-side-finish", "outside-profile", "holes-cycles", "holes-pointed-bottoms",
-        "holes-strategy", "slots", "wrong-tools", "unsupported", "hostile", "pocket-polyline-l",
-        "pocket-composite", "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
-        "pocket-radiused-bottom", "wrong-tools-general", "hostile-general", "slot-vee",
-        "slot-partial-circular", "slot-ends-mixed", "slot-woodruff", "slot-circular", "step",
-        "thread-drilling", "pocket-retract", "wrong-tools-shapes", "hostile-shapes",
-        "retract-refused", "slot-placed-travel", "pocket-placed-profile", "hole-milled",
-        "hole-bottoms-taper", "pocket-rough-corners", "geometry-refused", "geometry-combined"),
+    ::testing::Values("face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
+                      "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet",
+                      "pocket-raster", "pocket-side-finish", "outside-profile", "holes-cycles",
+                      "holes-pointed-bottoms", "holes-strategy", "slots", "wrong-tools",
+                      "unsupported", "hostile", "pocket-polyline-l", "pocket-composite",
+                      "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
+                      "pocket-radiused-bottom", "wrong-tools-general", "hostile-general",
+                      "slot-vee", "slot-partial-circular", "slot-ends-mixed", "slot-woodruff",
+                      "slot-circular", "step", "thread-drilling", "pocket-retract",
+                      "wrong-tools-shapes", "hostile-shapes", "retract-refused",
+                      "slot-placed-travel", "pocket-placed-profile", "hole-milled",
+                      "hole-bottoms-taper", "pocket-rough-corners", "geometry-refused",
+                      "geometry-combined", "slot-general-section", "slot-section-refused",
+                      "hole-bottoms-blind", "hole-bottoms-refused"),
     [](const auto& param_info) {
       std::string n = param_info.param;
       for (char& c : n)
@@ -609,16 +615,83 @@ TEST(FeaturesOwn, CuttingDepthIntoAConeAndTapers) {
   ASSERT_EQ(cuts.at("DRILL INTO CONE").size(), 1u);
   EXPECT_NEAR(cuts.at("DRILL INTO CONE")[0].z, -14.8, 1e-9);
   const Generated refused = run(cases() / "geometry-refused.stp");
-  EXPECT_EQ(refused.count("STEPNC-101"), 4u);  // undercut, tilted path, section, region
+  EXPECT_EQ(refused.count("STEPNC-101"), 3u);  // undercut, tilted path, region
   EXPECT_EQ(refused.count("STEPNC-102"), 1u);
   EXPECT_EQ(refused.count("STEPNC-103"), 1u);
   const std::string text = refused.text("geometry-refused");
   for (const char* named :
        {"(DIAMETER_TAPER) (diameter 30 at the top, 36 at the depth), which widens downwards",
         "at most 15.0043", "a drill makes a cylinder no wider than 8",
-        "(LINEAR_PATH) placed out of the slot's plane", "(B_SPLINE_CURVE_WITH_KNOTS) is a B-spline",
-        "(REGION_SURFACE_LIST) (#", "(BEZIER_SURFACE)), free-form region milling"})
+        "(LINEAR_PATH) placed out of the slot's plane", "(REGION_SURFACE_LIST) (#",
+        "(BEZIER_SURFACE)), free-form region milling"})
     EXPECT_NE(text.find(named), std::string::npos) << named;
+}
+
+// A case that must interpret without an error.
+Generated run_without_errors(const std::string& name) {
+  Generated r = run(cases() / (name + ".stp"));
+  for (const auto& d : r.diagnostics)
+    EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, name);
+  return r;
+}
+
+// Each of `named` appears in the diagnostics' text.
+void expect_named(const std::string& text, std::initializer_list<const char*> named) {
+  for (const char* n : named) EXPECT_NE(text.find(n), std::string::npos) << n;
+}
+
+// General slot sections: the stepped polyline (floor 5 deep from -4 to 4, shoulders 2 deep
+// from ±4 to ±9) cut by a flat end mill of radius 3 in levels of 2.5: its passes reach both
+// floors exactly and never the walls; the B-spline groove's lowest pass is on its depth plane
+// (its lowest point, 5.875 below the top) less the chord of the grid. Each refusal names its
+// instance and why.
+TEST(FeaturesOwn, GeneralSlotSections) {
+  const Generated r = run_without_errors("slot-general-section");
+  const auto cuts = cuts_by_workingstep(r.calls);
+  double deepest = 0;
+  for (const auto& p : cuts.at("STEPPED SLOT")) {
+    deepest = std::min(deepest, p.z);
+    // The slot runs along +x from (40, 60): across it is y - 60.
+    const double across = std::abs(p.y - 60);
+    if (p.z < -2 - 1e-9) {
+      EXPECT_LE(across, 4 - 3 + 1e-6) << p.x << " " << p.y << " " << p.z;
+    }
+    EXPECT_LE(across, 9 - 3 + 1e-6);
+  }
+  EXPECT_NEAR(deepest, -5, 1e-9);
+  double groove = 0;
+  for (const auto& p : cuts.at("SPLINE GROOVE")) groove = std::min(groove, p.z);
+  EXPECT_NEAR(groove, -5.875, 0.005);
+  EXPECT_GE(groove, -5.875 - 1e-9);
+  const Generated refused = run(cases() / "slot-section-refused.stp");
+  EXPECT_EQ(refused.count("STEPNC-101"), 3u);  // dovetail, lopsided radiused, along an arc
+  EXPECT_EQ(refused.count("STEPNC-102"), 1u);  // ball too large
+  EXPECT_EQ(refused.count("STEPNC-103"), 2u);  // short walls, negative allowance
+  EXPECT_EQ(refused.count("STEPNC-011"), 1u);  // a Bezier curve of 5 points and degree 3
+  expect_named(refused.text("slot-section-refused"),
+               {"(POLYLINE) turns back across the slot at x -5, y 0 (an undercut",
+                "(BEZIER_CURVE) is not symmetric about the course of travel",
+                "(radius 8, corner radius 8) cannot reach the section #", "(QUASI_UNIFORM_CURVE)",
+                "ends 1.25 below the top at x -8", "leaves a negative allowance (-0.5 on the sides",
+                "5 control points do not make a curve of degree 3",
+                "(PARTIAL_CIRCULAR_PATH) (a general section is generated along a linear path or a "
+                "complete circle)"});
+}
+
+// Drilling depths against blind bottoms: an 8 mm drill's point (118 degrees) reaches the lowest
+// point of a spherical bottom of radius 5 and of a flat-with-radius floor (corner 1) in Ø10
+// holes: its cone stays clear of the sphere and of the fillet. Beyond, each is refused with the
+// limit: 12 below a flat floor, 12 - 5 = 7 for a Ø10 reamer, whose rim meets the sphere 5 above
+// its tip, 12 for the drill over the fillet.
+TEST(FeaturesOwn, CuttingDepthsAgainstBlindBottoms) {
+  run_without_errors("hole-bottoms-blind");
+  const Generated refused = run(cases() / "hole-bottoms-refused.stp");
+  EXPECT_EQ(refused.count("STEPNC-103"), 3u);
+  expect_named(refused.text("hole-bottoms-refused"),
+               {"cutting_depth 12.5 is not within", "(FLAT_HOLE_BOTTOM)", "at most 12)",
+                "cutting_depth 12 is not within", "(SPHERICAL_HOLE_BOTTOM) of radius 5",
+                "meets it 5 above its tip", "at most 7)", "cutting_depth 12.3 is not within",
+                "(FLAT_WITH_RADIUS_HOLE_BOTTOM) with the corner radius 1"});
 }
 
 }  // namespace

@@ -887,6 +887,100 @@ def rot(deg):
     return (round(math.cos(math.radians(deg)), 6), round(math.sin(math.radians(deg)), 6), 0)
 
 
+def bspline(p, degree, pts, knots=None, kind="B_SPLINE_CURVE_WITH_KNOTS"):
+    """A B-spline in the xy plane as CAD toolkits write it: clamped knots (uniform inside) unless
+    given, or a BEZIER_CURVE / QUASI_UNIFORM_CURVE whose knots are implicit."""
+    ids = ",".join(p.point(x, y, 0) for x, y in pts)
+    if kind != "B_SPLINE_CURVE_WITH_KNOTS":
+        return p.add(f"{kind}('',{degree},({ids}),.UNSPECIFIED.,.F.,.F.)")
+    if knots is None:
+        inner = len(pts) - degree - 1
+        values = [k / (inner + 1) for k in range(inner + 2)]
+        mult = [degree + 1] + [1] * inner + [degree + 1]
+    else:
+        values, mult = knots
+    return p.add(f"{kind}('',{degree},({ids}),.UNSPECIFIED.,.F.,.F.,({','.join(str(m) for m in mult)}),"
+                 f"({','.join(f'{v:.6g}' for v in values)}),.UNSPECIFIED.)")
+
+
+def section_cases():
+    """Slots whose swept shape is a GENERAL_PROFILE (issue 17, part 4): the section in the
+    profile's xy plane, x across the slot (left of the travel), y up, its top at y = 0."""
+    p = program("slot-general-section", "slots whose section is a general profile: a symmetric B-spline with radiused ends (a ball in rings, two levels), an asymmetric Bezier curve between open ends (a ball in straight passes), a stepped polyline with a radiused and an open end (an end mill in rings), the Bezier curve round a complete circle (a ball in circles)")
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    ball4 = p.tool("BALL 4", "BALL_ENDMILL", 4, edge_length=12.0, edge_radius=2.0)
+    mill6 = mill(p, 6, 15)
+    tech = p.tech(0.02, -50.0)
+    radiused, opened = p.add("RADIUSED_SLOT_END_TYPE()"), p.add("OPEN_SLOT_END_TYPE()")
+    ogee = bspline(p, 3, [(-10, 0), (-8, -4), (-3, -6), (3, -6), (8, -4), (10, 0)])
+    s1 = slot_feature(p, "SPLINE GROOVE", 0, 0, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{ogee})"),
+                      [radiused, radiused], 5.875)
+    lopsided = bspline(p, 3, [(-5, 0), (-5, -6), (3, -6), (9, 0)], kind="BEZIER_CURVE")
+    s2 = slot_feature(p, "BEZIER CHANNEL", 0, 40, line_path(p, 30, (0, 1, 0)),
+                      p.add(f"GENERAL_PROFILE($,{lopsided})"), [opened, opened], 4.5)
+    stepped = polyline(p, [(-9, 0), (-9, -2), (-4, -2), (-4, -5), (4, -5), (4, -2), (9, -2), (9, 0)], close=False)
+    s3 = slot_feature(p, "STEPPED SLOT", 40, 60, line_path(p, 30), p.add(f"GENERAL_PROFILE($,{stepped})"),
+                      [radiused, opened], 5)
+    ring = p.add(f"COMPLETE_CIRCULAR_PATH($,{p.length(20)})")
+    s4 = slot_feature(p, "BEZIER RING", 110, 0, ring, p.add(f"GENERAL_PROFILE($,{lopsided})"),
+                      [p.add("LOOP_SLOT_END_TYPE()")], 4.5)
+    centre = p.add("CENTER_MILLING($,.T.)")
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    p.write([("SPLINE GROOVE", s1, bs(p, "FINISH", "SPLINE", ball6, tech, cp, 3.0, None, None, None)),
+             ("BEZIER CHANNEL", s2, bs(p, "FINISH", "BEZIER", ball4, tech, centre, None, None, None, None)),
+             ("STEPPED SLOT", s3, bs(p, "ROUGH", "STEPPED", mill6, tech, cp, 2.5, None, 0.0, 0.0)),
+             ("BEZIER RING", s4, bs(p, "FINISH", "BEZIER RING", ball4, tech, centre, 2.5, None, None, None))])
+
+    p = program("hole-bottoms-blind", "drilling depths checked against blind bottoms: a drill to the lowest point of a spherical bottom and of a flat-with-radius bottom (its point clear of the sphere and of the fillet), a drill through a through hole by its point and the clearance")
+    drill8 = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
+    tech = p.tech(0.01, -20.0)
+    sphere = hole(p, 0, 0, 10, 12, "SPHERICAL_HOLE_BOTTOM(" + p.length(5.0) + ")")
+    fillet = hole(p, 30, 0, 10, 12, "FLAT_WITH_RADIUS_HOLE_BOTTOM(" + p.length(1.0) + ")")
+    through = hole(p, 60, 0, 8, 12)
+    p.write([("DRILL TO THE SPHERE", sphere, drill_op(p, "DRILLING", "DRILL SPHERE", drill8, tech, cutting_depth="12.000")),
+             ("DRILL TO THE FILLET", fillet, drill_op(p, "DRILLING", "DRILL FILLET", drill8, tech, cutting_depth="12.000")),
+             ("DRILL THROUGH", through, drill_op(p, "DRILLING", "DRILL THROUGH", drill8, tech, cutting_depth="15.400"))])
+
+    p = program("hole-bottoms-refused", "drilling depths beyond blind bottoms, each refused naming the limit: below a flat floor, the rim of a reamer into a spherical bottom, a drill below a flat-with-radius floor")
+    drill8 = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
+    reamer = p.tool("REAMER 10", "REAMER", 10, edge_length=30.0)
+    tech = p.tech(0.01, -20.0)
+    flat = hole(p, 0, 0, 10, 12, "FLAT_HOLE_BOTTOM()")
+    sphere = hole(p, 30, 0, 10, 12, "SPHERICAL_HOLE_BOTTOM(" + p.length(5.0) + ")")
+    fillet = hole(p, 60, 0, 10, 12, "FLAT_WITH_RADIUS_HOLE_BOTTOM(" + p.length(1.0) + ")")
+    p.write([("DRILL BELOW THE FLOOR", flat, drill_op(p, "DRILLING", "DRILL FLAT", drill8, tech, cutting_depth="12.500")),
+             ("REAM INTO THE SPHERE", sphere, drill_op(p, "REAMING", "REAM SPHERE", reamer, tech, cutting_depth="12.000", extra=",.F.,$,$")),
+             ("DRILL BELOW THE FILLET", fillet, drill_op(p, "DRILLING", "DRILL FILLET", drill8, tech, cutting_depth="12.300"))])
+
+    p = program("slot-section-refused", "general slot sections the generator refuses, each naming the instance: a negative allowance, a Bezier curve whose points do not make whole segments, a dovetail (undercut), an asymmetric section with radiused ends, a ball too large for the groove, a section that does not reach the top, a general section along an arc")
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    ball16 = p.tool("BALL 16", "BALL_ENDMILL", 16, edge_length=20.0, edge_radius=8.0)
+    tech = p.tech(0.02, -50.0)
+    radiused = p.add("RADIUSED_SLOT_END_TYPE()")
+    dovetail = polyline(p, [(-5, 0), (-8, -5), (8, -5), (5, 0)], close=False)
+    d = slot_feature(p, "DOVETAIL", 0, 0, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{dovetail})"), [radiused, radiused], 5)
+    lopsided = bspline(p, 3, [(-5, 0), (-5, -6), (3, -6), (9, 0)], kind="BEZIER_CURVE")
+    a = slot_feature(p, "LOPSIDED RADIUSED", 0, 30, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{lopsided})"), [radiused, radiused], 4.5)
+    narrow = bspline(p, 2, [(-3, 0), (0, -8), (3, 0)], kind="QUASI_UNIFORM_CURVE")
+    n = slot_feature(p, "NARROW GROOVE", 0, 60, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{narrow})"), [radiused, radiused], 4)
+    shallow = bspline(p, 3, [(-8, -1), (-6, -6), (6, -6), (8, -1)])
+    sh = slot_feature(p, "SHORT WALLS", 0, 90, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{shallow})"), [radiused, radiused], 5)
+    ogee = bspline(p, 3, [(-10, 0), (-8, -4), (-3, -6), (3, -6), (8, -4), (10, 0)])
+    arc = p.add(f"PARTIAL_CIRCULAR_PATH($,{p.length(40)},90.0)")
+    ar = slot_feature(p, "SPLINE ALONG ARC", 100, 0, arc, p.add(f"GENERAL_PROFILE($,{ogee})"), [radiused, radiused], 5.875)
+    broken = bspline(p, 3, [(-8, 0), (-6, -6), (0, -6), (6, -6), (8, 0)], kind="BEZIER_CURVE")
+    br = slot_feature(p, "FIVE POINT BEZIER", 0, 120, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{broken})"), [radiused, radiused], 5)
+    centre = p.add("CENTER_MILLING($,.T.)")
+    og = slot_feature(p, "SPLINE GROOVE", 0, 150, line_path(p, 40), p.add(f"GENERAL_PROFILE($,{ogee})"), [radiused, radiused], 5.875)
+    p.write([("NEGATIVE ALLOWANCE", og, bs(p, "ROUGH", "NEGATIVE", ball6, tech, centre, None, None, -0.5, 0.0)),
+             ("FIVE POINT BEZIER", br, bs(p, "FINISH", "BEZIER 5", ball6, tech, centre, None, None, None, None)),
+             ("DOVETAIL", d, bs(p, "FINISH", "DOVETAIL", ball6, tech, centre, None, None, None, None)),
+             ("LOPSIDED RADIUSED", a, bs(p, "FINISH", "LOPSIDED", ball6, tech, centre, None, None, None, None)),
+             ("BALL TOO LARGE", n, bs(p, "FINISH", "NARROW", ball16, tech, centre, None, None, None, None)),
+             ("SHORT WALLS", sh, bs(p, "FINISH", "SHORT", ball6, tech, centre, None, None, None, None)),
+             ("ALONG AN ARC", ar, bs(p, "FINISH", "ARC", ball6, tech, centre, None, None, None, None))])
+
+
 def interop_geometry_cases():
     p = program("slot-placed-travel", "slots whose course_of_travel has its own placement: a square-U slot along a line placed at (20, 10) turned 30 degrees, a vee slot along a line placed at (0, 60) turned 90 degrees")
     mill10, tech = mill(p, 10, 20), p.tech(0.03, -40.0)
@@ -960,7 +1054,7 @@ def interop_geometry_cases():
              ("L ROUGH", lpocket, bs(p, "ROUGH", "L ROUGH", big, tech, cp, 2.5, None, 0.5, 0.0)),
              ("L FINISH", lpocket, bs(p, "FINISH", "L FINISH", small, tech, cp, 5.0, None, None, None))])
 
-    p = program("geometry-refused", "geometry the generator refuses, each naming the instance: a milled taper that widens downwards, a drill wider than a taper, a cutting depth past the point of a cone, a course of travel placed out of the slot plane, a B-spline slot section, free-form region milling")
+    p = program("geometry-refused", "geometry the generator refuses, each naming the instance: a milled taper that widens downwards, a drill wider than a taper, a cutting depth past the point of a cone, a course of travel placed out of the slot plane, free-form region milling")
     t, tech = mill(p, 10, 30), p.tech(0.03, -40.0)
     drill10 = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
     dtaper = p.add(f"DIAMETER_TAPER({p.length(8, 0.02)})")
@@ -973,10 +1067,6 @@ def interop_geometry_cases():
     radiused = p.add("RADIUSED_SLOT_END_TYPE()")
     tilted = p.add(f"LINEAR_PATH({p.placement(0, 0, 0, axis=(0, 1, 0), ref=(1, 0, 0))},{p.length(40)},{p.direction(1, 0, 0)})")
     tslot = slot_feature(p, "SLOT TILTED TRAVEL", 0, 40, tilted, square, [radiused, radiused], 5)
-    pts = [p.point(x, y, 0) for x, y in [(-8, 0), (-8, -6), (8, -6), (8, 0)]]
-    spline = p.add(f"B_SPLINE_CURVE_WITH_KNOTS('',3,({','.join(pts)}),.UNSPECIFIED.,.F.,.F.,(4,4),(0.,1.),.UNSPECIFIED.)")
-    gprof = p.add(f"GENERAL_PROFILE($,{spline})")
-    sslot = slot_feature(p, "SLOT SPLINE SECTION", 0, 80, line_path(p, 40), gprof, [radiused, radiused], 6)
     cps = [[p.point(x, y, z) for x, y, z in row] for row in
            [[(0, 0, 0), (0, 20, 1), (0, 40, 0)], [(20, 0, 1), (20, 20, 3), (20, 40, 1)], [(40, 0, 0), (40, 20, 1), (40, 40, 0)]]]
     grid = ",".join("(" + ",".join(r) + ")" for r in cps)
@@ -988,8 +1078,9 @@ def interop_geometry_cases():
              ("DRILL TOO WIDE FOR TAPER", taper10, drill_op(p, "DRILLING", "DRILL WIDE", drill10, p.tech(0.01, -20.0))),
              ("DRILL PAST CONE", cone, drill_op(p, "DRILLING", "DRILL DEEP", drill10, p.tech(0.01, -20.0), cutting_depth="15.500")),
              ("SLOT TILTED", tslot, bs(p, "ROUGH", "TILTED", t, tech, cp, 3.0, None, 0.0, 0.0)),
-             ("SLOT SPLINE", sslot, bs(p, "ROUGH", "SPLINE", t, tech, cp, 3.0, None, 0.0, 0.0)),
              ("FREEFORM", region, ff)])
+
+    section_cases()
 
     # Every kind above in one program, as a CAPP system writes a part: a ring groove along a
     # circular path placed off the feature origin and turned, a pocket with a placed profile

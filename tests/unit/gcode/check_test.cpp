@@ -66,6 +66,13 @@ TEST(Checks, Limits) {
   EXPECT_TRUE(r.result.ok());  // warnings unless the limits say errors
   o.limits->errors = true;
   EXPECT_FALSE(read("G0 X150\nM2\n", "linuxcnc", o).result.ok());
+  // A motion past the travel, where that is an error, is not made (the renderer would report it
+  // again, without its line); the blocks after it go on from where it would have ended.
+  const auto refused = read("G0 X50\nG0 X150\nG91 G0 X-60\nM2\n", "linuxcnc", o);
+  EXPECT_EQ(refused.codes(), "GCODE-036 2:1\n");
+  EXPECT_EQ(
+      refused.motions(),
+      "STRAIGHT_TRAVERSE(50.0000, 0.0000, 0.0000)\nSTRAIGHT_TRAVERSE(90.0000, 0.0000, 0.0000)\n");
 }
 
 TEST(Checks, RefusedByName) {
@@ -158,6 +165,36 @@ TEST(Checks, DetectsGcodeInTheCorpusAndThePosts) {
   }
   EXPECT_GT(gcode, 300u);
   EXPECT_GT(other, 50u);
+}
+
+// A line that normalising would leave as it is (upper case, numbers, blanks between words) is
+// read in place; it must read exactly as its normalised form: the same calls, the same
+// diagnostics at the same columns. Each pair: a plain line, and the same program written so
+// that it must be normalised (lower case, a tab, blanks inside words).
+TEST(Checks, PlainLinesReadAsTheirNormalisedForm) {
+  const std::vector<std::pair<std::string, std::string>> linuxcnc = {
+      {"G21 F100 S1000 M3\nG1 X1 Y2.5 Z-0.25\nG2 X3 Y2.5 I1 J0\nM2\n",
+       "g21 f100 s1000 m3\ng1 x1 y2.5 z-0.25\ng2\tX 3 Y2.5 I1 J 0\nm2\n"},
+      {"G0 X1 X2\nM2\n", "g0 x1 x2\nm2\n"},
+      {"G0 X12 Y-1.5\nM2\n", "G0 X1 2 Y- 1.5\nM2\n"},
+      {"G0 X1 Q5\nM2\n", "G0 x1 Q5\nM2\n"},
+      {"N10 G0 X1\nN20 Y2\nM2\n", "n10 G0 X1\nN20 y2\nM2\n"},
+      {"O100 SUB\nG0 X1\nO100 ENDSUB\nO100 CALL\nM2\n",
+       "o100 sub\nG0 X1\no100 endsub\no100 call\nM2\n"},
+  };
+  for (const auto& [plain, normalised] : linuxcnc) {
+    const auto a = read(plain);
+    const auto b = read(normalised);
+    EXPECT_EQ(a.body(), b.body()) << plain;
+    EXPECT_EQ(a.codes(), b.codes()) << plain;
+  }
+  // Blanks kept where the dialect keeps them (Sinumerik): a plain line is its own text.
+  const auto s = read("G0 X1 Y2\nG1 X3 F100\nM30\n", "siemens-840d");
+  const auto t = read("g0 x1 y2\ng1 x3 f100\nm30\n", "siemens-840d");
+  EXPECT_EQ(s.body(), t.body());
+  EXPECT_EQ(s.codes(), t.codes());
+  // Blanks inside a word are still dropped, so the word reads as one.
+  EXPECT_EQ(read("G 1 X 1 0 . 5 F 1 0 0\nM2\n").motions(), read("G1 X10.5 F100\nM2\n").motions());
 }
 
 }  // namespace

@@ -125,7 +125,8 @@ TEST(Expressions, MachineValuesWarnAndRefuseMotion) {
 
 // Numbers are read with a fast path for up to 15 digits; it must give exactly the double that
 // std::from_chars gives (the correctly rounded one), for every placement of the point, signs,
-// leading zeros and a leading '.', and beyond 15 digits (the slow path) too.
+// leading zeros and a leading '.', and beyond 15 digits (the slow path) too; at the end of a
+// block (read byte by byte) and followed by more words (read eight bytes at a time).
 TEST(Expressions, NumbersReadExactlyAsFromChars) {
   std::mt19937_64 random(19);
   std::vector<std::string> numbers = {"0",
@@ -141,7 +142,7 @@ TEST(Expressions, NumbersReadExactlyAsFromChars) {
                                       "12345678901234567.5",
                                       ".1234567890123456"};
   for (int i = 0; i < 2000; ++i) {
-    const int digits = 1 + static_cast<int>(random() % 17);
+    const int digits = 1 + static_cast<int>(random() % 24);
     std::string n;
     for (int d = 0; d < digits; ++d) n += static_cast<char>('0' + random() % 10);
     n.insert(random() % (n.size() + 1), ".");
@@ -149,23 +150,23 @@ TEST(Expressions, NumbersReadExactlyAsFromChars) {
     numbers.push_back(n);
   }
   std::string program = "G21 G90\n";
-  for (const auto& n : numbers) program += "G0 X" + n + "\n";
+  for (const auto& n : numbers) program += "G0 X" + n + "\nG0 X" + n + " Y1.5 Z2.25\n";
   program += "M2\n";
   const auto r = read(program);
   ASSERT_TRUE(r.result.ok()) << r.messages();
   std::vector<double> xs;
   for (const auto& c : r.calls)
     if (const auto* t = std::get_if<canon::StraightTraverse>(&c)) xs.push_back(t->to.x);
-  ASSERT_EQ(xs.size(), numbers.size());
-  for (std::size_t i = 0; i < numbers.size(); ++i) {
-    std::string n = numbers[i];
+  ASSERT_EQ(xs.size(), 2 * numbers.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    std::string n = numbers[i / 2];
     const bool negative = n.front() == '-';
     if (negative) n.erase(0, 1);
     if (n.front() == '.') n.insert(0, "0");
     double expected = 0;
     std::from_chars(n.data(), n.data() + n.size(), expected);
     if (negative) expected = -expected;
-    EXPECT_EQ(xs[i], expected) << numbers[i];
+    EXPECT_EQ(xs[i], expected) << numbers[i / 2] << (i % 2 ? " followed by words" : " at the end");
   }
 }
 

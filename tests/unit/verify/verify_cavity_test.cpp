@@ -102,6 +102,33 @@ TEST(VerifyCavity, WoodruffEnd) {
             1e-4);
 }
 
+TEST(VerifyCavity, GeneralSections) {
+  // A symmetric vee 5 deep as a general section, along x from (0, 0) to (40, 0), open ends.
+  Cavity vee;
+  vee.general({{-5, 0}, {0, -5}, {5, 0}}, true);
+  vee.segment({0, 0}, {40, 0}, true, true, 0, 0);
+  EXPECT_FALSE(vee.signed_across());
+  // 1 above the vertex: 1 / sqrt(2) from either wall; and on the other side the same.
+  EXPECT_NEAR(vee.signed_distance({20, 0, -4}), std::sqrt(0.5), 1e-9);
+  EXPECT_NEAR(vee.signed_distance({20, -1, -4.5}), -0.5 / std::numbers::sqrt2, 1e-9);
+  EXPECT_NEAR(vee.bottom({20, 2}), -3, 1e-9);
+  // An asymmetric one (deep from -2 to 6, across to the left): u is signed.
+  Cavity step;
+  step.general({{-2, 0}, {-2, -3}, {6, -3}, {6, 0}}, false);
+  step.segment({0, 0}, {40, 0}, true, true, 0, 0);
+  EXPECT_TRUE(step.signed_across());
+  EXPECT_NEAR(step.signed_distance({20, 5, -1}), 1, 1e-9);    // 1 from the left wall
+  EXPECT_NEAR(step.signed_distance({20, -5, -1}), -3, 1e-9);  // 3 into the right wall
+  EXPECT_NEAR(step.bottom({20, 5}), -3, 1e-9);
+  EXPECT_NEAR(step.bottom({20, -5}), 0, 1e-9);
+  // A part above the top is cut off there.
+  Cavity high;
+  high.general({{-6, 2}, {-4, 0}, {-4, -2}, {4, -2}, {4, 0}, {6, 2}}, true);
+  high.segment({0, 0}, {40, 0}, true, true, 0, 0);
+  EXPECT_NEAR(high.signed_distance({20, 0, -1}), 1, 1e-9);
+  EXPECT_NEAR(high.signed_distance({20, 5, -1}), -1, 1e-9);
+}
+
 TEST(VerifyCavity, ToolShapes) {
   const ToolShape flat{5, 0, 0};
   const ToolShape bull{5, 1, 0};
@@ -176,6 +203,33 @@ TEST(VerifyCavityPrograms, GeneratedShapesPass) {
     EXPECT_TRUE(r.ok()) << name << "\n" << dump(r);
     for (const auto& f : r.features) EXPECT_TRUE(f.checked) << name << " " << f.name;
   }
+}
+
+TEST(VerifyCavityPrograms, GeneralSectionsPass) {
+  const Program p = load("slot-general-section");
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_TRUE(r.ok()) << dump(r);
+  ASSERT_EQ(r.features.size(), 4u);
+  for (const auto& f : r.features) EXPECT_TRUE(f.checked) << f.name << ": " << f.not_checked_reason;
+}
+
+TEST(VerifyCavityPrograms, GeneralSectionPassesTooDeep) {
+  // The Bezier channel's passes 0.2 mm lower: into its section, below its floor at the bottom.
+  Program p = load("slot-general-section");
+  const auto below_top = [](const canon::Pose& to) { return to.z < -0.5; };
+  ASSERT_GT(move_feeds(p.calls, "BEZIER CHANNEL", below_top, {0, 0, -0.2}), 10u);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+}
+
+TEST(VerifyCavityPrograms, GeneralSectionRingPushedOut) {
+  // One ring of the B-spline groove 0.2 mm further out on its left side: into the section's
+  // wall, which the ring's other passes only touch.
+  Program p = load("slot-general-section");
+  const auto left = [](const canon::Pose& to) { return to.y > 6 && to.y < 9 && to.z < -1; };
+  ASSERT_GT(move_feeds(p.calls, "SPLINE GROOVE", left, {0, 0.2, 0}), 1u);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
 }
 
 TEST(VerifyCavityPrograms, VeeCutTooDeep) {

@@ -63,13 +63,16 @@ bool outside_profile(Reader& reader, Draft& draft) {
   return read_then_plan(reader, boundary, draft, read_outside, plan_outside);
 }
 
-// A straight U slot is a region; every other slot the passes of a form tool. A course of travel
+// A straight U slot is a region; a general section the passes fitted to it; every other slot
+// the passes of a form tool. A course of travel
 // with its own placement: the slot is planned in it, then its moves carried into the feature's.
 bool slot(Reader& reader, Draft& draft) {
   SlotBasics basics;
   if (!read_slot_basics(reader, basics)) return false;
   const std::size_t first = draft.moves().size();
-  const bool ok = basics.region()
+  const bool ok = basics.section.kind == SlotSection::Kind::General
+                      ? read_then_plan(reader, basics, draft, read_section_slot, plan_section_slot)
+                  : basics.region()
                       ? read_then_plan(reader, basics, draft, read_slot_region, plan_region)
                       : read_then_plan(reader, basics, draft, read_form_slot, plan_form_slot);
   if (ok) draft.place_from(first, basics.travel_frame);

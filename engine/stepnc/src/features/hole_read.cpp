@@ -1,5 +1,6 @@
 // ROUND_HOLE: the reader (holes.hpp).
 
+#include <algorithm>
 #include <cmath>
 
 #include "holes.hpp"
@@ -135,14 +136,31 @@ bool read_cycle(Reader& reader, HoleKind kind, const Tool& tool, HoleSpec& spec)
   return false;
 }
 
+// How far above its tip a bottom of the hole rises higher than the tool's point, at most, over
+// the tool's radius r: the bottom's height above the depth plane is `rise` (0 up to `flat`, then
+// a circle of radius `bend` whose lowest point is at `flat`), the point's height above its tip
+// k·s at s from the axis (a cone; k = 0 for a flat end). The largest of `rise(s) − k·s` is at
+// s = r, where the circle's slope is k, or 0 (ISO 10303-42 circles, so exact).
+double bottom_above_point(double flat, double bend, double r, double k) {
+  const auto rise = [&](double x) {
+    const double d = std::clamp(x - flat, 0.0, bend);
+    return x <= flat ? 0.0 : bend - std::sqrt(std::max(0.0, bend * bend - d * d));
+  };
+  double worst = 0;
+  for (const double x : {r, flat + k * bend / std::sqrt(1 + k * k)})
+    if (x >= 0 && x <= r) worst = std::max(worst, rise(x) - k * x);
+  return worst;
+}
+
 // How deep the tip may go in the hole, by its bottom: through, past the depth plane by the
 // point and the clearance; a conical bottom, down to the cone's point (its height below the
-// depth plane, R / tan(tip_angle / 2)) or the tool's point, whichever is lower; a blind flat,
-// flat-with-radius or spherical bottom (whose lowest point is the depth plane), the depth plus
-// the tool's point and the clearance as before (a point below a flat floor is the bottom's
-// note, read_drill_bottom). `why` says which.
-double deepest_tip(Reader& reader, const Instance& bottom, double depth, double radius, double tip,
-                   std::string& why) {
+// depth plane, R / tan(tip_angle / 2)) or the tool's point, whichever is lower. A blind flat,
+// flat-with-radius or spherical bottom has its lowest point on the depth plane: the tip may
+// reach it as long as the tool's point (or flat end) stays clear of the fillet or the sphere
+// over the tool's radius, and no further (a point below a flat floor is the bottom's note,
+// read_drill_bottom). `why` says which.
+double deepest_tip(Reader& reader, const Instance& bottom, double depth, double radius,
+                   const Tool& tool, double tip, std::string& why) {
   if (reader.is(&bottom, "conical_hole_bottom")) {
     const auto angle = reader.number(bottom, "tip_angle");
     const double cone =
@@ -150,6 +168,26 @@ double deepest_tip(Reader& reader, const Instance& bottom, double depth, double 
     why = "the point of its " + reader.name(bottom) + ", " + fmt(cone) + " below its depth " +
           fmt(depth);
     return depth + std::max(cone, tip);
+  }
+  if (reader.is(&bottom, "blind_bottom_condition")) {
+    const double r = std::min(tool.radius, radius);
+    const double k = r > 0 ? tip / tool.radius : 0;
+    double above = 0;
+    std::string shape;
+    if (reader.is(&bottom, "spherical_hole_bottom")) {
+      const double sphere = reader.toleranced(bottom, "radius").value_or(Toleranced{}).size;
+      above = bottom_above_point(0, std::max(sphere, radius), r, k);
+      shape = " of radius " + fmt(sphere);
+    } else if (reader.is(&bottom, "flat_with_radius_hole_bottom")) {
+      const double corner = std::clamp(
+          reader.toleranced(bottom, "corner_radius").value_or(Toleranced{}).size, 0.0, radius);
+      above = bottom_above_point(radius - corner, corner, r, k);
+      shape = " with the corner radius " + fmt(corner);
+    }
+    why = "its " + reader.name(bottom) + shape + ", whose lowest point is its depth " + fmt(depth) +
+          (above > 0 ? "; " + tool.subject.name() + " meets it " + fmt(above) + " above its tip"
+                     : "");
+    return depth - above;
   }
   why = "its depth " + fmt(depth);
   return depth + tip + reader.options().through_clearance;
@@ -167,7 +205,7 @@ std::optional<double> read_bottom(Reader& reader, const Instance& bottom, double
   }
   const double tip = pointed ? tip_length(tool) : 0;
   std::string why;
-  const double deepest = deepest_tip(reader, bottom, depth, radius, tip, why);
+  const double deepest = deepest_tip(reader, bottom, depth, radius, tool, tip, why);
   if (!(*cutting_depth > 0) || *cutting_depth > deepest + kEps) {
     reader.report().bad(reader.subject(op), reader.name(op) + " cutting_depth " +
                                                 fmt(*cutting_depth) + " is not within " +

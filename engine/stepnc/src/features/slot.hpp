@@ -35,13 +35,26 @@ struct SlotPath {
   double sweep = 0;   // arc: signed angle (radians, counter-clockwise positive); circle: 2π
 };
 
+// A point of a general cross-section: u across the slot (to the left of the travel direction),
+// z up, both in mm.
+struct SectionPoint {
+  double u = 0;
+  double z = 0;
+};
+
 struct SlotSection {
-  enum class Kind { SquareU, RoundedU, Vee, PartialCircular } kind = Kind::SquareU;
+  enum class Kind { SquareU, RoundedU, Vee, PartialCircular, General } kind = Kind::SquareU;
   double half = 0;                   // U profiles: half the width
   std::optional<Toleranced> fillet;  // square-U: the floor radius
   double angle = 0;                  // vee: the angle between its sides (radians)
   Toleranced radius{};               // vee: bottom radius; partial circle, rounded-U: radius
   double sweep = 0;                  // partial circle: its angle (radians)
+  // General (a GENERAL_PROFILE): its curve as a polyline within FeatureOptions::chord_tolerance,
+  // u increasing, in the curve's own coordinates (read_section_slot puts its lowest point on
+  // the depth plane); the curve, and whether the section is symmetric about the course of travel.
+  std::vector<SectionPoint> curve;
+  Subject profile_curve;
+  bool symmetric = false;
 };
 
 struct SlotEnd {
@@ -126,6 +139,79 @@ struct FormSlotSpec {
 //   allowance_bottom that leaves the whole depth; more passes or levels than the motion limit;
 //   an approach or retract angle outside (0, 90).
 [[nodiscard]] bool read_form_slot(Reader& reader, const SlotBasics& basics, FormSlotSpec& spec);
+
+// A GENERAL_PROFILE swept shape: its curve (POLYLINE, TRIMMED_CURVE, COMPOSITE_CURVE,
+// B_SPLINE_CURVE_WITH_KNOTS, BEZIER_CURVE, QUASI_UNIFORM_CURVE; rational ones too) in the
+// profile's xy plane, x across the slot to the left of the travel direction and y up, evaluated
+// exactly (de Boor) into a polyline within FeatureOptions::chord_tolerance.
+// Diagnostics: the curve reader's; STEPNC-103 a curve out of its xy plane, beyond the element
+// limit, or without width; STEPNC-101 a curve that turns back across the slot (an undercut:
+// not one depth at each point across it).
+[[nodiscard]] bool read_general_section(Reader& reader, const p21::Instance& swept, SlotSection& s);
+
+// A slot whose section is a general profile (a polyline, composite curve, B-spline or Bezier
+// curve), made by parallel passes along a straight course of travel at offsets across the
+// section, each pass's tip as low as the tool (its radius and corner radius, grown by the
+// allowance) can go there without crossing the section: the passes are chosen so that what
+// they leave on the section stays within FeatureOptions::profile_tolerance. A section symmetric
+// about the course of travel is run in rings (half circles about radiused ends, which turn the
+// section about the end of the course of travel); any other in straight passes between open
+// ends, crossing over the section between them.
+struct SectionSlotSpec {
+  SlotPath path;
+  SlotEnd end[2];
+  // Rings: offsets >= 0 from the course of travel outwards (0: the course itself); straight
+  // passes: signed offsets from right to left. depth: the tip below the top (> 0).
+  std::vector<SlotPass> passes;
+  // cross[k]: the height (z, <= 0 or above the top) at which the tool may cross between the
+  // course of travel (rings) or pass k - 1 (straight passes) and pass k without touching the
+  // section.
+  std::vector<double> cross;
+  // The passes run at the levels above the deepest, no further apart than the stepover.
+  std::vector<std::size_t> rough;
+  bool rings = false;
+  bool ccw = true;
+  double tool_radius = 0;
+  std::vector<double> levels;  // from the top (z = 0) down to the deepest pass
+  Entry entry;                 // Plunge or Ramp, into the material at a radiused end
+  std::optional<double> retract_plane;
+  Subject exit_strategy;  // a retract strategy other than along the axis (noted)
+  Subject tool;
+  Subject feature;
+};
+
+// A tool seen across a straight slot: its radius and corner radius, both grown by the allowance
+// it leaves on the section (a ball: corner = radius).
+struct SectionCutter {
+  double radius = 0;
+  double corner = 0;
+  double allowance = 0;
+};
+
+// The lowest tip height (z) of `cutter` centred at offset `v` over a section whose lower side is
+// `boundary` (u increasing, z <= 0, the top at z = 0 beyond its ends), without the tool grown by
+// the allowance crossing it.
+[[nodiscard]] double section_tip(const std::vector<SectionPoint>& boundary,
+                                 const SectionCutter& cutter, double v);
+// How far the point `p` of the section is from the tool grown by the allowance, its tip at `tip`
+// over offset `v` (0 where it touches).
+[[nodiscard]] double section_gap(SectionPoint p, const SectionCutter& cutter, double v, double tip);
+
+// Diagnostics (and read_depth's, read_tool's, read_operation's, depth_levels'):
+// - STEPNC-101: a path other than linear; ends other than radiused or open; a radiused end on a
+//   section that is not symmetric about the course of travel; a strategy other than center
+//   milling or contour-parallel; a helix approach.
+// - STEPNC-102: a tool that is not a milling cutter with a flat, radiused or ball end; one that
+//   cannot reach the section within the profile tolerance somewhere (it names where and by how
+//   much: a concave radius smaller than its corner, a section narrower than the tool); one that
+//   never gets below the top; a cutting edge shorter than a level step.
+// - STEPNC-103: a curve whose ends do not reach the top once its lowest point is on the depth
+//   plane; more passes or levels than the motion limit.
+[[nodiscard]] bool read_section_slot(Reader& reader, const SlotBasics& basics,
+                                     SectionSlotSpec& spec);
+// Diagnostics: STEPNC-103 more motions than the motion limit; STEPNC-016 a plunge along the
+// axis into the material at a radiused end when no approach is named.
+[[nodiscard]] bool plan_section_slot(const SectionSlotSpec& spec, Draft& draft);
 
 // Diagnostics: STEPNC-103 more motions than the motion limit; STEPNC-016 a plunge along the
 // axis into the material at a radiused end when no approach is named, a retract ramp that the

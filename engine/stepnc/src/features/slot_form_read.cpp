@@ -262,6 +262,8 @@ bool read_passes(Reader& reader, const SlotBasics& basics, const Tool& tool,
     case SlotSection::Kind::RoundedU:
     case SlotSection::Kind::SquareU:
       return u_pass(reader, basics, tool, operation, depth, spec);
+    case SlotSection::Kind::General:
+      break;  // read_section_slot's
   }
   return false;
 }

@@ -154,17 +154,7 @@ bool read_section(Reader& reader, const Instance& swept, SlotSection& s) {
   if (reader.is(&swept, "rounded_u_profile")) return read_rounded_u(reader, swept, s);
   if (reader.is(&swept, "vee_profile")) return read_vee(reader, swept, s);
   if (reader.is(&swept, "partial_circular_profile")) return read_partial_circle(reader, swept, s);
-  if (reader.is(&swept, "general_profile")) {
-    // A free cross-section (a polyline, a B-spline or Bezier curve): no form tool has its shape,
-    // and a 2.5D path cannot follow it; the curve is named with its kind.
-    const Instance* curve = reader.ref(swept, "its_profile", "bounded_curve");
-    const bool spline = reader.is(curve, "b_spline_curve");
-    return reader.report().not_implemented(
-        f() + " with " + reader.name(swept) + " whose its_profile " + reader.name(curve) +
-        (spline ? " is a B-spline (or Bezier) cross-section" : " is a general cross-section") +
-        " (square-U, rounded-U, vee and partial-circular slots are; a general section needs a "
-        "form tool of its shape or a 3D toolpath)");
-  }
+  if (reader.is(&swept, "general_profile")) return read_general_section(reader, swept, s);
   return reader.report().not_implemented(f() + " with " + reader.name(swept) +
                                          " (square-U, rounded-U, vee and partial-circular slots "
                                          "are)");

@@ -86,5 +86,122 @@ TEST_F(SlotPlan, AHostileRampIsTheMotionLimit) {
   EXPECT_EQ(report_.all()[0].code, diag::Code::StepncFeatureData);
 }
 
+// ---- general sections (slot_section_read.cpp, slot_section_plan.cpp) -----------------------
+
+// A 90-degree vee 5 deep, as a polyline: every tip worked out by hand.
+const std::vector<SectionPoint> kVee{{-5, 0}, {0, -5}, {5, 0}};
+
+TEST(SlotSection, TipOfABallInAVeeTouchesBothWalls) {
+  // A ball of radius 1 on the axis: its centre sqrt(2) above the vertex.
+  EXPECT_NEAR(section_tip(kVee, {1, 1, 0}, 0), -5 + std::numbers::sqrt2 - 1, 1e-12);
+  // 2 to the side: the ball on the right wall alone, its centre sqrt(2) off it.
+  EXPECT_NEAR(section_tip(kVee, {1, 1, 0}, 2), -3 + std::numbers::sqrt2 - 1, 1e-12);
+  // Grown by an allowance of 0.5: the centre sqrt(2) * 1.5 above the vertex.
+  EXPECT_NEAR(section_tip(kVee, {1, 1, 0.5}, 0), -5 + 1.5 * std::numbers::sqrt2 - 1, 1e-12);
+}
+
+TEST(SlotSection, TipOfAFlatEndMillRestsOnItsEdges) {
+  // Radius 2: its corners on the walls 2 from the axis, 3 below the top.
+  EXPECT_NEAR(section_tip(kVee, {2, 0, 0}, 0), -3, 1e-12);
+  // Wider than the vee at the top: it never gets below the top (the part's top beside it).
+  EXPECT_GE(section_tip(kVee, {6, 0, 0}, 0), 0);
+  // Radius 1 over 1: its flat spans 0 to 2, its right corner on the right wall 3 below the top.
+  EXPECT_NEAR(section_tip(kVee, {1, 0, 0}, 1), -3, 1e-12);
+}
+
+TEST(SlotSection, GapIsTheDistanceToTheToolGrownByTheAllowance) {
+  // A ball of radius 1 with its tip at -4 over 0 (centre (0, -3)): the vertex is 2 - 1 away.
+  EXPECT_NEAR(section_gap({0, -5}, {1, 1, 0}, 0, -4), 1, 1e-12);
+  // A point the tool covers (above its lower surface) is left nothing.
+  EXPECT_EQ(section_gap({0, -2}, {1, 1, 0}, 0, -4), 0);
+  // A bull nose (radius 2, corner 0.5) at tip -3 over 0: its corner's centre is (1.5, -2.5), so
+  // (3, -3) is hypot(1.5, 0.5) from it, less the corner radius.
+  EXPECT_NEAR(section_gap({3, -3}, {2, 0.5, 0}, 0, -3), std::hypot(1.5, 0.5) - 0.5, 1e-12);
+}
+
+class SectionSlotPlan : public test::Planning {
+ protected:
+  // Straight passes across a section between two open ends: a slot 30 long along +x, passes at
+  // -1 and 1, 2 deep, crossing at -0.5 between them.
+  SectionSlotSpec channel() const {
+    SectionSlotSpec spec;
+    spec.tool = tool();
+    spec.feature = feature("SLOT");
+    spec.path = {SlotPath::Kind::Line, {1, 0, 0}, 30, 0, 0};
+    for (SlotEnd& e : spec.end) e.kind = SlotEnd::Kind::Open;
+    spec.passes = {{-1, 2}, {1, 2}};
+    spec.cross = {-2, -0.5};
+    spec.rough = {0, 1};
+    spec.tool_radius = 3;
+    spec.levels = {-2};
+    spec.entry.kind = Entry::Kind::Plunge;
+    return spec;
+  }
+  // The same slot with radiused ends and a symmetric section: the course of travel 3 deep and a
+  // ring at offset 2, 2 deep, in one level.
+  SectionSlotSpec rings() const {
+    SectionSlotSpec spec = channel();
+    for (SlotEnd& e : spec.end) e.kind = SlotEnd::Kind::Radiused;
+    spec.rings = true;
+    spec.passes = {{0, 3}, {2, 2}};
+    spec.cross = {-3, -2};
+    spec.levels = {-3};
+    return spec;
+  }
+};
+
+TEST_F(SectionSlotPlan, StraightPassesCrossOverTheSectionBeyondTheEnds) {
+  ASSERT_TRUE(plan_section_slot(channel(), draft_));
+  // Down in the air 5 before the slot (radius 3 + clearance 2), along, up to the crossing
+  // height, across, down, back, up.
+  const std::vector<Vec3> expected{{-5, -1, 2},   {-5, -1, -2}, {35, -1, -2}, {35, -1, -0.5},
+                                   {35, 1, -0.5}, {35, 1, -2},  {-5, 1, -2},  {-5, 1, 2}};
+  ASSERT_EQ(moves().size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_NEAR(moves()[i].to.x, expected[i].x, 1e-12) << i;
+    EXPECT_NEAR(moves()[i].to.y, expected[i].y, 1e-12) << i;
+    EXPECT_NEAR(moves()[i].to.z, expected[i].z, 1e-12) << i;
+  }
+  EXPECT_TRUE(findings().empty());
+}
+
+TEST_F(SectionSlotPlan, RingsTurnAboutRadiusedEnds) {
+  // A symmetric section with radiused ends: the course of travel (plunged into at the end) and
+  // a ring at offset 2 whose half circles are arcs about the ends of the course of travel.
+  SectionSlotSpec spec = rings();
+  ASSERT_TRUE(plan_section_slot(spec, draft_));
+  EXPECT_EQ(count(Move::Kind::Arc), 2u);
+  for (const Move& m : moves()) {
+    if (m.kind != Move::Kind::Arc) continue;
+    EXPECT_NEAR(m.centre.y, 0, 1e-12);
+    EXPECT_TRUE(std::abs(m.centre.x) < 1e-12 || std::abs(m.centre.x - 30) < 1e-12);
+    EXPECT_EQ(m.turns, 1);
+  }
+  // The plunge into the material at the end is noted.
+  ASSERT_EQ(findings().size(), 1u);
+  EXPECT_NE(findings()[0].find("enters along its axis"), std::string::npos);
+  // Nothing deeper than a pass's depth.
+  for (const Move& m : moves()) EXPECT_GE(m.to.z, -3 - 1e-12);
+}
+
+TEST_F(SectionSlotPlan, RampsDownAlongTheCourseOfTravel) {
+  // Both ends radiused and a 10-degree ramp asked for: the tool goes down along the course of
+  // travel (z changes only while x does), never below the first ring, and says nothing.
+  SectionSlotSpec spec = rings();
+  spec.entry.kind = Entry::Kind::Ramp;
+  spec.entry.angle = 10 * std::numbers::pi / 180;
+  ASSERT_TRUE(plan_section_slot(spec, draft_));
+  EXPECT_TRUE(findings().empty());
+  Vec3 at = moves().front().to;
+  for (std::size_t i = 1; i < moves().size(); ++i) {
+    const Move& m = moves()[i];
+    if (m.kind == Move::Kind::Feed && m.to.z < at.z - 1e-9 && m.to.z < 0) {
+      EXPECT_GT(std::abs(m.to.x - at.x), 1e-6) << "a plunge at move " << i;
+    }
+    EXPECT_GE(m.to.z, -3 - 1e-12);
+    at = m.to;
+  }
+}
+
 }  // namespace
 }  // namespace ncpost::stepnc::features

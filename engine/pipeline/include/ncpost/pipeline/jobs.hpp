@@ -75,6 +75,11 @@ struct Inspection {
 // inspection_json(inspection).dump(2), written to `out` as it goes, without building the
 // document: its memory stays that of the program information (`ncpost inspect`).
 void write_inspection_json(const Inspection& inspection, const TextSink& out);
+// inspect(), written to `out` as write_inspection_json writes it, but while the model is
+// walked: an ISO 14649 program's workplan tree is never held (`ncpost inspect`), and the
+// returned main workplan is its root alone.
+[[nodiscard]] Inspection inspect_to_json(Input input, const JobContext& context,
+                                         const TextSink& out);
 // The same as a human-readable tree (`ncpost inspect --format text`).
 [[nodiscard]] std::string inspection_text(const Inspection& inspection);
 

@@ -104,11 +104,31 @@ struct ProgramInfo {
   std::vector<diag::Diagnostic> diagnostics;  // about the program structure
 };
 
+// Receives the workplan tree as inspect walks it, so that a large program's tree need not be
+// held (`ncpost inspect` writes it as it comes). Each executable arrives without its children
+// (`enter`), then its children do, then `leave`; an If branch or a While body the file leaves
+// unset arrives as an Executable with `missing` set.
+class TreeVisitor {
+ public:
+  virtual ~TreeVisitor() = default;
+  // The project, its main_workplan unset, before the executables of its main workplan.
+  virtual void begin_project(const Project& project) = 0;
+  virtual void enter(const Executable& executable) = 0;
+  virtual void leave(const Executable& executable) = 0;
+  virtual void end_project() = 0;
+};
+
+// The events of a tree already built, in the order inspect would give them.
+void replay(const Executable& root, TreeVisitor& visitor);
+
 struct InspectOptions {
   // Workplans nested deeper than this are reported instead of followed.
   unsigned max_nesting = 64;
   // How entities are read (variants.hpp): the job's mode.
   Mode mode = Mode::Tolerant;
+  // When set, the workplan tree goes to the visitor, and the ProgramInfo's main workplan is
+  // its root alone (without children).
+  TreeVisitor* visitor = nullptr;
 };
 
 // With the schema given: no check that it is the model's.
