@@ -723,6 +723,7 @@ TEST(FeaturesOwn, MilledSphericalBottoms) {
   const Generated refused = run(cases() / "hole-milled-sphere-refused.stp");
   EXPECT_EQ(refused.count("STEPNC-102"), 3u);
   EXPECT_EQ(refused.count("STEPNC-103"), 1u);
+  EXPECT_EQ(refused.count("STEPNC-101"), 1u);  // side milling: the wall alone
   expect_named(refused.text("hole-milled-sphere-refused"),
                {"is a flat end mill, which cannot form", "(SPHERICAL_HOLE_BOTTOM) of radius 15",
                 "radius 15 is larger than the sphere's 14.5 (its radius 15 less allowance_bottom "

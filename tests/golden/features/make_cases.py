@@ -1041,7 +1041,7 @@ def interop_geometry_cases():
              ("SPHERE FINISH", h1, bs(p, "FINISH", "SPHERE FINISH", ball10, tech, cp, 16.0, None, None, None, hx)),
              ("HALF BALL", h2, bs(p, "FINISH", "HALF BALL", bull, tech, cp, 3.0, None, None, None, hx))])
 
-    p = program("hole-milled-sphere-refused", "spherical hole bottoms the generator refuses, naming the tool and the sizes: a flat end mill, a ball larger than the sphere less its allowance, a bull nose whose flat leaves a mound at the centre, a sphere narrower than the hole")
+    p = program("hole-milled-sphere-refused", "spherical hole bottoms the generator refuses, naming the tool and the sizes: a flat end mill, a ball larger than the sphere less its allowance, a bull nose whose flat leaves a mound at the centre, a sphere narrower than the hole, side milling (the wall alone) of a spherical bottom")
     tech = p.tech(0.03, -40.0)
     flat = mill(p, 10, 30)
     ball30 = p.tool("BALL 30", "BALL_ENDMILL", 30, edge_length=40.0, edge_radius=15.0)
@@ -1053,7 +1053,8 @@ def interop_geometry_cases():
     p.write([("FLAT END", h1, bs(p, "FINISH", "FLAT END", flat, tech, cp, 16.0, None, None, None)),
              ("BALL TOO LARGE", h1, bs(p, "ROUGH", "BALL TOO LARGE", ball30, tech, cp, 4.0, None, 0.0, 0.5)),
              ("BULL NOSE MOUND", h1, bs(p, "FINISH", "BULL NOSE", bull, tech, cp, 16.0, None, None, None)),
-             ("SPHERE TOO NARROW", h2, bs(p, "FINISH", "NARROW", ball6, tech, cp, 16.0, None, None, None))])
+             ("SPHERE TOO NARROW", h2, bs(p, "FINISH", "NARROW", ball6, tech, cp, 16.0, None, None, None)),
+             ("SIDE MILLING", h1, side_op(p, "FINISH", "SIDE", ball6, tech, cp, 16.0, 0.0))])
 
     p = program("hole-bottoms-taper", "drilling depths into a conical bottom with a drill whose point is not given; tapered holes (diameter and angle tapers) drilled at their narrowest diameter")
     plain = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
