@@ -22,7 +22,9 @@ bool plan_milled_sphere(const MilledSphereSpec& spec, Draft& draft) {
   const int turn = core.ccw ? 1 : -1;
   const auto circle = [&](double radius, double z) {
     if (radius < 1e-6) return;
-    draft.feed({radius, 0, z});
+    const Vec3 here = draft.here();
+    if (std::abs(here.x - radius) + std::abs(here.y) + std::abs(here.z - z) > 1e-9)
+      draft.feed({radius, 0, z});
     draft.arc({radius, 0, z}, {0, 0, z}, turn);
   };
   draft.rapid({0, 0, retract});
@@ -53,20 +55,25 @@ bool plan_milled_sphere(const MilledSphereSpec& spec, Draft& draft) {
     if (draft.too_many()) return draft.limit_reached();
   }
   if (!spec.rings.empty()) {
-    // Up the cleared axis to the first circle; then to each circle from the one above: in to
-    // its radius at the height above, a helix down to it (no steeper than the approach), the
-    // circle.
+    // Each circle from the one above: in to its radius at the height above, a helix down to
+    // it (no steeper than the approach), the circle.
     const Entry& entry = core.entry;
     const double slope = entry.kind == Entry::Kind::Plunge ? 0 : std::tan(entry.angle);
+    // The tool is on the axis at the last level (or above the hole): the first circle above it
+    // is reached up the cleared axis, one below it like the others, from that height.
+    const MilledSphereSpec::Circle start{0, draft.here().z};
     const MilledSphereSpec::Circle* above = nullptr;
-    draft.feed({0, 0, spec.rings.front().z});
+    if (spec.rings.front().z >= start.z)
+      draft.feed({0, 0, spec.rings.front().z});
+    else
+      above = &start;
     for (const MilledSphereSpec::Circle& ring : spec.rings) {
       if (above != nullptr) {
         const double drop = above->z - ring.z;
         if (ring.radius < 1e-6) {
           draft.feed({0, 0, ring.z});  // along the sphere, from the circle just above
         } else {
-          draft.feed({ring.radius, 0, above->z});
+          if (std::abs(ring.radius - above->radius) > 1e-9) draft.feed({ring.radius, 0, above->z});
           const double turn_drop = 2 * std::numbers::pi * ring.radius * slope;
           const double turns = slope > 0 ? std::ceil(drop / turn_drop - 1e-9) : 1;
           if (turns > static_cast<double>(draft.options().max_moves)) return draft.limit_reached();
