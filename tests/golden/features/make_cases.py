@@ -1113,7 +1113,7 @@ def interop_geometry_cases():
     # circular path placed off the feature origin and turned, a pocket with a placed profile
     # roughed into its corners then finished, a milled hole, a drilling depth into a cone, a
     # tapered hole drilled at its narrowest diameter.
-    p = program("geometry-combined", "issue 17 geometry in one part: placed circular course of travel, placed pocket profile roughed into tight corners and finished, milled hole, drilling into a cone, tapered hole")
+    p = program("geometry-combined", "issue 17 geometry in one part: placed circular course of travel, placed pocket profile roughed into tight corners and finished, milled hole, drilling into a cone, tapered hole, a half-ball hole bottom milled")
     big, small, tech = mill(p, 16, 25), mill(p, 8, 20), p.tech(0.03, -40.0)
     ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
     drill = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
@@ -1139,7 +1139,9 @@ def interop_geometry_cases():
              ("POCKET FINISH", pocket, bs(p, "FINISH", "POCKET FINISH", small, tech, cp, 6.0, None, None, None)),
              ("MILLED HOLE", milled, bs(p, "ROUGH", "HOLE", small, tech, cp, 5.0, None, 0.0, 0.0, hx)),
              ("DRILL INTO CONE", cone, drill_op(p, "DRILLING", "DRILL CONE", drill, dtech, cutting_depth="14.800")),
-             ("DRILL TAPER", taper, drill_op(p, "DRILLING", "DRILL TAPER", drill8, dtech))])
+             ("DRILL TAPER", taper, drill_op(p, "DRILLING", "DRILL TAPER", drill8, dtech)),
+             ("HALF BALL HOLE", hole(p, 120, 80, 16, 10, "SPHERICAL_HOLE_BOTTOM(" + p.length(8.0, 0.05) + ")"),
+              bs(p, "FINISH", "HALF BALL", ball6, tech, cp, 5.0, None, None, None, hx))])
 
 
 if __name__ == "__main__":
