@@ -158,7 +158,7 @@ TEST(Rs274Interop, LinuxcncProfile) {
 // drilling's multi-turn helices (G2/G3 with P), helical ramps round a ring groove, helical
 // retracts out of a pocket; slots along placed paths, pockets with placed profiles, milled and
 // tapered holes, roughing into tight corners, slots with general sections, drilling depths
-// against blind bottoms.
+// against blind bottoms, milled spherical hole bottoms.
 TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
   NCPOST_REQUIRE_RS274_OR_SKIP();
   const fs::path cases = test::source_dir() / "tests" / "golden" / "features" / "cases";
@@ -166,7 +166,7 @@ TEST(Rs274Interop, LinuxcncGeneratedFeatures) {
                            // geometry other systems write (issue 17)
                            "slot-placed-travel", "pocket-placed-profile", "hole-milled",
                            "hole-bottoms-taper", "pocket-rough-corners", "geometry-combined",
-                           "slot-general-section", "hole-bottoms-blind"}) {
+                           "slot-general-section", "hole-bottoms-blind", "hole-milled-sphere"}) {
     SCOPED_TRACE(name);
     const auto o = compare_with_rs274(cases / (std::string(name) + ".stp"), name, "linuxcnc");
     EXPECT_GT(o.compared, 0u);

@@ -278,6 +278,24 @@ void Cavity::taper(double top, double bottom, double depth, double cone, bool th
   top_ = std::max(top, bottom);
 }
 
+void Cavity::spherical_hole(double radius, double sphere, double depth) {
+  const double centre = -depth + sphere;
+  // The wall meets the sphere at an angle beta below the sphere's horizontal.
+  const double rise = std::sqrt(std::max(0.0, sphere * sphere - radius * radius));
+  const double beta = std::atan2(rise, radius);
+  Builder b;
+  b.start({-radius, 0});
+  b.line({-radius, centre - rise});
+  b.arc({0, centre}, sphere, kPi + beta, kPi - 2 * beta);
+  b.line({radius, 0});
+  b.close({});
+  section_ = b.region;
+  lower_ = b.lower;
+  build_open();
+  floor_ = -depth;
+  top_ = radius;
+}
+
 // ---- spines ------------------------------------------------------------------------------
 
 void Cavity::segment(Vec2 from, Vec2 to, bool open0, bool open1, double woodruff0,
@@ -478,6 +496,14 @@ double Cavity::section_distance(Vec2 p) const {
   return inside ? d : -d;
 }
 
+double Cavity::wall_distance(Vec2 p, double allowance) const {
+  // Within the allowance of the top and nearer it than anything else: the walls run on above
+  // it (the top is no wall: a tool near the top alone keeps its allowance).
+  const double d = section_distance(p);
+  if (d > 0 && -p.y < allowance && d >= -p.y - 1e-12) return raised_.signed_distance(p);
+  return d;
+}
+
 double Cavity::bottom(Vec2 p) const {
   if (spine_ == Spine::Segment) {
     const double s = (p - a_).dot(along_);
@@ -650,8 +676,8 @@ double Cavity::violation(Vec3 q, const ToolShape& tool, const std::vector<Vec2>&
   for (const Vec2 o : outline) {
     const double z = q.z + o.y;
     if (z >= 0) continue;
-    double inside = section_distance({u0 + o.x, z});
-    if (two_sided_) inside = std::min(inside, section_distance({u0 - o.x, z}));
+    double inside = wall_distance({u0 + o.x, z}, allowance);
+    if (two_sided_) inside = std::min(inside, wall_distance({u0 - o.x, z}, allowance));
     const double v = std::min(allowance - inside, -z);
     if (v > worst) {
       worst = v;

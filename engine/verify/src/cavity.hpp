@@ -42,6 +42,10 @@ class Cavity {
   // A tapered ROUND_HOLE: radius `top` at the top to `bottom` at the depth plane (a cone), then
   // its bottom: flat, a cone of `cone` below the plane, or through (far below).
   void taper(double top, double bottom, double depth, double cone, bool through);
+  // A ROUND_HOLE of radius `radius` with a SPHERICAL_HOLE_BOTTOM of radius `sphere` (at least
+  // the hole's), its lowest point at `depth`: the wall down to where the sphere meets it, then
+  // the sphere.
+  void spherical_hole(double radius, double sphere, double depth);
 
   // The spine in the feature's plane.
   void segment(Vec2 from, Vec2 to, bool open0, bool open1, double woodruff0, double woodruff1);
@@ -84,6 +88,9 @@ class Cavity {
   // would be slower for the same answer).
   [[nodiscard]] double section_distance(Vec2 p) const;
   [[nodiscard]] double general_distance(Vec2 p) const;  // unsigned, general sections
+  // section_distance, but within `allowance` of the top with the walls run on above it (the
+  // top is no wall).
+  [[nodiscard]] double wall_distance(Vec2 p, double allowance) const;
   [[nodiscard]] double woodruff_distance(Vec3 p, int end, double s, double t) const;
 
   // The section with its walls run on far above the top: what is added lies above the top (air)

@@ -225,7 +225,8 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
       GetParam() != "wrong-tools-general" && GetParam() != "hostile-general" &&
       GetParam() != "wrong-tools-shapes" && GetParam() != "hostile-shapes" &&
       GetParam() != "retract-refused" && GetParam() != "geometry-refused" &&
-      GetParam() != "slot-section-refused" && GetParam() != "hole-bottoms-refused") {
+      GetParam() != "slot-section-refused" && GetParam() != "hole-bottoms-refused" &&
+      GetParam() != "hole-milled-sphere-refused") {
     for (const auto& d : r.diagnostics)
       EXPECT_NE(d.severity, diag::Severity::Error) << diag::format(d, GetParam());
     expect_verified(cases() / (GetParam() + ".stp"), r.calls);
@@ -234,20 +235,19 @@ TEST_P(FeatureGolden, MatchesItsTraceFile) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, FeatureGolden,
-    ::testing::Values("face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
-                      "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet",
-                      "pocket-raster", "pocket-side-finish", "outside-profile", "holes-cycles",
-                      "holes-pointed-bottoms", "holes-strategy", "slots", "wrong-tools",
-                      "unsupported", "hostile", "pocket-polyline-l", "pocket-composite",
-                      "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
-                      "pocket-radiused-bottom", "wrong-tools-general", "hostile-general",
-                      "slot-vee", "slot-partial-circular", "slot-ends-mixed", "slot-woodruff",
-                      "slot-circular", "step", "thread-drilling", "pocket-retract",
-                      "wrong-tools-shapes", "hostile-shapes", "retract-refused",
-                      "slot-placed-travel", "pocket-placed-profile", "hole-milled",
-                      "hole-bottoms-taper", "pocket-rough-corners", "geometry-refused",
-                      "geometry-combined", "slot-general-section", "slot-section-refused",
-                      "hole-bottoms-blind", "hole-bottoms-refused"),
+    ::testing::Values(
+        "face-unidirectional", "face-bidirectional-right", "pocket-rect-helix",
+        "pocket-circle-ramp", "pocket-rect-zigzag", "pocket-toolaxis-fillet", "pocket-raster",
+        "pocket-side-finish", "outside-profile", "holes-cycles", "holes-pointed-bottoms",
+        "holes-strategy", "slots", "wrong-tools", "unsupported", "hostile", "pocket-polyline-l",
+        "pocket-composite", "pocket-star", "pocket-ngon", "open-pocket", "outside-general",
+        "pocket-radiused-bottom", "wrong-tools-general", "hostile-general", "slot-vee",
+        "slot-partial-circular", "slot-ends-mixed", "slot-woodruff", "slot-circular", "step",
+        "thread-drilling", "pocket-retract", "wrong-tools-shapes", "hostile-shapes",
+        "retract-refused", "slot-placed-travel", "pocket-placed-profile", "hole-milled",
+        "hole-bottoms-taper", "pocket-rough-corners", "geometry-refused", "geometry-combined",
+        "slot-general-section", "slot-section-refused", "hole-bottoms-blind",
+        "hole-bottoms-refused", "hole-milled-sphere", "hole-milled-sphere-refused"),
     [](const auto& param_info) {
       std::string n = param_info.param;
       for (char& c : n)
@@ -692,6 +692,44 @@ TEST(FeaturesOwn, CuttingDepthsAgainstBlindBottoms) {
                 "cutting_depth 12 is not within", "(SPHERICAL_HOLE_BOTTOM) of radius 5",
                 "meets it 5 above its tip", "at most 7)", "cutting_depth 12.3 is not within",
                 "(FLAT_WITH_RADIUS_HOLE_BOTTOM) with the corner radius 1"});
+}
+
+// A Ø30 hole whose bottom is a sphere of radius 20 (its lowest point at the depth 16, its centre
+// 4 above the top): every tool position of the ball of radius 5 keeps the ball's centre within
+// 20 - allowance - 5 of the sphere's centre and within 15 - allowance - 5 of the axis; the finish
+// reaches the bottom at the axis; the half ball of radius 12 is finished by a bull nose (flat
+// 0.1: 0.0006 left at its centre, within the tolerance). The refusals name the tool and sizes.
+TEST(FeaturesOwn, MilledSphericalBottoms) {
+  const Generated r = run(cases() / "hole-milled-sphere.stp");
+  ASSERT_EQ(r.count("STEPNC-101") + r.count("STEPNC-102") + r.count("STEPNC-103"), 0u);
+  const auto cuts = cuts_by_workingstep(r.calls);
+  for (const auto& [ws, allowance] :
+       std::vector<std::pair<std::string, double>>{{"SPHERE ROUGH", 0.3}, {"SPHERE FINISH", 0}}) {
+    double deepest = 0, worst = -1;
+    for (const canon::Point& p : cuts.at(ws)) {
+      deepest = std::min(deepest, p.z);
+      const double rho = std::hypot(p.x, p.y);
+      EXPECT_LE(rho, 15 - allowance - 5 + 1e-6) << ws;
+      const double centre = p.z + 5;  // the ball's centre
+      worst = std::max(worst, std::hypot(rho, centre - 4) - (20 - allowance - 5));
+    }
+    EXPECT_LE(worst, 1e-6) << ws;
+    EXPECT_NEAR(deepest, -16 + allowance, 1e-6) << ws;
+  }
+  double half = 0;
+  for (const canon::Point& p : cuts.at("HALF BALL")) half = std::min(half, p.z);
+  EXPECT_NEAR(half, -12, 0.005);
+  EXPECT_GT(half, -12);
+  const Generated refused = run(cases() / "hole-milled-sphere-refused.stp");
+  EXPECT_EQ(refused.count("STEPNC-102"), 3u);
+  EXPECT_EQ(refused.count("STEPNC-103"), 1u);
+  EXPECT_EQ(refused.count("STEPNC-101"), 1u);  // side milling: the wall alone
+  expect_named(refused.text("hole-milled-sphere-refused"),
+               {"is a flat end mill, which cannot form", "(SPHERICAL_HOLE_BOTTOM) of radius 15",
+                "radius 15 is larger than the sphere's 14.5 (its radius 15 less allowance_bottom "
+                "0.5)",
+                "(radius 5, corner radius 1) cannot form", "its flat leaves 0.5836 at the centre",
+                "the sphere needs a radius of at least the hole's, 15"});
 }
 
 }  // namespace

@@ -1029,6 +1029,33 @@ def interop_geometry_cases():
              ("RADIUS BOTTOM", h3, bs(p, "FINISH", "RADIUS", bull, tech, cp, 3.0, None, None, None, hx2)),
              ("TAPER", h4, bs(p, "FINISH", "TAPER", bull, tech, cp, 4.0, None, None, None, hx2))])
 
+    p = program("hole-milled-sphere", "round holes with a spherical bottom milled: a cylinder of 30 and a sphere of radius 20 roughed (allowances 0.3) and finished by a ball of 10 (the cylinder helix down, then discs level by level and circles down the sphere within the profile tolerance), a half ball of radius 12 finished from the top by a bull nose whose flat leaves less than the tolerance at its centre")
+    tech = p.tech(0.03, -40.0)
+    ball10 = p.tool("BALL 10", "BALL_ENDMILL", 10, edge_length=30.0, edge_radius=5.0)
+    bull = p.tool("BULLNOSE 8 R3.9", "BULLNOSE_ENDMILL", 8, edge_length=30.0, edge_radius=3.9)
+    h1 = hole(p, 0, 0, 30, 16, "SPHERICAL_HOLE_BOTTOM(" + p.length(20.0, 0.05) + ")")
+    h2 = hole(p, 60, 0, 24, 12, "SPHERICAL_HOLE_BOTTOM(" + p.length(12.0, 0.05) + ")")
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    hx = p.add("PLUNGE_HELIX($,4.0,5.0)")
+    p.write([("SPHERE ROUGH", h1, bs(p, "ROUGH", "SPHERE ROUGH", ball10, tech, cp, 4.0, None, 0.3, 0.3, hx)),
+             ("SPHERE FINISH", h1, bs(p, "FINISH", "SPHERE FINISH", ball10, tech, cp, 16.0, None, None, None, hx)),
+             ("HALF BALL", h2, bs(p, "FINISH", "HALF BALL", bull, tech, cp, 3.0, None, None, None, hx))])
+
+    p = program("hole-milled-sphere-refused", "spherical hole bottoms the generator refuses, naming the tool and the sizes: a flat end mill, a ball larger than the sphere less its allowance, a bull nose whose flat leaves a mound at the centre, a sphere narrower than the hole, side milling (the wall alone) of a spherical bottom")
+    tech = p.tech(0.03, -40.0)
+    flat = mill(p, 10, 30)
+    ball30 = p.tool("BALL 30", "BALL_ENDMILL", 30, edge_length=40.0, edge_radius=15.0)
+    bull = p.tool("BULLNOSE 10 R1", "BULLNOSE_ENDMILL", 10, edge_length=30.0, edge_radius=1.0)
+    ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
+    h1 = hole(p, 0, 0, 30, 16, "SPHERICAL_HOLE_BOTTOM(" + p.length(15.0, 0.05) + ")")
+    h2 = hole(p, 60, 0, 30, 16, "SPHERICAL_HOLE_BOTTOM(" + p.length(10.0, 0.05) + ")")
+    cp = p.add("CONTOUR_PARALLEL(0.4,.T.,$,.CLIMB.)")
+    p.write([("FLAT END", h1, bs(p, "FINISH", "FLAT END", flat, tech, cp, 16.0, None, None, None)),
+             ("BALL TOO LARGE", h1, bs(p, "ROUGH", "BALL TOO LARGE", ball30, tech, cp, 4.0, None, 0.0, 0.5)),
+             ("BULL NOSE MOUND", h1, bs(p, "FINISH", "BULL NOSE", bull, tech, cp, 16.0, None, None, None)),
+             ("SPHERE TOO NARROW", h2, bs(p, "FINISH", "NARROW", ball6, tech, cp, 16.0, None, None, None)),
+             ("SIDE MILLING", h1, side_op(p, "FINISH", "SIDE", ball6, tech, cp, 16.0, 0.0))])
+
     p = program("hole-bottoms-taper", "drilling depths into a conical bottom with a drill whose point is not given; tapered holes (diameter and angle tapers) drilled at their narrowest diameter")
     plain = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
     drill8 = p.tool("DRILL 8", "TWIST_DRILL", 8, edge_length=40.0, tip=31.0)
@@ -1086,7 +1113,7 @@ def interop_geometry_cases():
     # circular path placed off the feature origin and turned, a pocket with a placed profile
     # roughed into its corners then finished, a milled hole, a drilling depth into a cone, a
     # tapered hole drilled at its narrowest diameter.
-    p = program("geometry-combined", "issue 17 geometry in one part: placed circular course of travel, placed pocket profile roughed into tight corners and finished, milled hole, drilling into a cone, tapered hole")
+    p = program("geometry-combined", "issue 17 geometry in one part: placed circular course of travel, placed pocket profile roughed into tight corners and finished, milled hole, drilling into a cone, tapered hole, a half-ball hole bottom milled")
     big, small, tech = mill(p, 16, 25), mill(p, 8, 20), p.tech(0.03, -40.0)
     ball6 = p.tool("BALL 6", "BALL_ENDMILL", 6, edge_length=15.0, edge_radius=3.0)
     drill = p.tool("DRILL 10", "TWIST_DRILL", 10, edge_length=40.0)
@@ -1112,7 +1139,9 @@ def interop_geometry_cases():
              ("POCKET FINISH", pocket, bs(p, "FINISH", "POCKET FINISH", small, tech, cp, 6.0, None, None, None)),
              ("MILLED HOLE", milled, bs(p, "ROUGH", "HOLE", small, tech, cp, 5.0, None, 0.0, 0.0, hx)),
              ("DRILL INTO CONE", cone, drill_op(p, "DRILLING", "DRILL CONE", drill, dtech, cutting_depth="14.800")),
-             ("DRILL TAPER", taper, drill_op(p, "DRILLING", "DRILL TAPER", drill8, dtech))])
+             ("DRILL TAPER", taper, drill_op(p, "DRILLING", "DRILL TAPER", drill8, dtech)),
+             ("HALF BALL HOLE", hole(p, 120, 80, 16, 10, "SPHERICAL_HOLE_BOTTOM(" + p.length(8.0, 0.05) + ")"),
+              bs(p, "FINISH", "HALF BALL", ball6, tech, cp, 5.0, None, None, None, hx))])
 
 
 if __name__ == "__main__":

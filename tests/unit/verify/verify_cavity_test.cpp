@@ -129,6 +129,20 @@ TEST(VerifyCavity, GeneralSections) {
   EXPECT_NEAR(high.signed_distance({20, 5, -1}), -1, 1e-9);
 }
 
+TEST(VerifyCavity, SphericalHoleBottom) {
+  // A Ø30 hole whose bottom is a sphere of radius 20, lowest 16 deep: its centre 4 above the top,
+  // meeting the wall sqrt(400 - 225) = 13.229 below it.
+  Cavity c;
+  c.spherical_hole(15, 20, 16);
+  c.point({0, 0});
+  EXPECT_NEAR(c.signed_distance({0, 0, -15.7}), 0.3, 1e-6);
+  EXPECT_NEAR(c.signed_distance({0, 0, -16.2}), -0.2, 1e-6);
+  EXPECT_NEAR(c.bottom({0, 0}), -16, 1e-4);
+  EXPECT_NEAR(c.bottom({14, 0}), 4 - std::sqrt(400 - 196.0), 1e-4);
+  EXPECT_NEAR(c.signed_distance({14, 0, -5}), 1, 1e-9);  // the wall, above the sphere
+  EXPECT_NEAR(c.signed_distance({15.5, 0, -5}), -0.5, 1e-9);
+}
+
 TEST(VerifyCavity, ToolShapes) {
   const ToolShape flat{5, 0, 0};
   const ToolShape bull{5, 1, 0};
@@ -230,6 +244,25 @@ TEST(VerifyCavityPrograms, GeneralSectionRingPushedOut) {
   ASSERT_GT(move_feeds(p.calls, "SPLINE GROOVE", left, {0, 0.2, 0}), 1u);
   const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
   EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+}
+
+TEST(VerifyCavityPrograms, MilledSphericalBottomsPass) {
+  const Program p = load("hole-milled-sphere");
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_TRUE(r.ok()) << dump(r);
+  ASSERT_EQ(r.features.size(), 2u);
+  for (const auto& f : r.features) EXPECT_TRUE(f.checked) << f.name << ": " << f.not_checked_reason;
+}
+
+TEST(VerifyCavityPrograms, MilledSphereTooDeep) {
+  // The finishing pass's feeds in the sphere (below where it meets the wall, 9.229 deep) 0.2 mm
+  // lower: into the sphere, and at the axis 0.2 below its lowest point.
+  Program p = load("hole-milled-sphere");
+  const auto in_sphere = [](const canon::Pose& to) { return to.z < -9.3; };
+  ASSERT_GT(move_feeds(p.calls, "SPHERE FINISH", in_sphere, {0, 0, -0.2}), 10u);
+  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+  EXPECT_FALSE(r.ok());
 }
 
 TEST(VerifyCavityPrograms, VeeCutTooDeep) {

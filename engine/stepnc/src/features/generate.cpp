@@ -120,6 +120,8 @@ bool generate_kind(Reader& reader, Draft& draft) {
         reader.is(&reader.operation(), "side_milling")) {
       if (reader.set(feature, "change_in_diameter"))
         return read_then_plan(reader, draft, read_milled_taper, plan_milled_taper);
+      if (spherical_bottom(reader))
+        return read_then_plan(reader, draft, read_milled_sphere, plan_milled_sphere);
       return read_then_plan(reader, draft, read_milled_hole, plan_region);
     }
     return read_then_plan(reader, draft, read_hole, plan_hole);

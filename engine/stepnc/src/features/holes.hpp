@@ -31,8 +31,8 @@ struct Taper {
 
 // A ROUND_HOLE milled rather than drilled (bottom-and-side or side milling): the circle of its
 // diameter cleared as a region, helix down, full circles at each level. Diagnostics (and
-// read_region's): STEPNC-101 a conical or spherical bottom; STEPNC-103 no diameter or bottom
-// condition.
+// read_region's): STEPNC-101 a conical bottom (a spherical one is read_milled_sphere's);
+// STEPNC-103 no diameter or bottom condition.
 [[nodiscard]] bool read_milled_hole(Reader& reader, RegionSpec& spec);
 
 // A tapered ROUND_HOLE milled, narrowing downwards: the cylinder of its narrowest diameter
@@ -53,6 +53,42 @@ struct MilledTaperSpec {
 [[nodiscard]] bool read_milled_taper(Reader& reader, MilledTaperSpec& spec);
 // Diagnostics: plan_region's; STEPNC-103 more motions than the motion limit.
 [[nodiscard]] bool plan_milled_taper(const MilledTaperSpec& spec, Draft& draft);
+
+// A ROUND_HOLE with a SPHERICAL_HOLE_BOTTOM milled by bottom-and-side milling (a ball end mill,
+// or a bull nose whose flat leaves at most FeatureOptions::profile_tolerance at the bottom's
+// centre). The sphere of radius R has its lowest point on the depth plane; R is at least the
+// hole's radius, so it meets the wall. The cylinder down to where the sphere begins (less
+// allowance_bottom) is `core`, cleared as a region; below it the tool's corner circle (the
+// ball's centre) keeps on the sphere offset inwards by allowance_bottom + corner radius and
+// inside the wall offset by allowance_side + corner radius:
+// - `levels`: clearing levels by the axial depth, each a disc of contour-parallel rings from
+//   the axis out to the offset sphere at that height, entered by the core's approach (its helix
+//   or ramp no larger than the disc, else a plunge along the axis);
+// - `rings`: full circles from the top of the sphere down to the bottom, down the wall first
+//   where the core stopped above the sphere, then along the sphere's meridian, close enough
+//   (scallop_step) that the cusps they leave are at most the profile tolerance.
+struct MilledSphereSpec {
+  struct Circle {
+    double radius = 0;  // of the tool's axis about the hole's
+    double z = 0;       // of the tip
+  };
+  RegionSpec core;
+  bool has_core = true;  // false: the sphere reaches the top (within allowance_bottom)
+  std::vector<Circle> levels;
+  std::vector<Circle> rings;
+};
+// Diagnostics (and read_region's, read_depth's, read_tool's):
+// - STEPNC-101: side milling (the wall alone) of a hole with a spherical bottom.
+// - STEPNC-102: a flat end mill (it cannot form the sphere); a tool whose radius is larger than
+//   the sphere's less allowance_bottom (both named); a bull nose whose flat leaves more than
+//   the profile tolerance at the bottom's centre; a tool wider than the hole.
+// - STEPNC-103: a sphere without a radius, or narrower than the hole (it does not close the
+//   bottom), or deeper than the hole; more circles than the motion limit.
+[[nodiscard]] bool read_milled_sphere(Reader& reader, MilledSphereSpec& spec);
+// Diagnostics: plan_region's; STEPNC-103 more motions than the motion limit.
+[[nodiscard]] bool plan_milled_sphere(const MilledSphereSpec& spec, Draft& draft);
+// Whether the workingstep's feature is a ROUND_HOLE with a SPHERICAL_HOLE_BOTTOM.
+[[nodiscard]] bool spherical_bottom(Reader& reader);
 
 // DRILLING_TYPE_STRATEGY: feed and speed as shares of the technology's near the top and near the
 // bottom of the hole.

@@ -79,8 +79,8 @@ bool read_milled_hole(Reader& reader, RegionSpec& spec) {
   } else if (!reader.is(bottom, "flat_hole_bottom")) {
     return report.not_implemented(
         reader.name(op) + " on " + reader.name(hole) + " with " + reader.name(bottom) +
-        " (an end mill makes a flat, flat-with-radius or through bottom; a conical bottom is a "
-        "drill's, a spherical one a ball's plunge)");
+        " (an end mill makes a flat, flat-with-radius, spherical or through bottom; a conical "
+        "bottom is a drill's)");
   }
   return read_region(reader, region, spec);
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <tuple>
 
 namespace ncpost::stepnc::features {
@@ -162,6 +163,24 @@ bool roughing(Reader& reader) {
   const Instance* op = &reader.operation();
   return reader.is(op, "bottom_and_side_rough_milling") || reader.is(op, "side_rough_milling") ||
          reader.is(op, "plane_rough_milling");
+}
+
+// The largest step (radians) between two ball centres on a circle of radius rc (a ball of
+// radius r in a concave circle of radius rs = rc + r) that leaves a cusp of at most h.
+double scallop_step(double rc, double r, double h) {
+  const double rs = rc + r;
+  const auto cusp = [&](double step) {
+    const double s = rc * std::sin(step / 2);
+    return rs - (rc * std::cos(step / 2) + std::sqrt(std::max(0.0, r * r - s * s)));
+  };
+  double lo = 0;
+  double hi = std::numbers::pi / 2;
+  if (cusp(hi) <= h) return hi;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = (lo + hi) / 2;
+    (cusp(mid) <= h ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 }  // namespace ncpost::stepnc::features

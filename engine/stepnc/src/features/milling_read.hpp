@@ -66,4 +66,9 @@ bool check_air_plunges(Reader& reader, const Operation& operation,
 bool rings_ccw(Reader& reader, const Operation& operation, bool wall_outside,
                bool note_conflict = true);
 
+// The largest step (radians) between two ball centres on a circle of radius rc (a ball of
+// radius r in a concave circle of radius rc + r: a slot's partial circle, a hole's spherical
+// bottom along a meridian) that leaves a cusp of at most h.
+[[nodiscard]] double scallop_step(double rc, double r, double h);
+
 }  // namespace ncpost::stepnc::features

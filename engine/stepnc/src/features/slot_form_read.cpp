@@ -134,24 +134,6 @@ bool ball_check(Reader& reader, const Tool& tool, const std::string& what) {
                                                  reader.name(reader.feature()) + ", " + what);
 }
 
-// The largest step (radians) between two ball centres on a circle of radius rc (a ball of
-// radius r in a concave circle of radius rs = rc + r) that leaves a cusp of at most h.
-double scallop_step(double rc, double r, double h) {
-  const double rs = rc + r;
-  const auto cusp = [&](double step) {
-    const double s = rc * std::sin(step / 2);
-    return rs - (rc * std::cos(step / 2) + std::sqrt(std::max(0.0, r * r - s * s)));
-  };
-  double lo = 0;
-  double hi = std::numbers::pi / 2;
-  if (cusp(hi) <= h) return hi;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = (lo + hi) / 2;
-    (cusp(mid) <= h ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 // A ball of the profile's radius along the centre, or a smaller ball stepped across the
 // circle, each ball centre on the circle of radius R - allowance - r about the profile's
 // centre, close enough for the cusps between them to stay within the profile tolerance.

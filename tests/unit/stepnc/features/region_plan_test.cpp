@@ -221,5 +221,43 @@ TEST_F(RegionPlan, AMilledTaperFollowsTheConeLevelByLevel) {
   EXPECT_NEAR(moves().back().to.z, options_.clearance, 1e-12);
 }
 
+// A milled spherical bottom (holes.hpp) with no cylinder above it, written by hand: one
+// clearing level at -3 whose disc reaches 6 from the axis (rings 3 apart: 3, 6), entered by a
+// helix no wider than the disc; then three circles down the sphere (radii 5, 3, 0). Each circle
+// after the first is reached by a feed in at the height above and a helix down to its own
+// height; the last, on the axis, by a feed along the sphere.
+TEST_F(RegionPlan, AMilledSphereClearsDiscsThenCirclesDown) {
+  MilledSphereSpec spec;
+  spec.core = ex1_pocket();
+  spec.core.shape = Shape::circle(10);
+  spec.core.stepover = 3;
+  spec.core.entry.radius = 8;  // wider than the disc: clamped to 6
+  spec.has_core = false;
+  spec.levels = {{6, -3}};
+  spec.rings = {{5, -2}, {3, -3.5}, {0, -4}};
+  ASSERT_TRUE(plan_milled_sphere(spec, draft_));
+  std::vector<std::pair<double, double>> arcs;  // (radius, z) where each arc ends
+  for (const Move& m : moves()) {
+    EXPECT_LE(std::hypot(m.to.x, m.to.y), 6 + 1e-9);
+    if (m.kind == Move::Kind::Arc) arcs.emplace_back(std::hypot(m.to.x, m.to.y), m.to.z);
+  }
+  // The helix down to -3 (radius 6), the disc's rings 3 and 6, circle 5 at -2, the helix to
+  // -3.5 at radius 3, circle 3 at -3.5.
+  ASSERT_EQ(arcs.size(), 6u);
+  EXPECT_NEAR(arcs[0].first, 6, 1e-12);
+  EXPECT_NEAR(arcs[0].second, -3, 1e-12);
+  EXPECT_NEAR(arcs[1].first, 3, 1e-12);
+  EXPECT_NEAR(arcs[2].first, 6, 1e-12);
+  EXPECT_NEAR(arcs[3].first, 5, 1e-12);
+  EXPECT_NEAR(arcs[3].second, -2, 1e-12);
+  EXPECT_NEAR(arcs[4].first, 3, 1e-12);
+  EXPECT_NEAR(arcs[4].second, -3.5, 1e-12);
+  EXPECT_NEAR(arcs[5].second, -3.5, 1e-12);
+  double deepest = 0;
+  for (const Move& m : moves()) deepest = std::min(deepest, m.to.z);
+  EXPECT_NEAR(deepest, -4, 1e-12);
+  EXPECT_NEAR(moves().back().to.z, options_.clearance, 1e-12);
+}
+
 }  // namespace
 }  // namespace ncpost::stepnc::features
