@@ -20,6 +20,14 @@
 namespace ncpost::p28 {
 namespace {
 
+// An EXPRESS simple_id: a letter, then letters, digits and underscores.
+bool is_express_identifier(std::string_view name) {
+  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+  if (name.empty() || !letter(name.front())) return false;
+  return std::all_of(name.begin(), name.end(),
+                     [&](char c) { return letter(c) || (c >= '0' && c <= '9') || c == '_'; });
+}
+
 using detail::EntityPlan;
 using detail::TypePlan;
 using diag::Code;
@@ -729,6 +737,10 @@ void Reader::start_value_element(std::string_view local, std::string_view, bool)
   } else if (local == "type_literal") {
     f.kind = FrameKind::TypeLiteral;
     f.name = attribute("express_type_name");
+    // The name becomes a P21 keyword: without a valid one the value would be written as a bare
+    // list and read back as something else.
+    if (!is_express_identifier(f.name))
+      error(Code::P28BadValue, "type_literal without a valid express_type_name ('" + f.name + "')");
     const TypePlan* named = binding_.named_type(f.name);
     // The paper's form wraps a literal in the attribute's own defined type: that is not a
     // typed parameter. Any other type name is a SELECT member, i.e. a P21 typed parameter.

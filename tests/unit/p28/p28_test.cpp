@@ -157,5 +157,29 @@ TEST(P28, UnknownEntityIsNotedAndKeptByPosition) {
   EXPECT_EQ(p21::first_difference(r.model, back.model), std::nullopt);
 }
 
+// A type_literal's name becomes a P21 keyword: one without a valid express_type_name is an
+// error, not a typed value whose empty keyword the P21 writer turns into a bare list (the p28
+// fuzz target found it: read, written as P21 and read again, the model was another).
+TEST(P28Late, TypeLiteralWithoutAValidTypeNameIsAnError) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const p21::ReadResult source =
+      p21::read(ncpost::test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
+  const std::string xml = to_p28(source.model, &own_schema(), Binding::Late);
+  const std::string name = "express_type_name=\"length_measure\"";
+  ASSERT_NE(xml.find(name), std::string::npos);
+  EXPECT_TRUE(read(xml, &own_schema()).ok());
+  for (const std::string wrong :
+       {"express_typn_name=\"length_measure\"", "express_type_name=\"\"",
+        "express_type_name=\"length measure\"", "express_type_name=\"1length\""}) {
+    std::string bad = xml;
+    bad.replace(bad.find(name), name.size(), wrong);
+    const p21::ReadResult r = read(bad, &own_schema());
+    EXPECT_FALSE(r.ok()) << wrong;
+    EXPECT_NE(test::dump(r.diagnostics).find("P28-007"), std::string::npos)
+        << wrong << "\n"
+        << test::dump(r.diagnostics);
+  }
+}
+
 }  // namespace
 }  // namespace ncpost::p28
