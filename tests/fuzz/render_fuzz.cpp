@@ -7,6 +7,8 @@
 // Rendering must never crash, hang or trip a sanitizer; the stylesheet's limits bound it, and
 // a render reports a failure only with an error diagnostic.
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -92,6 +94,12 @@ struct Arguments {
   std::size_t at = 0;
   [[nodiscard]] std::size_t left() const { return items.size() - std::min(at, items.size()); }
   double next() { return at < items.size() ? number(items[at++]) : 0.0; }
+  // A count or a sign (turns, rotation, degree) as the readers give them: whole and small. A
+  // value past int's range (1e308) is clamped, not converted (undefined behaviour).
+  int whole() {
+    const double v = next();
+    return std::isfinite(v) ? static_cast<int>(std::clamp(v, -1e6, 1e6)) : 0;
+  }
   std::string_view word() { return at < items.size() ? items[at++] : std::string_view{}; }
   // Three more numbers after `fixed`: a rotary position or a tool axis; six: both. Three are a
   // tool axis when of unit length, as the readers write them, else rotary positions.
@@ -182,19 +190,19 @@ struct Decoder {
               c.end.x = a.next(), c.end.y = a.next(), c.end.z = a.next();
               c.centre = {a.next(), a.next(), a.next()};
               c.normal = {a.next(), a.next(), a.next()};
-              c.turns = static_cast<int>(a.next());
+              c.turns = a.whole();
             } else {
               canon::PlaneArc p{plane};
               p.first_end = a.next(), p.second_end = a.next();
               p.first_axis = a.next(), p.second_axis = a.next();
-              p.rotation = static_cast<int>(a.next());
+              p.rotation = a.whole();
               p.axis_end_point = a.next();
               c = canon::arc_from_plane(p);
             }
             if (c.turns == 0) c.turns = 1;  // never 0 (call.hpp)
             a.tail(c.end.rotary, c.end.tool_axis);
           } else if constexpr (std::is_same_v<T, canon::NurbsFeed>) {
-            c.degree = static_cast<int>(a.next());
+            c.degree = a.whole();
             for (const auto point : split_arguments(strip(a.word()))) {
               if (c.points.size() == 64) break;
               Arguments p{split_arguments(strip(point))};
