@@ -275,6 +275,7 @@ class Reader {
   void start_value_element(std::string_view local, std::string_view ns, bool empty);
   void start_early_item(std::string_view local, std::string_view ns, bool empty);
   void start_instance(Frame& f, std::string_view local);
+  std::string entity_name(std::string name);
   void finish_instance(Frame& f);
   void build_header_from_ed2();
   const TypePlan* expected_type() const { return frames_.back().type; }
@@ -535,7 +536,7 @@ void Reader::start_element() {
         f.kind = FrameKind::Instance;
         f.header = true;
         f.positional = true;
-        f.name = attribute("express_entity_name");
+        f.name = entity_name(attribute("express_entity_name"));
         f.stack_base = static_cast<std::uint32_t>(stack_.size());
         saw_header_entities_ = true;
       } else if (local == "iso_10303_28_header") {
@@ -572,7 +573,7 @@ void Reader::start_element() {
       f.kind = FrameKind::Instance;
       f.header = true;
       f.positional = true;
-      f.name = attribute("express_entity_name");
+      f.name = entity_name(attribute("express_entity_name"));
       f.stack_base = static_cast<std::uint32_t>(stack_.size());
       saw_header_entities_ = true;
       push(std::move(f));
@@ -604,7 +605,7 @@ void Reader::start_element() {
     case FrameKind::Partial: {
       if (local == "partial_entity_instance" || local == "partial_entity") {
         f.kind = FrameKind::Partial;
-        f.name = attribute("express_entity_name");
+        f.name = entity_name(attribute("express_entity_name"));
         f.positional = true;
         push(std::move(f));
         return;
@@ -853,6 +854,14 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
   push(std::move(f));
 }
 
+// An entity's name becomes a P21 keyword: one that is no EXPRESS name would be written as
+// something P21 reads otherwise (or not at all).
+std::string Reader::entity_name(std::string name) {
+  if (!is_express_identifier(name))
+    error(Code::P28UnexpectedElement, "'" + name + "' is not an EXPRESS entity name");
+  return name;
+}
+
 void Reader::start_instance(Frame& f, std::string_view local) {
   f.kind = FrameKind::Instance;
   f.id = instance_number(attribute("id"));
@@ -860,7 +869,7 @@ void Reader::start_instance(Frame& f, std::string_view local) {
   if (local == "complex_entity_instance" || (!early_ && !has_attribute("express_entity_name"))) {
     f.name.clear();  // complex: partial records follow
   } else {
-    f.name = early_ ? std::string(local) : attribute("express_entity_name");
+    f.name = entity_name(early_ ? std::string(local) : attribute("express_entity_name"));
     f.plan = &binding_.entity(f.name);
     f.positional = !f.plan->known;
     f.slots.assign(f.plan->attributes.size(), Value::omitted());

@@ -159,8 +159,9 @@ TEST(P28, UnknownEntityIsNotedAndKeptByPosition) {
 
 // A type_literal's name becomes a P21 keyword: one without a valid express_type_name is an
 // error, not a typed value whose empty keyword the P21 writer turns into a bare list (the p28
-// fuzz target found it: read, written as P21 and read again, the model was another).
-TEST(P28Late, TypeLiteralWithoutAValidTypeNameIsAnError) {
+// fuzz target found it: read, written as P21 and read again, the model was another). An
+// entity's name likewise.
+TEST(P28Late, TypeAndEntityNamesThatAreNoExpressNamesAreErrors) {
   NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
   const p21::ReadResult source =
       p21::read(ncpost::test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
@@ -179,6 +180,14 @@ TEST(P28Late, TypeLiteralWithoutAValidTypeNameIsAnError) {
         << wrong << "\n"
         << test::dump(r.diagnostics);
   }
+  const std::string entity = "express_entity_name=\"cartesian_point\"";
+  ASSERT_NE(xml.find(entity), std::string::npos);
+  std::string bad = xml;
+  bad.replace(bad.find(entity), entity.size(), "express_entity_name=\"ca@tesian_point\"");
+  const p21::ReadResult r = read(bad, &own_schema());
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(test::dump(r.diagnostics).find("P28-006"), std::string::npos)
+      << test::dump(r.diagnostics);
 }
 
 }  // namespace
