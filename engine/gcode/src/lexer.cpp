@@ -40,7 +40,8 @@ void Line::set_text(std::string_view edited) {
   text_is_raw = false;
 }
 
-Lexing::Lexing(const Dialect& d) : dialect(d), squeeze(d.ignore_whitespace) {
+Lexing::Lexing(const Dialect& d) : dialect(d) {
+  const bool squeeze = d.ignore_whitespace;  // blanks may stand inside words, and are dropped
   for (std::size_t c = 0; c < 256; ++c) {
     const char ch = static_cast<char>(c);
     upper[c] = ch == '\t' ? ' ' : ncpost::gcode::detail::upper(ch);

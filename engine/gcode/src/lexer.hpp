@@ -71,15 +71,14 @@ struct Lexing {
   // 0 for a byte that is dropped (a blank where blanks may stand inside words), else 1.
   std::array<std::uint8_t, 256> advance{};
   // What a byte is in a line that normalising leaves as it is (upper-case letters, numbers and
-  // single blanks between words): Other (not in such a line), Letter, Number, Blank.
-  enum Plain : std::uint8_t { NotPlain, PlainLetter, PlainNumber, PlainBlank };
+  // single blanks between words): not in such a line, a letter, a number, a blank.
+  enum PlainKind : std::uint8_t { NotPlain, PlainLetter, PlainNumber, PlainBlank };
   std::array<std::uint8_t, 256> plain{};
   // 1 where a line of plain bytes may have these neighbours (before × 4 + after), may start
   // with, and may end with this kind of byte.
   std::array<std::uint8_t, 16> plain_pair{};
   std::array<std::uint8_t, 4> plain_first{};
   std::array<std::uint8_t, 4> plain_last{};
-  bool squeeze = false;  // blanks may stand inside words, and are dropped
 };
 
 // Normalises `raw` into `line` (its number is left as set).
