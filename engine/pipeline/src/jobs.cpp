@@ -470,47 +470,49 @@ Inspection run_inspection(Input input, const JobContext& context, const TextSink
       require_model(program, "inspect", "trace it (ncpost trace, POST /v1/traces) instead");
   Inspection inspection;
   inspection.job = read_result(program);
-  const auto finish = [&] {
-    inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);
-    if (json_out) write_inspection_json(inspection, *json_out);
-    return std::move(inspection);
-  };
   if (program.cancelled || !has_model) {
     if (json_out) write_inspection_json(inspection, *json_out);
     return inspection;
   }
   const auto started = Clock::now();
   const p21::Model& model = program.loaded.model;
-  if (ap238::is_aim(model)) {
-    inspection.info = ap238::inspect(model, *program.loaded.schema);
-  } else if (json_out == nullptr) {
-    stepnc::InspectOptions inspect_options;
-    inspect_options.mode = program.loaded.mode;
-    inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
-  } else {
-    IndentedJsonWriter w(*json_out);
-    w.begin('{');
-    write_header(w, stepnc::read_header(model));
-    w.key("project");
-    TreeJsonWriter tree(w);
-    stepnc::InspectOptions inspect_options;
-    inspect_options.mode = program.loaded.mode;
-    inspect_options.visitor = &tree;
-    inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
-    if (!inspection.info.project) w.value(nullptr);
-    write_program_rest(w, inspection.info);
+  // The structure's diagnostics join the reading's, and decide whether the job is ok.
+  const auto conclude = [&] {
     inspection.job.work_time = Clock::now() - started;
     append(inspection.job.diagnostics, diag::with_file(inspection.info.diagnostics, program.name));
     inspection.job.ok = !diag::has_errors(inspection.job.diagnostics);
-    w.key("diagnostics");
-    w.value(diagnostics_json(inspection.job.diagnostics));
-    w.end();
-    w.finish();
+  };
+  const bool aim = ap238::is_aim(model);
+  // An AP238 AIM program is inspected into a tree, then written whole.
+  if (json_out == nullptr || aim) {
+    if (aim) {
+      inspection.info = ap238::inspect(model, *program.loaded.schema);
+    } else {
+      stepnc::InspectOptions inspect_options;
+      inspect_options.mode = program.loaded.mode;
+      inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
+    }
+    conclude();
+    if (json_out) write_inspection_json(inspection, *json_out);
     return inspection;
   }
-  inspection.job.work_time = Clock::now() - started;
-  append(inspection.job.diagnostics, diag::with_file(inspection.info.diagnostics, program.name));
-  return finish();
+  IndentedJsonWriter w(*json_out);
+  w.begin('{');
+  write_header(w, stepnc::read_header(model));
+  w.key("project");
+  TreeJsonWriter tree(w);
+  stepnc::InspectOptions inspect_options;
+  inspect_options.mode = program.loaded.mode;
+  inspect_options.visitor = &tree;
+  inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
+  if (!inspection.info.project) w.value(nullptr);
+  write_program_rest(w, inspection.info);
+  conclude();
+  w.key("diagnostics");
+  w.value(diagnostics_json(inspection.job.diagnostics));
+  w.end();
+  w.finish();
+  return inspection;
 }
 
 }  // namespace
