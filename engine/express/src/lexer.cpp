@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "ncpost/express/parse.hpp"
 #include "text.hpp"
 
 namespace ncpost::express::detail {
@@ -459,3 +460,20 @@ std::vector<Token> tokenize(std::string_view source, diag::DiagnosticList& diagn
 }
 
 }  // namespace ncpost::express::detail
+
+namespace ncpost::express {
+
+bool can_name_a_declaration(std::string_view name) noexcept {
+  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+  if (name.empty() || !letter(name.front())) return false;
+  constexpr std::size_t kLongestReservedWord = 24;
+  std::array<char, kLongestReservedWord> lowered{};
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const char c = name[i];
+    if (!letter(c) && !(c >= '0' && c <= '9') && c != '_') return false;
+    if (i < lowered.size()) lowered[i] = detail::lower(c);
+  }
+  return name.size() > lowered.size() || !detail::is_reserved_word({lowered.data(), name.size()});
+}
+
+}  // namespace ncpost::express

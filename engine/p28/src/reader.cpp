@@ -14,19 +14,12 @@
 #include <unordered_map>
 
 #include "binding.hpp"
+#include "ncpost/express/parse.hpp"
 #include "ncpost/p21/strings.hpp"
 #include "ncpost/p28/p28.hpp"
 
 namespace ncpost::p28 {
 namespace {
-
-// An EXPRESS simple_id: a letter, then letters, digits and underscores.
-bool is_express_identifier(std::string_view name) {
-  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
-  if (name.empty() || !letter(name.front())) return false;
-  return std::all_of(name.begin(), name.end(),
-                     [&](char c) { return letter(c) || (c >= '0' && c <= '9') || c == '_'; });
-}
 
 using detail::EntityPlan;
 using detail::TypePlan;
@@ -36,6 +29,7 @@ using p21::Instance;
 using p21::Value;
 using p21::ValueKind;
 
+constexpr std::string_view kWrapperSuffix = "-wrapper";
 constexpr std::string_view kLateNamespace = "urn:ncpost:iso10303-28:late-binding";
 constexpr std::string_view kExNamespace =
     "urn:iso.org:standard:10303:part(28):version(2):xmlschema:common";
@@ -276,6 +270,8 @@ class Reader {
   void start_early_item(std::string_view local, std::string_view ns, bool empty);
   void start_instance(Frame& f, std::string_view local);
   std::string entity_name(std::string name);
+  Frame typed_value_frame(std::string_view element, std::string_view type_name,
+                          std::uint32_t depth);
   void finish_instance(Frame& f);
   void build_header_from_ed2();
   const TypePlan* expected_type() const { return frames_.back().type; }
@@ -740,7 +736,7 @@ void Reader::start_value_element(std::string_view local, std::string_view, bool)
     f.name = attribute("express_type_name");
     // The name becomes a P21 keyword: without a valid one the value would be written as a bare
     // list and read back as something else.
-    if (!is_express_identifier(f.name))
+    if (!express::can_name_a_declaration(f.name))
       error(Code::P28BadValue, "type_literal without a valid express_type_name ('" + f.name + "')");
     const TypePlan* named = binding_.named_type(f.name);
     // The paper's form wraps a literal in the attribute's own defined type: that is not a
@@ -786,8 +782,8 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
     return;
   }
   const std::string ctype = attribute_local("cType");
-  if (ex && local.size() > 8 && local.substr(local.size() - 8) == "-wrapper" && ctype.empty()) {
-    const std::string_view kind = local.substr(0, local.size() - 8);
+  if (ex && local.ends_with(kWrapperSuffix) && ctype.empty()) {
+    const std::string_view kind = local.substr(0, local.size() - kWrapperSuffix.size());
     f.kind = FrameKind::Literal;
     f.type = expected;
     f.literal = kind == "double"                         ? LiteralKind::Real
@@ -807,7 +803,11 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
     return;
   }
   // An element named after a type: the declared type itself (implicit), or a SELECT member.
-  const std::string name = detail::lower(local);
+  // Ed.2 names a defined type of a simple type `<type>-wrapper` (ifcXML's `IfcLabel-wrapper`).
+  const std::string_view type_name = local.ends_with(kWrapperSuffix)
+                                         ? local.substr(0, local.size() - kWrapperSuffix.size())
+                                         : local;
+  const std::string name = detail::lower(type_name);
   const TypePlan* named = binding_.named_type(name);
   const TypePlan* declared = expected;
   bool implicit = false;
@@ -829,13 +829,7 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
     while (t && t->kind == Kind::Defined) t = t->underlying;
     f.type = t && t->kind == Kind::Aggregate ? t->element : binding_.unknown();
     f.stack_base = static_cast<std::uint32_t>(stack_.size());
-    if (!implicit) {
-      Frame typed;
-      typed.kind = FrameKind::TypeLiteral;
-      typed.name = std::string(local);
-      typed.depth = f.depth;
-      push(std::move(typed));
-    }
+    if (!implicit) push(typed_value_frame(local, type_name, f.depth));
     push(std::move(f));
     return;
   }
@@ -844,20 +838,31 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
   if (implicit) {
     f.type = declared && declared->kind != Kind::Unknown ? declared : named;
   } else {
-    Frame typed;
-    typed.kind = FrameKind::TypeLiteral;
-    typed.name = std::string(local);
-    typed.depth = f.depth;
-    push(std::move(typed));
+    push(typed_value_frame(local, type_name, f.depth));
     f.type = named->kind == Kind::Defined ? named->underlying : named;
   }
   push(std::move(f));
 }
 
+// In the early binding an element's name types the value inside it (a SELECT member). The name
+// becomes a P21 keyword, so one that cannot name a type (`string` from a `string-wrapper` whose
+// common namespace is misspelt, `a-b`) would be written as something P21 reads otherwise.
+Reader::Frame Reader::typed_value_frame(std::string_view element, std::string_view type_name,
+                                        std::uint32_t depth) {
+  if (!express::can_name_a_declaration(type_name))
+    error(Code::P28BadValue, "<" + std::string(element.substr(0, 60)) +
+                                 "> names no EXPRESS type, so it cannot type a value");
+  Frame typed;
+  typed.kind = FrameKind::TypeLiteral;
+  typed.name = std::string(type_name);
+  typed.depth = depth;
+  return typed;
+}
+
 // An entity's name becomes a P21 keyword: one that is no EXPRESS name would be written as
 // something P21 reads otherwise (or not at all).
 std::string Reader::entity_name(std::string name) {
-  if (!is_express_identifier(name))
+  if (!express::can_name_a_declaration(name))
     error(Code::P28UnexpectedElement, "'" + name + "' is not an EXPRESS entity name");
   return name;
 }

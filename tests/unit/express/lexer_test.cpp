@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ncpost/express/parse.hpp"
 #include "test_support.hpp"
 
 namespace ncpost::express::detail {
@@ -120,6 +121,17 @@ TEST(express_lexer, RemarksHideDeclarationsFromTheParser) {
   ASSERT_EQ(schema.entities.size(), 1u);
   EXPECT_EQ(schema.entities[0].name, "visible");
   EXPECT_EQ(test::attribute_names(schema.entities[0]), (Strings{"x"}));
+}
+
+// Readers of other forms (P28) ask it before a name becomes a P21 keyword.
+TEST(express_lexer, WhatCanNameADeclaration) {
+  for (const char* name : {"cartesian_point", "IfcText", "length_measure2", "a", "STRINGS",
+                           "end_subtype_constraints", "a_name_longer_than_any_reserved_word"})
+    EXPECT_TRUE(can_name_a_declaration(name)) << name;
+  for (const char* name :
+       {"", "string", "STRING", "Real", "end_subtype_constraint", "self", "1length", "_x",
+        "length measure", "string-wrapper", "ca@tesian", "caf\xc3\xa9"})
+    EXPECT_FALSE(can_name_a_declaration(name)) << name;
 }
 
 }  // namespace

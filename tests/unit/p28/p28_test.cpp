@@ -190,5 +190,30 @@ TEST(P28Late, TypeAndEntityNamesThatAreNoExpressNamesAreErrors) {
       << test::dump(r.diagnostics);
 }
 
+// In the early binding an element's own name types a value. A `-wrapper` element outside the
+// common namespace (its URI misspelt) is no EXPRESS type name: it was read as a typed value
+// `STRING-WRAPPER(...)` that P21 does not read back (the p28 fuzz target's third finding).
+TEST(P28Early, ElementsThatNameNoExpressTypeAreErrors) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const p21::ReadResult source =
+      p21::read(ncpost::test::read_file(corpus / "p21/nist_toolkit_ex1.stp"));
+  const std::string xml = to_p28(source.model, nullptr, Binding::Early);
+  const std::string common = "urn:iso.org:standard:10303:part(28)";
+  ASSERT_NE(xml.find(common), std::string::npos);
+  ASSERT_NE(xml.find("ex:string-wrapper"), std::string::npos);
+  EXPECT_TRUE(read(xml, nullptr).ok());
+  std::string bad = xml;
+  bad.replace(bad.find(common), common.size(), "urn:iso.org:standard:10303:parzt(28)");
+  for (const express::SchemaSet* schemas :
+       {static_cast<const express::SchemaSet*>(nullptr), &own_schema()}) {
+    const p21::ReadResult r = read(bad, schemas);
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(test::dump(r.diagnostics).find("P28-007"), std::string::npos)
+        << test::dump(r.diagnostics);
+    EXPECT_NE(test::dump(r.diagnostics).find("<string-wrapper> names no EXPRESS type"),
+              std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace ncpost::p28

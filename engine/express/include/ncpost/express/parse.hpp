@@ -44,4 +44,9 @@ struct ParseResult {
 // errors (declarations that failed to parse are left out).
 [[nodiscard]] ParseResult parse_express(std::string_view source, const ParseLimits& limits = {});
 
+// True when `name` can name an entity or a type (any case): an ISO 10303-11 simple_id (a letter,
+// then letters, digits and underscores) that is no reserved word. Readers of other forms use it
+// before a name becomes a P21 keyword.
+[[nodiscard]] bool can_name_a_declaration(std::string_view name) noexcept;
+
 }  // namespace ncpost::express
