@@ -220,6 +220,7 @@ PostResult post_calls(const InterpretInto& interpret_into, std::size_t instances
   const auto started_at = std::chrono::steady_clock::now();
   PostResult result;
   render::RenderOptions render_options = options.render;
+  render_options.cancel = options.cancel;
   // The marks need the text as it grows: it is gathered here and handed on at the end.
   std::string marked_text;
   const bool marking = options.workingstep_marks != nullptr || options.motion_marks != nullptr ||
@@ -248,6 +249,7 @@ PostResult post_calls(const InterpretInto& interpret_into, std::size_t instances
   } else if (!result.cancelled) {
     renderer.finish();
   }
+  result.cancelled = result.cancelled || renderer.cancelled();  // during a transform
   result.calls = interpreted.calls;
   result.diagnostics = std::move(interpreted.diagnostics);
   result.diagnostics.insert(result.diagnostics.end(), renderer.diagnostics().begin(),
@@ -278,8 +280,10 @@ PostResult post_raw(const LoadedModel& loaded, const profile::LoadedProfile& pro
     result.cancelled = true;
     return result;
   }
-  auto raw = render::render_raw(loaded.model, loaded.schema, profile, out, options.input_name);
+  auto raw = render::render_raw(loaded.model, loaded.schema, profile, out, options.input_name,
+                                options.cancel);
   result.diagnostics = std::move(raw.diagnostics);
+  result.cancelled = raw.cancelled;
   result.ok = raw.ok;
   result.started = raw.started;
   result.interpret_and_render = std::chrono::steady_clock::now() - started_at;

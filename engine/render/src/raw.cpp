@@ -41,7 +41,7 @@ std::string raw_document(const p21::Model& model, const express::SchemaSet* sche
 
 RawResult render_raw(const p21::Model& model, const express::SchemaSet* schemas,
                      const profile::LoadedProfile& profile, const TextSink& out,
-                     std::string_view input_name) {
+                     std::string_view input_name, const std::atomic<bool>* cancel) {
   RawResult result;
   const xslt::Limits limits{};
   Gathered doc = gather(model, schemas, result.diagnostics, input_name, limits.max_input_bytes);
@@ -56,11 +56,16 @@ RawResult render_raw(const p21::Model& model, const express::SchemaSet* schemas,
     return result;
   }
   xslt::JobState job(profile::job_config(profile.profile), limits);
+  job.set_cancel(cancel);
   const xslt::Params params{{"program_number", std::to_string(profile.profile.program_number)},
                             {"profile_id", profile.profile.id}};
   auto transformed =
       xslt::transform(*profile.stylesheet, doc.text, job, params, std::string(input_name) + ".p28");
   for (auto& d : transformed.diagnostics) result.diagnostics.push_back(std::move(d));
+  if (transformed.cancelled) {
+    result.cancelled = true;
+    return result;
+  }
   if (!transformed.ok) {
     result.diagnostics.push_back(
         {std::string(input_name),

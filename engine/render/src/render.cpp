@@ -132,6 +132,7 @@ Renderer::Renderer(const profile::LoadedProfile& profile, TextSink out, RenderOp
       single_chunk_(options.single_chunk),
       batch_bytes_(options.batch_bytes),
       batch_delay_(options.batch_delay) {
+  job_.set_cancel(options.cancel);
   if (const auto& machine = profile.profile.kinematics) {
     kinematics_ = std::make_unique<KinematicsConverter>(
         *machine, profile.profile.units == xslt::Units::Inch ? 25.4 : 1.0);
@@ -379,7 +380,7 @@ void Renderer::render_batch() {
   const std::uint64_t last = batch_chunks_.back().first;
   const std::string name = input_name_ + "#chunk" + std::to_string(first) +
                            (last != first ? "-" + std::to_string(last) : std::string());
-  if (!transform_tree(name, std::numeric_limits<std::uint64_t>::max())) {
+  if (!transform_tree(name, std::numeric_limits<std::uint64_t>::max()) && !cancelled_) {
     // Rendered chunk by chunk from the batch's start instead, the failure is reported as it
     // would have been without batching: the text of the chunks before the failing one is
     // written and the diagnostics name that chunk. The failed run's state and diagnostics are
@@ -422,6 +423,11 @@ bool Renderer::transform_tree(const std::string& name, std::uint64_t seq) {
   transform_time_ += std::chrono::steady_clock::now() - began;
   const std::size_t unrendered = job_.run_motions_not_rendered();
   job_.set_run_motions({});
+  if (result.cancelled) {
+    cancelled_ = true;
+    failed_ = true;
+    return false;
+  }
   if (result.ok && unrendered > 0) {
     result.ok = false;
     result.diagnostics.push_back(

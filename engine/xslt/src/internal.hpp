@@ -8,6 +8,7 @@
 #include <libxslt/security.h>
 #include <libxslt/xsltInternals.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdarg>
 #include <cstdint>
@@ -172,7 +173,8 @@ struct Budget {
   std::size_t live = 0;
   std::size_t peak = 0;
   unsigned ticks = 0;
-  enum class Trip : std::uint8_t { None, Memory, Time } tripped = Trip::None;
+  const std::atomic<bool>* cancel = nullptr;  // the job's, polled with the clock
+  enum class Trip : std::uint8_t { None, Memory, Time, Cancelled } tripped = Trip::None;
   const xmlNode* where = nullptr;       // the stylesheet instruction running when it tripped
   std::size_t diagnostics_at_trip = 0;  // errors after this index are consequences of the stop
   xsltTransformContextPtr ctxt = nullptr;

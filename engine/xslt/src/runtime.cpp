@@ -69,8 +69,11 @@ void account_alloc(Budget& b, std::size_t usable) noexcept {
   b.live += usable;
   if (b.live > b.peak) b.peak = b.live;
   if (b.max_bytes != 0 && b.live > b.max_bytes) trip(b, Budget::Trip::Memory);
-  if (b.has_deadline && (++b.ticks & 255u) == 0 && std::chrono::steady_clock::now() > b.deadline) {
-    trip(b, Budget::Trip::Time);
+  if ((b.has_deadline || b.cancel != nullptr) && (++b.ticks & 255u) == 0) {
+    if (b.cancel != nullptr && b.cancel->load(std::memory_order_relaxed))
+      trip(b, Budget::Trip::Cancelled);
+    else if (b.has_deadline && std::chrono::steady_clock::now() > b.deadline)
+      trip(b, Budget::Trip::Time);
   }
 }
 

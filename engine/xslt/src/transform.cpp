@@ -105,6 +105,7 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
     budget.has_deadline = true;
     budget.deadline = std::chrono::steady_clock::now() + limits.max_time;
   }
+  budget.cancel = job.cancel();
   detail::TransformRun run{&job, &collector, nullptr};
   xsltStylesheetPtr style = Access::style(stylesheet);
 
@@ -234,6 +235,12 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
       if (i < budget.diagnostics_at_trip || items[i].diagnostic.severity != diag::Severity::Error) {
         kept.push_back(std::move(items[i]));
       }
+    }
+    if (budget.tripped == detail::Budget::Trip::Cancelled) {
+      // Whoever cancelled the job knows why; the stylesheet did nothing wrong.
+      result.cancelled = true;
+      result.diagnostics = std::move(kept);
+      return result;
     }
     const detail::Location where = detail::location_of(budget.where);
     const bool memory = budget.tripped == detail::Budget::Trip::Memory;

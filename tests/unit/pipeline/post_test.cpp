@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
+#include <thread>
+
 #include "corpus.hpp"
 #include "ncpost/express/registry.hpp"
 
@@ -223,6 +227,64 @@ TEST_F(PostJobTest, RenderThreadCancelledMidStreamEndsWithTheMarker) {
   options.render_thread_min_instances = 1;
   options.render_thread_batch = 2;
   expect_cut_mid_stream(options);
+}
+
+// A stylesheet that would run for hours (2^40 template calls, each writing text) with the
+// job's cancel flag set from another thread, as the server does at --job-timeout or when the
+// client leaves: the transform itself stops, so the post ends cancelled with no error of the
+// stylesheet's (before, it ran on until max_steps stopped it with XSLT-021 seconds later).
+// Canonical mode on one thread and with the render thread, and raw mode.
+TEST_F(PostJobTest, CancelStopsAStylesheetThatRunsOnAndOn) {
+  const auto linuxcnc = builtin("linuxcnc");
+  ASSERT_TRUE(linuxcnc);
+  const std::filesystem::path roots[] = {linuxcnc->directory};
+  const auto busy = xslt::compile_text(
+      R"x(<xsl:stylesheet version="1.0" xmlns:xsl="http://www.w3.org/1999/XSL/Transform">
+<xsl:output method="text"/>
+<xsl:template match="/"><xsl:call-template name="busy"/></xsl:template>
+<xsl:template name="busy"><xsl:param name="d" select="40"/>
+  <xsl:if test="$d &gt; 0">
+    <xsl:value-of select="$d"/>
+    <xsl:call-template name="busy"><xsl:with-param name="d" select="$d - 1"/></xsl:call-template>
+    <xsl:call-template name="busy"><xsl:with-param name="d" select="$d - 1"/></xsl:call-template>
+  </xsl:if>
+</xsl:template>
+</xsl:stylesheet>
+)x",
+      linuxcnc->directory / "busy.xsl", roots);
+  ASSERT_TRUE(busy.ok()) << (busy.diagnostics.empty() ? "" : diag::format(busy.diagnostics[0]));
+  profile::LoadedProfile canonical = *linuxcnc;
+  canonical.stylesheet = busy.stylesheet;
+  profile::LoadedProfile raw = canonical;
+  raw.profile.mode = profile::Mode::Raw;
+  const auto loaded = load_case("curves");
+  struct Case {
+    const char* name;
+    const profile::LoadedProfile* profile;
+    std::size_t render_thread_min_instances;
+  };
+  for (const Case& c : {Case{"one_thread", &canonical, 0}, Case{"render_thread", &canonical, 1},
+                        Case{"raw", &raw, 0}}) {
+    std::atomic<bool> cancel{false};
+    PostOptions options;
+    options.cancel = &cancel;
+    options.render_thread_min_instances = c.render_thread_min_instances;
+    std::thread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      cancel.store(true);
+    });
+    const auto began = std::chrono::steady_clock::now();
+    const Posted posted = run(loaded, *c.profile, options);
+    const auto took = std::chrono::steady_clock::now() - began;
+    canceller.join();
+    EXPECT_TRUE(posted.result.cancelled) << c.name;
+    EXPECT_FALSE(posted.result.ok) << c.name;
+    for (const auto& d : posted.result.diagnostics)
+      EXPECT_NE(d.diagnostic.severity, diag::Severity::Error) << c.name << ": " << diag::format(d);
+    RecordProperty(
+        std::string("stopped_after_ms_") + c.name,
+        std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(took).count()));
+  }
 }
 
 TEST(ErrorMarker, UsesTheProfileSyntaxAndSanitisesTheMessage) {

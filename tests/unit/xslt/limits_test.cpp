@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #include "support.hpp"
 
@@ -238,6 +240,56 @@ TEST_F(XsltTest, LongRunHitsTheTimeLimit) {
   expect_limit(r, "XSLT-025", 2.0);
   EXPECT_GT(r.seconds, 0.25);
   expect_next_job_works(tree_);
+}
+
+// The same endless run with only a distant clock: the job's cancel flag, set from another
+// thread (as the server does at --job-timeout or when the client leaves), stops it. It ends
+// cancelled, with no error of its own and no text; the clock would have needed a minute.
+TEST_F(XsltTest, ACancelledJobStopsItsTransform) {
+  Limits limits;
+  limits.max_steps = 0;
+  limits.max_xpath_ops = 0;
+  limits.max_memory = 0;
+  limits.max_time = std::chrono::milliseconds(60'000);
+  auto compiled = compile_ok(
+      tree_,
+      sheet(
+          R"x(<xsl:template match="/"><xsl:call-template name="t"><xsl:with-param name="n" select="40"/></xsl:call-template></xsl:template>
+<xsl:template name="t"><xsl:param name="n"/>
+  <xsl:if test="$n > 0">
+    <xsl:value-of select="$n"/>
+    <xsl:call-template name="t"><xsl:with-param name="n" select="$n - 1"/></xsl:call-template>
+    <xsl:call-template name="t"><xsl:with-param name="n" select="$n - 1"/></xsl:call-template>
+  </xsl:if>
+</xsl:template>)x"));
+  ASSERT_TRUE(compiled);
+  std::atomic<bool> cancel{false};
+  JobState job({}, limits);
+  job.set_cancel(&cancel);
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    cancel.store(true);
+  });
+  const auto start = Clock::now();
+  const TransformResult r = transform(*compiled, kChunk, job);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  canceller.join();
+  EXPECT_TRUE(r.cancelled) << all_messages(r.diagnostics);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.output.empty());
+  EXPECT_FALSE(diag::has_errors(r.diagnostics)) << all_messages(r.diagnostics);
+  EXPECT_LT(seconds, 30.0);
+  RecordProperty("stopped_after_ms", std::to_string(static_cast<int>(seconds * 1000)));
+  // Already cancelled: nothing runs. The same job state, the flag cleared: it runs again.
+  const TransformResult again = transform(*compiled, kChunk, job);
+  EXPECT_TRUE(again.cancelled);
+  cancel.store(false);
+  auto plain = compile_ok(tree_, sheet(kPlain));
+  ASSERT_TRUE(plain);
+  const TransformResult fine = transform(*plain, kChunk, job);
+  EXPECT_TRUE(fine.ok) << all_messages(fine.diagnostics);
+  EXPECT_FALSE(fine.cancelled);
+  EXPECT_EQ(fine.output, "fine");
 }
 
 TEST_F(XsltTest, AnInputLargerThanTheMemoryLimitIsNotTransformed) {

@@ -22,7 +22,8 @@ struct RawResult {
   // stylesheet's file) when the transform fails, P28 notes about entities the schema lacks.
   std::vector<diag::FileDiagnostic> diagnostics;
   bool ok = false;
-  bool started = false;  // text reached `out`
+  bool started = false;    // text reached `out`
+  bool cancelled = false;  // `cancel` was set during the transform: not ok, nothing written
 };
 
 // The model as the late-bound P28 document the stylesheet reads (tests, `ncpost convert`
@@ -34,9 +35,11 @@ struct RawResult {
 // Transforms `model` with a raw-mode profile: one transform with the profile's JobState (number
 // formats, set-up, block numbers) and parameters (program_number, profile_id), the xslt stage's
 // security and limits (xslt::Limits::max_input_bytes bounds the document). The output goes to
-// `out` in one piece, with the profile's line ending, only if the transform succeeded.
+// `out` in one piece, with the profile's line ending, only if the transform succeeded. The
+// transform polls `cancel` (null: never cancelled).
 [[nodiscard]] RawResult render_raw(const p21::Model& model, const express::SchemaSet* schemas,
                                    const profile::LoadedProfile& profile, const TextSink& out,
-                                   std::string_view input_name = "program");
+                                   std::string_view input_name = "program",
+                                   const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace ncpost::render

@@ -4,6 +4,7 @@
 // with one JobState for the whole program → controller text, appended to `out` as each batch
 // is rendered (the program's first chunk at once). docs/render.md.
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <functional>
@@ -54,6 +55,9 @@ struct RenderOptions {
   // KIN-005 warnings (a large rotary motion) reported per program at most; the rest are
   // dropped (docs/kinematics.md).
   std::size_t max_kinematics_warnings = 100;
+  // The job's cancel flag, which the stylesheet's transforms poll (xslt::JobState::set_cancel):
+  // a cancelled job's transform stops within a few milliseconds. Null: never cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 class Renderer final : public canon::Sink {
@@ -79,6 +83,9 @@ class Renderer final : public canon::Sink {
     return diagnostics_;
   }
   [[nodiscard]] bool failed() const noexcept { return failed_; }
+  // Whether a transform stopped because RenderOptions::cancel was set (failed() too, with no
+  // diagnostic of its own).
+  [[nodiscard]] bool cancelled() const noexcept { return cancelled_; }
   // Whether any text was handed to `out` yet.
   [[nodiscard]] bool started() const noexcept { return started_; }
   // Time spent in the stylesheet's transforms so far (a post's render stage; the calls' way
@@ -143,6 +150,7 @@ class Renderer final : public canon::Sink {
   std::chrono::steady_clock::time_point batch_started_{};
   bool in_batch_ = false;  // render_batch() is running
   bool failed_ = false;
+  bool cancelled_ = false;
   bool started_ = false;
   bool finished_ = false;
 };

@@ -13,6 +13,7 @@
 //   for (each chunk) transform(*compiled.stylesheet, chunk_xml, job);
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -213,10 +214,17 @@ class JobState {
   // How many of them were not rendered (a stylesheet without a template for <motions>).
   [[nodiscard]] std::size_t run_motions_not_rendered() const noexcept;
 
+  // The job's cancel flag (null: never cancelled). A transform polls it as it works, so a
+  // stylesheet that loops gives its thread back when the job is cancelled, not only when a
+  // limit stops it; it then ends with TransformResult::cancelled and no error.
+  void set_cancel(const std::atomic<bool>* cancel) noexcept { cancel_ = cancel; }
+  [[nodiscard]] const std::atomic<bool>* cancel() const noexcept { return cancel_; }
+
  private:
   friend struct Access;
   JobConfig config_;
   Limits limits_;
+  const std::atomic<bool>* cancel_ = nullptr;
   std::int64_t next_block_;
   std::map<std::string, std::string, std::less<>> modal_;
   double program_unit_mm_ = 1.0;  // ext:program-units(): the canonical program's length unit
@@ -233,7 +241,8 @@ using Params = std::vector<std::pair<std::string, std::string>>;
 struct TransformResult {
   std::string output;  // serialized as the stylesheet's xsl:output says; empty on error
   std::vector<FileDiagnostic> diagnostics;
-  bool ok = false;  // no error diagnostic and the transform finished normally
+  bool ok = false;         // no error diagnostic and the transform finished normally
+  bool cancelled = false;  // stopped by the JobState's cancel flag: not ok, no error added
 };
 
 // Parses `xml` (no DTD, no entity expansion, no network; XSLT-006/010) and applies the
