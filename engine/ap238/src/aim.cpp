@@ -265,8 +265,8 @@ std::optional<Unit> Aim::unit(p21::Value reference, int depth) {
         }
         const double x = model_.as_real(*exponent);
         const double whole = std::round(x);
-        if (std::abs(x - whole) > 1e-9) {
-          product.dimensions.other += 1;  // a fractional power: nothing ncpost converts
+        if (std::abs(x - whole) > 1e-9 || std::abs(whole) > kMaxUnitExponent) {
+          product.dimensions.other += 1;  // a fractional or huge power: nothing ncpost converts
           continue;
         }
         product.factor *= std::pow(part->factor, whole);

@@ -90,6 +90,9 @@ struct Property {
 
 // A conversion-based unit defined through this many others is refused (a cycle, or hostile).
 inline constexpr int kMaxUnitDepth = 8;
+// The largest power of a derived unit's element read as such: real units use 1 to 4; a larger
+// one (1E300 in a hostile file) is counted like a fractional power, as nothing ncpost converts.
+inline constexpr double kMaxUnitExponent = 16;
 
 class Aim {
  public:

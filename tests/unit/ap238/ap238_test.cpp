@@ -285,6 +285,20 @@ TEST(Ap238, AFeedInAnUnitThatIsNoSpeedIsABadValue) {
   EXPECT_EQ(r.codes(), (std::vector<std::string>{"AP238-008"})) << r.all();
 }
 
+// The ap238 fuzz target's finding: a power of 1E300 was cast to int (undefined behaviour).
+// Such a unit is no speed, whatever the sign, and so is a fractional power.
+TEST(Ap238, AFeedUnitWithAHugeOrFractionalPowerIsABadValue) {
+  for (const char* power : {"-1.E300", "1.E300", "-1.5", "-17."}) {
+    std::string text = program(polyline_path(100, 1, "0.,0.,5.", "1.,0.,0."));
+    const std::string from = "#13=DERIVED_UNIT_ELEMENT(#9,-1.);";
+    text.replace(text.find(from), from.size(),
+                 std::string("#13=DERIVED_UNIT_ELEMENT(#9,") + power + ");");
+    const Outcome r = run(text);
+    EXPECT_EQ(r.codes(), (std::vector<std::string>{"AP238-008", "AP238-008"})) << power << "\n"
+                                                                               << r.all();
+  }
+}
+
 TEST(Ap238, ConversionBasedUnitsThatLoopAreRefused) {
   // 'minute' defined through itself: the chain is cut at kMaxUnitDepth and the feed refused.
   std::string text = program(polyline_path(100, 1, "0.,0.,5.", "1.,0.,0."));
