@@ -17,16 +17,9 @@ std::string_view LineCursor::next(std::uint32_t& number) noexcept {
 
 Line& Line::operator=(const Line& other) {
   if (this == &other) return *this;
-  number = other.number;
-  raw = other.raw;
-  buffer = other.buffer;
-  text = other.text_is_raw ? other.text : std::string_view(buffer).substr(0, other.text.size());
-  columns = other.columns;
-  text_is_raw = other.text_is_raw;
-  comments = other.comments;
-  block_delete = other.block_delete;
-  has_error = other.has_error;
-  error = other.error;
+  LineFields::operator=(other);
+  // A normalised text is a view of the buffer: of this line's own copy now.
+  if (!text_is_raw) text = std::string_view(buffer).substr(0, other.text.size());
   return *this;
 }
 

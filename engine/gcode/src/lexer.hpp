@@ -28,7 +28,8 @@ struct LexError {
   bool unclosed_string = false;
 };
 
-struct Line {
+// What a Line holds, copied member by member; Line re-points `text` after a copy.
+struct LineFields {
   std::uint32_t number = 0;  // 1-based line number in its file
   std::string_view raw;      // the line as written, without the line end
   // Normalised: `raw` itself when normalising would change nothing (most lines a CAM system
@@ -44,7 +45,9 @@ struct Line {
   bool block_delete = false;  // '/' first
   bool has_error = false;
   LexError error{};
+};
 
+struct Line : LineFields {
   Line() = default;
   Line(const Line& other) { *this = other; }
   Line& operator=(const Line& other);

@@ -181,6 +181,9 @@ TEST(Checks, PlainLinesReadAsTheirNormalisedForm) {
       {"N10 G0 X1\nN20 Y2\nM2\n", "n10 G0 X1\nN20 y2\nM2\n"},
       {"O100 SUB\nG0 X1\nO100 ENDSUB\nO100 CALL\nM2\n",
        "o100 sub\nG0 X1\no100 endsub\no100 call\nM2\n"},
+      // A loop's lines are read again from the interpreter's cache of normalised lines.
+      {"#1=0\nO100 WHILE [#1 LT 3]\nG1 X#1 Y[#1*2] F100\n#1=[#1+1]\nO100 ENDWHILE\nM2\n",
+       "#1=0\no100 while [#1 lt 3]\ng1 x#1 y[#1*2] f100\n#1=[#1+1]\no100 endwhile\nm2\n"},
   };
   for (const auto& [plain, normalised] : linuxcnc) {
     const auto a = read(plain);
@@ -188,6 +191,9 @@ TEST(Checks, PlainLinesReadAsTheirNormalisedForm) {
     EXPECT_EQ(a.body(), b.body()) << plain;
     EXPECT_EQ(a.codes(), b.codes()) << plain;
   }
+  const std::string loop = read(linuxcnc.back().second).motions();
+  EXPECT_EQ(std::count(loop.begin(), loop.end(), '\n'), 3) << loop;
+  EXPECT_NE(loop.find("2.0000, 4.0000"), std::string::npos) << loop;
   // Blanks kept where the dialect keeps them (Sinumerik): a plain line is its own text.
   const auto s = read("G0 X1 Y2\nG1 X3 F100\nM30\n", "siemens-840d");
   const auto t = read("g0 x1 y2\ng1 x3 f100\nm30\n", "siemens-840d");
