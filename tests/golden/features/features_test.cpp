@@ -101,6 +101,9 @@ void expect_verified(const fs::path& file, const std::vector<canon::Call>& calls
     EXPECT_GT(uncovered, 0u) << "the verifier should see the cone a drill leaves";
   }
   EXPECT_FALSE(result.features.empty()) << file.filename();
+  // Every feature a case machines is one the verifier can measure (else "passed" says little).
+  for (const auto& f : result.features)
+    EXPECT_TRUE(f.checked) << file.filename() << " " << f.name << ": " << f.not_checked_reason;
 }
 
 // Workingsteps grouped by a name prefix: ex1E splits one ex1 workingstep into several

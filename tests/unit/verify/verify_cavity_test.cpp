@@ -209,100 +209,103 @@ std::size_t move_feeds(std::vector<canon::Call>& calls, const std::string& worki
   return moved;
 }
 
-TEST(VerifyCavityPrograms, GeneratedShapesPass) {
-  for (const char* name : {"slot-vee", "slot-partial-circular", "slot-woodruff", "slot-circular",
-                           "step", "thread-drilling"}) {
-    const Program p = load(name);
-    const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-    EXPECT_TRUE(r.ok()) << name << "\n" << dump(r);
-    for (const auto& f : r.features) EXPECT_TRUE(f.checked) << name << " " << f.name;
-  }
+// Whether each generated case passes, with every feature checked, is the features golden test's
+// (tests/golden/features); here each check is made to fail. One case's feeds of one
+// workingstep that `pick` selects are moved by `by`: the verifier must find `gouges` gouges
+// (and `below_floor` passes below the floor), so the program is no longer ok.
+struct MovedFeeds {
+  const char* name;
+  const char* file;
+  const char* workingstep;
+  bool (*pick)(const canon::Pose& to);
+  canon::Pose by;
+  std::size_t at_least_moved;
+  std::size_t gouges = 1;
+  std::size_t below_floor = 0;
+};
+
+void PrintTo(const MovedFeeds& c, std::ostream* os) {
+  *os << c.name;
 }
 
-TEST(VerifyCavityPrograms, GeneralSectionsPass) {
-  const Program p = load("slot-general-section");
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_TRUE(r.ok()) << dump(r);
-  ASSERT_EQ(r.features.size(), 4u);
-  for (const auto& f : r.features) EXPECT_TRUE(f.checked) << f.name << ": " << f.not_checked_reason;
-}
+class VerifyMovedFeeds : public ::testing::TestWithParam<MovedFeeds> {};
 
-TEST(VerifyCavityPrograms, GeneralSectionPassesTooDeep) {
-  // The Bezier channel's passes 0.2 mm lower: into its section, below its floor at the bottom.
-  Program p = load("slot-general-section");
-  const auto below_top = [](const canon::Pose& to) { return to.z < -0.5; };
-  ASSERT_GT(move_feeds(p.calls, "BEZIER CHANNEL", below_top, {0, 0, -0.2}), 10u);
+TEST_P(VerifyMovedFeeds, AreFound) {
+  const MovedFeeds& c = GetParam();
+  Program p = load(c.file);
+  ASSERT_GE(move_feeds(p.calls, c.workingstep, c.pick, c.by), c.at_least_moved);
   const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
-}
-
-TEST(VerifyCavityPrograms, GeneralSectionRingPushedOut) {
-  // One ring of the B-spline groove 0.2 mm further out on its left side: into the section's
-  // wall, which the ring's other passes only touch.
-  Program p = load("slot-general-section");
-  const auto left = [](const canon::Pose& to) { return to.y > 6 && to.y < 9 && to.z < -1; };
-  ASSERT_GT(move_feeds(p.calls, "SPLINE GROOVE", left, {0, 0.2, 0}), 1u);
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
-}
-
-TEST(VerifyCavityPrograms, MilledSphericalBottomsPass) {
-  const Program p = load("hole-milled-sphere");
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_TRUE(r.ok()) << dump(r);
-  ASSERT_EQ(r.features.size(), 2u);
-  for (const auto& f : r.features) EXPECT_TRUE(f.checked) << f.name << ": " << f.not_checked_reason;
-}
-
-TEST(VerifyCavityPrograms, MilledSphereTooDeep) {
-  // The finishing pass's feeds in the sphere (below where it meets the wall, 9.229 deep) 0.2 mm
-  // lower: into the sphere, and at the axis 0.2 below its lowest point.
-  Program p = load("hole-milled-sphere");
-  const auto in_sphere = [](const canon::Pose& to) { return to.z < -9.3; };
-  ASSERT_GT(move_feeds(p.calls, "SPHERE FINISH", in_sphere, {0, 0, -0.2}), 10u);
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
+  EXPECT_EQ(count(r, diag::Code::VerifyGouge), c.gouges) << dump(r);
+  EXPECT_EQ(count(r, diag::Code::VerifyBelowFloor), c.below_floor) << dump(r);
   EXPECT_FALSE(r.ok());
 }
 
-TEST(VerifyCavityPrograms, VeeCutTooDeep) {
-  Program p = load("slot-vee");
-  const auto deepest = [](const canon::Pose& to) { return std::abs(to.z + 5) < 1e-9; };
-  ASSERT_GT(move_feeds(p.calls, "VEE 90 RADIUSED", deepest, {0, 0, -0.3}), 1u);
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
-  EXPECT_EQ(count(r, diag::Code::VerifyBelowFloor), 1u) << dump(r);
-}
-
-TEST(VerifyCavityPrograms, WoodruffArcPushedOut) {
-  // The last level's arc stations at the +x end moved 0.3 mm further out: into the end.
-  Program p = load("slot-woodruff");
-  const auto on_arc = [](const canon::Pose& to) {
-    return to.x > 30.5 && to.x < 41 && to.z < -3.4 && std::abs(to.y) < 1e-9;
-  };
-  ASSERT_GT(move_feeds(p.calls, "KEYWAY WOODRUFF", on_arc, {0.3, 0, 0}), 3u);
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
-}
-
-TEST(VerifyCavityPrograms, SteppedRingTooFarOut) {
-  // One ring of the stepped partial-circular passes 0.2 mm wider: into the arc.
-  Program p = load("slot-partial-circular");
-  const auto ring = [](const canon::Pose& to) {
-    return std::abs(to.y - 32.4690) < 1e-3 && std::abs(to.z + 1.7042) < 1e-3;
-  };
-  ASSERT_GT(move_feeds(p.calls, "ROUND STEPPED", ring, {0, 0.2, 0}), 0u);
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
-}
-
-TEST(VerifyCavityPrograms, StepWallPassIntoTheWall) {
-  Program p = load("step");
-  const auto wall = [](const canon::Pose& to) { return std::abs(to.x - 20) < 1e-9; };
-  ASSERT_GT(move_feeds(p.calls, "STEP BIDIRECTIONAL", wall, {0.25, 0, 0}), 1u);
-  const VerifyResult r = verify_calls(p.loaded.model, *p.attributes, p.calls);
-  EXPECT_EQ(count(r, diag::Code::VerifyGouge), 1u) << dump(r);
-}
+INSTANTIATE_TEST_SUITE_P(
+    GeneratedPaths, VerifyMovedFeeds,
+    ::testing::Values(
+        // The Bezier channel's passes 0.2 mm lower: into its section, below its floor at the
+        // bottom.
+        MovedFeeds{"GeneralSectionPassesTooDeep",
+                   "slot-general-section",
+                   "BEZIER CHANNEL",
+                   [](const canon::Pose& to) { return to.z < -0.5; },
+                   {0, 0, -0.2},
+                   11,
+                   1,
+                   1},
+        // One ring of the B-spline groove 0.2 mm further out on its left side: into the
+        // section's wall, which the ring's other passes only touch.
+        MovedFeeds{"GeneralSectionRingPushedOut",
+                   "slot-general-section",
+                   "SPLINE GROOVE",
+                   [](const canon::Pose& to) { return to.y > 6 && to.y < 9 && to.z < -1; },
+                   {0, 0.2, 0},
+                   2},
+        // The finishing pass's feeds in the sphere (below where it meets the wall, 9.229 deep)
+        // 0.2 mm lower: into the sphere, and at the axis 0.2 below its lowest point.
+        MovedFeeds{"MilledSphereTooDeep",
+                   "hole-milled-sphere",
+                   "SPHERE FINISH",
+                   [](const canon::Pose& to) { return to.z < -9.3; },
+                   {0, 0, -0.2},
+                   11,
+                   1,
+                   1},
+        MovedFeeds{"VeeCutTooDeep",
+                   "slot-vee",
+                   "VEE 90 RADIUSED",
+                   [](const canon::Pose& to) { return std::abs(to.z + 5) < 1e-9; },
+                   {0, 0, -0.3},
+                   2,
+                   1,
+                   1},
+        // The last level's arc stations at the +x end moved 0.3 mm further out: into the end.
+        MovedFeeds{"WoodruffArcPushedOut",
+                   "slot-woodruff",
+                   "KEYWAY WOODRUFF",
+                   [](const canon::Pose& to) {
+                     return to.x > 30.5 && to.x < 41 && to.z < -3.4 && std::abs(to.y) < 1e-9;
+                   },
+                   {0.3, 0, 0},
+                   4},
+        // One ring of the stepped partial-circular passes 0.2 mm wider: into the arc.
+        MovedFeeds{"SteppedRingTooFarOut",
+                   "slot-partial-circular",
+                   "ROUND STEPPED",
+                   [](const canon::Pose& to) {
+                     return std::abs(to.y - 32.4690) < 1e-3 && std::abs(to.z + 1.7042) < 1e-3;
+                   },
+                   {0, 0.2, 0},
+                   1},
+        MovedFeeds{"StepWallPassIntoTheWall",
+                   "step",
+                   "STEP BIDIRECTIONAL",
+                   [](const canon::Pose& to) { return std::abs(to.x - 20) < 1e-9; },
+                   {0.25, 0, 0},
+                   2}),
+    [](const ::testing::TestParamInfo<MovedFeeds>& moved) {
+      return std::string(moved.param.name);
+    });
 
 TEST(VerifyCavityPrograms, ThreadHelixTooWide) {
   // The M16 helix 0.2 mm further out than the major diameter allows (lead-in moved with it).
