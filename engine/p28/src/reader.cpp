@@ -426,7 +426,14 @@ p21::ReadResult Reader::run() {
   xmlTextReaderSetErrorHandler(reader_, &Reader::on_xml_error, this);
   push(Frame{});
   int status = 0;
+  std::uint32_t nodes = 0;
+  bool cancelled = false;
   while (!stopped_ && !diagnostics_.full() && (status = xmlTextReaderRead(reader_)) == 1) {
+    if (options_.cancel != nullptr && (++nodes & 4095u) == 0 &&
+        options_.cancel->load(std::memory_order_relaxed)) {
+      cancelled = true;
+      break;
+    }
     const int depth = xmlTextReaderDepth(reader_);
     if (depth > static_cast<int>(options_.max_depth)) {
       error(Code::P28TooDeep, "elements nested deeper than " + std::to_string(options_.max_depth));
@@ -467,6 +474,11 @@ p21::ReadResult Reader::run() {
     error(Code::P28XmlError, "the document is not well-formed XML");
   xmlFreeTextReader(reader_);
   reader_ = nullptr;
+  if (cancelled) {
+    p21::ReadResult stopped;
+    stopped.cancelled = true;
+    return stopped;
+  }
   if (section_) {
     section_->end_instance = builder_.instance_count();
     builder_.add_section(*section_);

@@ -59,6 +59,7 @@ LoadedModel load(std::string bytes, const express::SchemaRegistry& schemas,
   out.format = detect_format(bytes);
   if (out.format == InputFormat::P28) {
     p28::ReadOptions p28_options;
+    p28_options.cancel = options.cancel;
     // A P28 document names its schema in its header, which comes first.
     p28_options.schema_for_header = [&](const p21::Model& header) {
       return schemas.select_or_builtin(header, stepnc::schema_aliases(out.mode)).set();

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include "p28_support.hpp"
 
 namespace ncpost::p28 {
@@ -212,6 +214,30 @@ TEST(P28Early, ElementsThatNameNoExpressTypeAreErrors) {
         << test::dump(r.diagnostics);
     EXPECT_NE(test::dump(r.diagnostics).find("<string-wrapper> names no EXPRESS type"),
               std::string::npos);
+  }
+}
+
+// A job cancelled while its P28 upload is read (its client left, its time ran out) stops the
+// read within 4096 nodes: cancelled, no model, no verdict. Unset, the same read is whole.
+TEST(P28Read, ACancelFlagStopsTheRead) {
+  NCPOST_REQUIRE_CORPUS_OR_SKIP(corpus);
+  const p21::ReadResult source =
+      p21::read(ncpost::test::read_file(corpus / "p21/nist_toolkit_ex1E.stp"));
+  ASSERT_TRUE(source.ok());
+  for (const Binding binding : {Binding::Late, Binding::Early}) {
+    const std::string xml = to_p28(source.model, &own_schema(), binding);
+    std::atomic<bool> cancel{true};
+    ReadOptions options;
+    options.cancel = &cancel;
+    const p21::ReadResult stopped = read(xml, &own_schema(), options);
+    EXPECT_TRUE(stopped.cancelled);
+    EXPECT_TRUE(stopped.model.instances().empty());
+    EXPECT_TRUE(stopped.diagnostics.empty()) << test::dump(stopped.diagnostics);
+    cancel = false;
+    const p21::ReadResult whole = read(xml, &own_schema(), options);
+    EXPECT_FALSE(whole.cancelled);
+    ASSERT_TRUE(whole.ok()) << test::dump(whole.diagnostics);
+    EXPECT_EQ(p21::first_difference(source.model, whole.model), std::nullopt);
   }
 }
 

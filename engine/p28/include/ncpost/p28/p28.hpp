@@ -12,6 +12,7 @@
 // The schema gives names and types. Without one (or for an entity it lacks) attributes are
 // written by position, which still reads back to the same model.
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -43,6 +44,10 @@ struct ReadOptions {
   // Documents larger than this are rejected before parsing.
   std::size_t max_bytes = std::size_t{1} << 31;
   std::size_t max_errors = 1000;
+  // Set by another thread to stop reading (a client that went away, a job out of time): looked
+  // at every 4096 XML nodes. The result is then `cancelled`, with no model and no diagnostics.
+  // Null: never cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // Reads a P28 document of either binding (recognised from its elements) into a Model. Untrusted
