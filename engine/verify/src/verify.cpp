@@ -942,7 +942,13 @@ void Verifier::finish() {
   end_workingstep();  // what happened after the last workingstep (the final retract)
   result_.calls = calls_;
   result_.motions = motions_;
+  const std::atomic<bool>* cancel = options_.interpret.cancel;
   for (FeatureState* s : feature_order_) {
+    // A feature's coverage can take seconds (a raster of up to max_cells against every pass).
+    if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) {
+      result_.cancelled = true;
+      return;
+    }
     FeatureReport& report = result_.features[s->report];
     report.workingsteps = s->workingsteps;
     const Feature& f = s->feature;
@@ -978,7 +984,7 @@ void Verifier::finish() {
 
 bool VerifyResult::ok() const {
   const auto error = [](const diag::Diagnostic& d) { return d.severity == diag::Severity::Error; };
-  return std::none_of(interpreter.begin(), interpreter.end(), error) &&
+  return !cancelled && std::none_of(interpreter.begin(), interpreter.end(), error) &&
          std::none_of(findings.begin(), findings.end(),
                       [&](const Finding& f) { return error(f.diagnostic); });
 }
@@ -991,6 +997,9 @@ VerifyResult verify(const p21::Model& model, const stepnc::AttributeReader& attr
   auto interpreted = stepnc::interpret(model, attributes, verifier, options.interpret);
   verifier.finish();
   result.interpreter = std::move(interpreted.diagnostics);
+  const std::atomic<bool>* cancel = options.interpret.cancel;
+  result.cancelled =
+      result.cancelled || (cancel != nullptr && cancel->load(std::memory_order_relaxed));
   return result;
 }
 

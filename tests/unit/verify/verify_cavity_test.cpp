@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <numbers>
 
@@ -306,6 +307,28 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<MovedFeeds>& moved) {
       return std::string(moved.param.name);
     });
+
+// A cancelled job (its client left, its time ran out) stops verifying: before the first
+// executable when it interprets, before the first feature's coverage when it is given calls.
+// Cancelled is no verdict, so not ok; unset, the same verification passes.
+TEST(VerifyCavityPrograms, ACancelledVerificationIsNoVerdict) {
+  const Program p = load("slot-vee");
+  std::atomic<bool> cancel{true};
+  VerifyOptions options;
+  options.interpret.cancel = &cancel;
+  const VerifyResult interpreted = verify(p.loaded.model, *p.attributes, options);
+  EXPECT_TRUE(interpreted.cancelled);
+  EXPECT_FALSE(interpreted.ok());
+  EXPECT_EQ(interpreted.motions, 0u);
+  const VerifyResult given = verify_calls(p.loaded.model, *p.attributes, p.calls, options);
+  EXPECT_TRUE(given.cancelled);
+  EXPECT_FALSE(given.ok());
+  for (const auto& f : given.features) EXPECT_FALSE(f.coverage_checked) << f.name;
+  cancel = false;
+  const VerifyResult whole = verify(p.loaded.model, *p.attributes, options);
+  EXPECT_FALSE(whole.cancelled);
+  EXPECT_TRUE(whole.ok()) << dump(whole);
+}
 
 TEST(VerifyCavityPrograms, ThreadHelixTooWide) {
   // The M16 helix 0.2 mm further out than the major diameter allows (lead-in moved with it).

@@ -95,7 +95,10 @@ struct VerifyResult {
   std::size_t motions = 0;
   std::size_t workingsteps = 0;
   std::size_t rapids_below_secplane_in_air = 0;  // below the security plane over the part, clear
-  [[nodiscard]] bool ok() const;                 // no error among interpreter and findings
+  // Stopped by options.interpret.cancel (polled by the interpreter before each executable and
+  // here before each feature's coverage): the findings are incomplete, not a verdict.
+  bool cancelled = false;
+  [[nodiscard]] bool ok() const;  // not cancelled, and no error among interpreter and findings
 };
 
 [[nodiscard]] VerifyResult verify(const p21::Model& model,
