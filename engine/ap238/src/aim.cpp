@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace ncpost::ap238::detail {
 namespace {
@@ -25,13 +26,24 @@ std::optional<double> prefix_factor(std::string_view prefix) {
   return std::nullopt;
 }
 
+// Exponents saturate: a hostile file nests units raised to large powers (16^9 overflows an int),
+// and a unit whose exponent is that large is no speed or length anyway.
+int saturated(std::int64_t exponent) {
+  constexpr std::int64_t kLimit = 1 << 10;
+  return static_cast<int>(std::clamp(exponent, -kLimit, kLimit));
+}
+
 Dimensions scaled(Dimensions d, int by) {
-  return {d.length * by, d.time * by, d.angle * by, d.revolution * by, d.other * std::abs(by)};
+  const std::int64_t b = by;
+  return {saturated(d.length * b), saturated(d.time * b), saturated(d.angle * b),
+          saturated(d.revolution * b), saturated(d.other * std::abs(b))};
 }
 
 Dimensions sum(Dimensions a, Dimensions b) {
-  return {a.length + b.length, a.time + b.time, a.angle + b.angle, a.revolution + b.revolution,
-          a.other + b.other};
+  return {saturated(std::int64_t{a.length} + b.length), saturated(std::int64_t{a.time} + b.time),
+          saturated(std::int64_t{a.angle} + b.angle),
+          saturated(std::int64_t{a.revolution} + b.revolution),
+          saturated(std::int64_t{a.other} + b.other)};
 }
 
 }  // namespace
@@ -265,8 +277,9 @@ std::optional<Unit> Aim::unit(p21::Value reference, int depth) {
         }
         const double x = model_.as_real(*exponent);
         const double whole = std::round(x);
-        if (std::abs(x - whole) > 1e-9 || std::abs(whole) > kMaxUnitExponent) {
-          product.dimensions.other += 1;  // a fractional or huge power: nothing ncpost converts
+        if (!(std::abs(x - whole) <= 1e-9 && std::abs(whole) <= kMaxUnitExponent)) {
+          // A fractional, huge or NaN power: nothing ncpost converts.
+          product.dimensions.other = saturated(std::int64_t{product.dimensions.other} + 1);
           continue;
         }
         product.factor *= std::pow(part->factor, whole);

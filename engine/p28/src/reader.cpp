@@ -35,6 +35,35 @@ constexpr std::string_view kExNamespace =
     "urn:iso.org:standard:10303:part(28):version(2):xmlschema:common";
 
 // The namespaces of ISO 10303-28's common elements, over the generations of the standard.
+// What the text of a literal element is read as.
+enum class LiteralKind : std::uint8_t {
+  Integer,
+  Real,
+  String,
+  Binary,
+  Enumeration,
+  Logical,
+  Resource,
+  ByType,  // early binding: the declared type decides
+};
+
+// The simple types the common namespace wraps (`ex:double-wrapper`, ...), by XML Schema name.
+std::optional<LiteralKind> simple_wrapper_kind(std::string_view xsd_type) {
+  static constexpr std::array<std::pair<std::string_view, LiteralKind>, 8> kKinds = {{
+      {"double", LiteralKind::Real},
+      {"long", LiteralKind::Integer},
+      {"integer", LiteralKind::Integer},
+      {"hexBinary", LiteralKind::Binary},
+      {"boolean", LiteralKind::Logical},
+      {"logical", LiteralKind::Logical},
+      {"enumeration", LiteralKind::Enumeration},
+      {"string", LiteralKind::String},
+  }};
+  for (const auto& [name, kind] : kKinds)
+    if (name == xsd_type) return kind;
+  return std::nullopt;
+}
+
 bool is_common_namespace(std::string_view ns) {
   return ns == kExNamespace || ns.starts_with("urn:oid:1.0.10303.28") ||
          ns.find("10303:part(28)") != std::string_view::npos;
@@ -145,17 +174,6 @@ class Reader {
     Literal,      // collects text
     Values,       // section parameters, anchors: a bare list of values
   };
-  enum class LiteralKind : std::uint8_t {
-    Integer,
-    Real,
-    String,
-    Binary,
-    Enumeration,
-    Logical,
-    Resource,
-    ByType,  // early binding: the declared type decides
-  };
-
   struct Frame {
     FrameKind kind = FrameKind::Root;
     const TypePlan* type = nullptr;  // expected type of the value(s) inside
@@ -288,6 +306,7 @@ class Reader {
   std::vector<Value> stack_;  // scratch: values of open aggregates
   bool early_ = false;
   bool stopped_ = false;
+  bool said_foreign_wrapper_ = false;
   std::optional<p21::DataSection> section_;
   std::unordered_map<std::string, std::uint64_t> named_ids_;
   std::uint64_t next_named_id_ = std::uint64_t{1} << 40;
@@ -794,16 +813,24 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
     return;
   }
   const std::string ctype = attribute_local("cType");
-  if (ex && local.ends_with(kWrapperSuffix) && ctype.empty()) {
-    const std::string_view kind = local.substr(0, local.size() - kWrapperSuffix.size());
+  const std::optional<LiteralKind> common_wrapper =
+      local.ends_with(kWrapperSuffix)
+          ? simple_wrapper_kind(local.substr(0, local.size() - kWrapperSuffix.size()))
+          : std::nullopt;
+  if (!ex && common_wrapper && !said_foreign_wrapper_) {
+    // The common namespace's own wrapper in another: the writer's namespace URI is wrong. Said
+    // once per document, and each such value read as its wrapper says, so that no other error
+    // follows from it.
+    said_foreign_wrapper_ = true;
+    error(Code::P28BadValue, "<" + std::string(local) +
+                                 "> is a wrapper of the ISO 10303-28 common namespace, but is "
+                                 "in namespace '" +
+                                 std::string(ns.substr(0, 100)) + "'");
+  }
+  if ((ex || common_wrapper) && local.ends_with(kWrapperSuffix) && ctype.empty()) {
     f.kind = FrameKind::Literal;
     f.type = expected;
-    f.literal = kind == "double"                         ? LiteralKind::Real
-                : kind == "long" || kind == "integer"    ? LiteralKind::Integer
-                : kind == "hexBinary"                    ? LiteralKind::Binary
-                : kind == "boolean" || kind == "logical" ? LiteralKind::Logical
-                : kind == "enumeration"                  ? LiteralKind::Enumeration
-                                                         : LiteralKind::String;
+    f.literal = common_wrapper.value_or(LiteralKind::String);
     push(std::move(f));
     return;
   }

@@ -63,6 +63,7 @@ std::string format_text(const VerifyResult& r, std::string_view file) {
   out += "rapids below the security plane over the stock but clear of material: " +
          std::to_string(r.rapids_below_secplane_in_air) + "\n";
   const std::size_t n = errors(r);
+  if (r.cancelled) return out + "result: cancelled (the checks are incomplete)\n";
   out += n == 0 ? std::string("result: pass\n")
                 : "result: FAIL (" + std::to_string(n) + " error" + (n == 1 ? "" : "s") + ")\n";
   return out;
@@ -72,6 +73,7 @@ std::string format_json(const VerifyResult& r, std::string_view file) {
   nlohmann::ordered_json doc;
   doc["file"] = std::string(file);
   doc["ok"] = r.ok();
+  if (r.cancelled) doc["cancelled"] = true;
   doc["tolerance"] = r.tolerance;
   doc["workingsteps"] = r.workingsteps;
   doc["motions"] = r.motions;

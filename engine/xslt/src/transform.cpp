@@ -99,6 +99,10 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
     return result;
   }
 
+  if (job.cancel() != nullptr && job.cancel()->load(std::memory_order_relaxed)) {
+    result.cancelled = true;  // nothing parsed, nothing run
+    return result;
+  }
   detail::Budget budget;
   budget.max_bytes = limits.max_memory;
   if (limits.max_time.count() > 0) {
@@ -169,7 +173,10 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
       if (!params.empty()) xsltQuoteUserParams(ctxt, flat.data());
 
       budget.ctxt = ctxt;
-      xmlDocPtr out = xsltApplyStylesheetUser(style, doc, nullptr, nullptr, nullptr, ctxt);
+      // A trip while the context was made (no context yet to stop) means: do not start.
+      xmlDocPtr out = budget.tripped == detail::Budget::Trip::None
+                          ? xsltApplyStylesheetUser(style, doc, nullptr, nullptr, nullptr, ctxt)
+                          : nullptr;
       state = ctxt->state;
       step_limit_hit = ctxt->opLimit != 0 && ctxt->opCount >= ctxt->opLimit;
       xpath_limit_hit = ctxt->xpathCtxt != nullptr && ctxt->xpathCtxt->opLimit != 0 &&
@@ -239,6 +246,7 @@ TransformResult run(const CompiledStylesheet& stylesheet, Source source, JobStat
     if (budget.tripped == detail::Budget::Trip::Cancelled) {
       // Whoever cancelled the job knows why; the stylesheet did nothing wrong.
       result.cancelled = true;
+      result.output.clear();  // the trip may have come while the result was serialised
       result.diagnostics = std::move(kept);
       return result;
     }

@@ -299,6 +299,33 @@ TEST(Ap238, AFeedUnitWithAHugeOrFractionalPowerIsABadValue) {
   }
 }
 
+// Derived units nested six deep, each raised to the 16th (16^6 seconds), then 200 elements of
+// that to the 16th in one unit: 200 * 2^28 is past an int (the review found it after the fix
+// above). The exponents saturate instead, and the unit is no speed.
+TEST(Ap238, NestedPowersOfDerivedUnitsSaturate) {
+  std::string units;
+  std::string inner = "#6";
+  for (int level = 0; level < 6; ++level) {
+    const std::string element = "#" + std::to_string(900 + 2 * level);
+    const std::string unit = "#" + std::to_string(901 + 2 * level);
+    units += element + "=DERIVED_UNIT_ELEMENT(" + inner + ",16.);\n" + unit + "=DERIVED_UNIT((" +
+             element + "));\n";
+    inner = unit;
+  }
+  std::string elements;
+  for (int k = 0; k < 200; ++k) {
+    const std::string element = "#" + std::to_string(1000 + k);
+    units += element + "=DERIVED_UNIT_ELEMENT(" + inner + ",16.);\n";
+    elements += (k == 0 ? "" : ",") + element;
+  }
+  units += "#1300=DERIVED_UNIT((" + elements + "));\n";
+  std::string text = program(polyline_path(100, 1, "0.,0.,5.", "1.,0.,0.") + units);
+  const std::string from = "#13=DERIVED_UNIT_ELEMENT(#9,-1.);";
+  text.replace(text.find(from), from.size(), "#13=DERIVED_UNIT_ELEMENT(#1300,-1.);");
+  const Outcome r = run(text);
+  EXPECT_EQ(r.codes(), (std::vector<std::string>{"AP238-008", "AP238-008"})) << r.all();
+}
+
 TEST(Ap238, ConversionBasedUnitsThatLoopAreRefused) {
   // 'minute' defined through itself: the chain is cut at kMaxUnitDepth and the feed refused.
   std::string text = program(polyline_path(100, 1, "0.,0.,5.", "1.,0.,0."));

@@ -324,6 +324,8 @@ TEST(VerifyCavityPrograms, ACancelledVerificationIsNoVerdict) {
   EXPECT_TRUE(given.cancelled);
   EXPECT_FALSE(given.ok());
   for (const auto& f : given.features) EXPECT_FALSE(f.coverage_checked) << f.name;
+  EXPECT_NE(format_text(given, "case").find("result: cancelled"), std::string::npos);
+  EXPECT_NE(format_json(given, "case").find("\"cancelled\": true"), std::string::npos);
   cancel = false;
   const VerifyResult whole = verify(p.loaded.model, *p.attributes, options);
   EXPECT_FALSE(whole.cancelled);

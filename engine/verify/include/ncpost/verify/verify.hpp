@@ -95,8 +95,9 @@ struct VerifyResult {
   std::size_t motions = 0;
   std::size_t workingsteps = 0;
   std::size_t rapids_below_secplane_in_air = 0;  // below the security plane over the part, clear
-  // Stopped by options.interpret.cancel (polled by the interpreter before each executable and
-  // here before each feature's coverage): the findings are incomplete, not a verdict.
+  // options.interpret.cancel was set before the verification ended (the interpreter polls it
+  // before each executable, the coverage before each feature): the findings may be
+  // incomplete, so they are no verdict; the reports say "cancelled".
   bool cancelled = false;
   [[nodiscard]] bool ok() const;  // not cancelled, and no error among interpreter and findings
 };
