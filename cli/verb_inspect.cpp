@@ -23,16 +23,15 @@ int run_inspect(Args args) {
 
   auto job = prepare_job(options);
   if (!job) return kExitRejected;
+  const auto print = [](std::string_view piece) {
+    std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
+  };
   pipeline::Inspection inspection;
   if (format == "json") {
-    inspection =
-        pipeline::inspect_to_json(std::move(job->input), job->context, [](std::string_view piece) {
-          std::cout.write(piece.data(), static_cast<std::streamsize>(piece.size()));
-        });
+    inspection = pipeline::inspect_to_json(std::move(job->input), job->context, print);
     std::cout << '\n';
   } else {
-    inspection = pipeline::inspect(std::move(job->input), job->context);
-    std::cout << pipeline::inspection_text(inspection);
+    inspection = pipeline::inspect_to_text(std::move(job->input), job->context, print);
   }
   std::cout.flush();
   print_diagnostics(inspection.job.diagnostics);

@@ -461,7 +461,17 @@ namespace {
 // written as JSON while the inspector walks the model, so that the workplan tree is never held
 // next to the model (issue 23: `ncpost inspect` of the 104 MB file); the returned main workplan
 // is then its root alone. Other inspections are written whole at the end.
-Inspection run_inspection(Input input, const JobContext& context, const TextSink* json_out) {
+// How run_inspection writes what it finds as it goes: not at all (the caller formats the tree),
+// as JSON, or as text.
+enum class Written : std::uint8_t { Not, Json, Text };
+
+void write_inspection(const Inspection& inspection, Written form, const TextSink& out) {
+  if (form == Written::Json) write_inspection_json(inspection, out);
+  if (form == Written::Text) out(inspection_text(inspection));
+}
+
+Inspection run_inspection(Input input, const JobContext& context, Written form,
+                          const TextSink& out) {
   ReadOptions options;
   options.name_what_is_not_a_program = false;  // the structure report below says it
   Program program = read(std::move(input), context, options);
@@ -471,7 +481,7 @@ Inspection run_inspection(Input input, const JobContext& context, const TextSink
   Inspection inspection;
   inspection.job = read_result(program);
   if (program.cancelled || !has_model) {
-    if (json_out) write_inspection_json(inspection, *json_out);
+    write_inspection(inspection, form, out);
     return inspection;
   }
   const auto started = Clock::now();
@@ -484,7 +494,7 @@ Inspection run_inspection(Input input, const JobContext& context, const TextSink
   };
   const bool aim = ap238::is_aim(model);
   // An AP238 AIM program is inspected into a tree, then written whole.
-  if (json_out == nullptr || aim) {
+  if (form == Written::Not || aim) {
     if (aim) {
       inspection.info = ap238::inspect(model, *program.loaded.schema);
     } else {
@@ -493,16 +503,24 @@ Inspection run_inspection(Input input, const JobContext& context, const TextSink
       inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
     }
     conclude();
-    if (json_out) write_inspection_json(inspection, *json_out);
+    write_inspection(inspection, form, out);
     return inspection;
   }
-  IndentedJsonWriter w(*json_out);
+  stepnc::InspectOptions inspect_options;
+  inspect_options.mode = program.loaded.mode;
+  if (form == Written::Text) {
+    stepnc::TextWriter text(stepnc::read_header(model), out);
+    inspect_options.visitor = &text;
+    inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
+    text.finish(inspection.info);
+    conclude();
+    return inspection;
+  }
+  IndentedJsonWriter w(out);
   w.begin('{');
   write_header(w, stepnc::read_header(model));
   w.key("project");
   TreeJsonWriter tree(w);
-  stepnc::InspectOptions inspect_options;
-  inspect_options.mode = program.loaded.mode;
   inspect_options.visitor = &tree;
   inspection.info = stepnc::inspect(model, *program.loaded.schema, inspect_options);
   if (!inspection.info.project) w.value(nullptr);
@@ -518,11 +536,15 @@ Inspection run_inspection(Input input, const JobContext& context, const TextSink
 }  // namespace
 
 Inspection inspect(Input input, const JobContext& context) {
-  return run_inspection(std::move(input), context, nullptr);
+  return run_inspection(std::move(input), context, Written::Not, [](std::string_view) {});
 }
 
 Inspection inspect_to_json(Input input, const JobContext& context, const TextSink& out) {
-  return run_inspection(std::move(input), context, &out);
+  return run_inspection(std::move(input), context, Written::Json, out);
+}
+
+Inspection inspect_to_text(Input input, const JobContext& context, const TextSink& out) {
+  return run_inspection(std::move(input), context, Written::Text, out);
 }
 
 nlohmann::ordered_json program_info_json(const stepnc::ProgramInfo& info) {

@@ -402,38 +402,6 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
-// Explicit stack: the tree was bounded when it was built, but printing need not rely on that.
-void append_tree(const Executable& root, std::string& out) {
-  struct Item {
-    const Executable* node;
-    std::string indent;
-    std::string label;
-  };
-  std::vector<Item> stack{{&root, "  ", ""}};
-  while (!stack.empty()) {
-    Item item = std::move(stack.back());
-    stack.pop_back();
-    const Executable& node = *item.node;
-    out += item.indent + item.label + display(node.self);
-    if (node.feature) out += "\n" + item.indent + "    feature:   " + display(*node.feature);
-    if (node.operation) out += "\n" + item.indent + "    operation: " + display(*node.operation);
-    if (node.tool) out += "\n" + item.indent + "    tool:      " + display(*node.tool);
-    if (node.text) out += "\n" + item.indent + "    text: " + quoted(*node.text);
-    out += '\n';
-    std::vector<Item> children;
-    static constexpr const char* kIfLabels[] = {"true_branch: ", "false_branch: "};
-    for (std::size_t i = 0; i < node.children.size(); ++i) {
-      const Executable& child = node.children[i];
-      if (child.missing) continue;
-      std::string label = node.shape == Executable::Shape::If      ? kIfLabels[i % 2]
-                          : node.shape == Executable::Shape::While ? "body: "
-                                                                   : "";
-      children.push_back({&child, item.indent + "  ", std::move(label)});
-    }
-    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(std::move(*it));
-  }
-}
-
 std::string text_of(const HeaderValue& value) {
   if (const auto* one = std::get_if<std::string>(&value)) return *one;
   if (const auto* list = std::get_if<std::vector<std::string>>(&value)) {
@@ -446,27 +414,66 @@ std::string text_of(const HeaderValue& value) {
 
 }  // namespace
 
-std::string format_text(const ProgramInfo& info) {
+TextWriter::TextWriter(const Header& header, Sink out) : out_(std::move(out)) {
   const auto field = [&](std::string_view name) {
-    for (const auto& [key, value] : info.header.fields)
+    for (const auto& [key, value] : header.fields)
       if (key == name) return text_of(value);
     return std::string("-");
   };
-  std::string out;
-  out += "file:        " + field("name") + " (" + field("time_stamp") + ")\n";
-  out += "description: " + field("description") + "\n";
-  out += "author:      " + field("author") + " / " + field("organization") + "\n";
-  out += "schemas:     " + text_of(info.header.schemas) + "\n";
-  if (info.project) {
-    out += "project:     #" + std::to_string(info.project->id) + " '" + info.project->name + "'\n";
-    if (info.project->main_workplan) append_tree(*info.project->main_workplan, out);
-  } else {
-    out += "project:     none\n";
+  out_("file:        " + field("name") + " (" + field("time_stamp") + ")\n" +
+       "description: " + field("description") + "\n" + "author:      " + field("author") + " / " +
+       field("organization") + "\n" + "schemas:     " + text_of(header.schemas) + "\n");
+}
+
+void TextWriter::begin_project(const Project& project) {
+  saw_project_ = true;
+  out_("project:     #" + std::to_string(project.id) + " '" + project.name + "'\n");
+}
+
+void TextWriter::enter(const Executable& node) {
+  std::string label;
+  if (!open_.empty()) {
+    // An If's children alternate true and false branch; a While's is its body.
+    Open& parent = open_.back();
+    static constexpr const char* kIfLabels[] = {"true_branch: ", "false_branch: "};
+    label = parent.shape == Executable::Shape::If      ? kIfLabels[parent.children % 2]
+            : parent.shape == Executable::Shape::While ? "body: "
+                                                       : "";
+    ++parent.children;
   }
-  for (const auto& w : info.workpieces) out += "workpiece:   " + display(w.self) + "\n";
-  for (const auto& t : info.tools) out += "tool:        " + display(t.self) + "\n";
-  out += "instances:   " + std::to_string(info.statistics.instances) + " of " +
-         std::to_string(info.statistics.by_type.size()) + " entity types\n";
+  open_.push_back({node.shape});
+  if (node.missing) return;
+  const std::string indent(2 * open_.size(), ' ');
+  std::string line = indent + label + display(node.self);
+  if (node.feature) line += "\n" + indent + "    feature:   " + display(*node.feature);
+  if (node.operation) line += "\n" + indent + "    operation: " + display(*node.operation);
+  if (node.tool) line += "\n" + indent + "    tool:      " + display(*node.tool);
+  if (node.text) line += "\n" + indent + "    text: " + quoted(*node.text);
+  out_(line + '\n');
+}
+
+void TextWriter::leave(const Executable&) {
+  open_.pop_back();
+}
+
+void TextWriter::finish(const ProgramInfo& info) {
+  std::string rest = saw_project_ ? std::string() : std::string("project:     none\n");
+  for (const auto& w : info.workpieces) rest += "workpiece:   " + display(w.self) + "\n";
+  for (const auto& t : info.tools) rest += "tool:        " + display(t.self) + "\n";
+  rest += "instances:   " + std::to_string(info.statistics.instances) + " of " +
+          std::to_string(info.statistics.by_type.size()) + " entity types\n";
+  out_(rest);
+}
+
+std::string format_text(const ProgramInfo& info) {
+  std::string out;
+  TextWriter writer(info.header, [&out](std::string_view piece) { out += piece; });
+  if (info.project) {
+    writer.begin_project(*info.project);
+    if (info.project->main_workplan) replay(*info.project->main_workplan, writer);
+    writer.end_project();
+  }
+  writer.finish(info);
   return out;
 }
 

@@ -80,8 +80,11 @@ void write_inspection_json(const Inspection& inspection, const TextSink& out);
 // returned main workplan is its root alone.
 [[nodiscard]] Inspection inspect_to_json(Input input, const JobContext& context,
                                          const TextSink& out);
-// The same as a human-readable tree (`ncpost inspect --format text`).
+// The same as a human-readable tree (`ncpost inspect --format text`) ...
 [[nodiscard]] std::string inspection_text(const Inspection& inspection);
+// ... written to `out` as inspect_to_json writes JSON: while the model is walked.
+[[nodiscard]] Inspection inspect_to_text(Input input, const JobContext& context,
+                                         const TextSink& out);
 
 // ---- convert ------------------------------------------------------------------------------
 

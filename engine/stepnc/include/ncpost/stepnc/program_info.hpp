@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -151,5 +152,29 @@ struct InspectOptions {
 
 // A human-readable tree of the same information (`ncpost inspect --format text`).
 [[nodiscard]] std::string format_text(const ProgramInfo& info);
+
+// format_text's text, written to `out` as inspect walks the model (InspectOptions::visitor):
+// the header first, each executable as it arrives, the rest at finish(). The tree is never
+// held, so a large program's text costs no more memory than its JSON.
+class TextWriter final : public TreeVisitor {
+ public:
+  using Sink = std::function<void(std::string_view)>;
+  TextWriter(const Header& header, Sink out);
+  void begin_project(const Project& project) override;
+  void enter(const Executable& executable) override;
+  void leave(const Executable& executable) override;
+  void end_project() override {}
+  // What follows the tree (or "project: none" when there was none): workpieces, tools, counts.
+  void finish(const ProgramInfo& info);
+
+ private:
+  struct Open {
+    Executable::Shape shape;
+    std::size_t children = 0;
+  };
+  Sink out_;
+  std::vector<Open> open_;
+  bool saw_project_ = false;
+};
 
 }  // namespace ncpost::stepnc
