@@ -34,7 +34,6 @@ constexpr std::string_view kLateNamespace = "urn:ncpost:iso10303-28:late-binding
 constexpr std::string_view kExNamespace =
     "urn:iso.org:standard:10303:part(28):version(2):xmlschema:common";
 
-// The namespaces of ISO 10303-28's common elements, over the generations of the standard.
 // What the text of a literal element is read as.
 enum class LiteralKind : std::uint8_t {
   Integer,
@@ -47,9 +46,20 @@ enum class LiteralKind : std::uint8_t {
   ByType,  // early binding: the declared type decides
 };
 
+// Element names that say how a literal is read, by table.
+template <std::size_t N>
+using LiteralNames = std::array<std::pair<std::string_view, LiteralKind>, N>;
+
+template <std::size_t N>
+std::optional<LiteralKind> literal_named(const LiteralNames<N>& names, std::string_view element) {
+  for (const auto& [name, kind] : names)
+    if (name == element) return kind;
+  return std::nullopt;
+}
+
 // The simple types the common namespace wraps (`ex:double-wrapper`, ...), by XML Schema name.
 std::optional<LiteralKind> simple_wrapper_kind(std::string_view xsd_type) {
-  static constexpr std::array<std::pair<std::string_view, LiteralKind>, 8> kKinds = {{
+  static constexpr LiteralNames<8> kKinds = {{
       {"double", LiteralKind::Real},
       {"long", LiteralKind::Integer},
       {"integer", LiteralKind::Integer},
@@ -59,11 +69,10 @@ std::optional<LiteralKind> simple_wrapper_kind(std::string_view xsd_type) {
       {"enumeration", LiteralKind::Enumeration},
       {"string", LiteralKind::String},
   }};
-  for (const auto& [name, kind] : kKinds)
-    if (name == xsd_type) return kind;
-  return std::nullopt;
+  return literal_named(kKinds, xsd_type);
 }
 
+// The namespaces of ISO 10303-28's common elements, over the generations of the standard.
 bool is_common_namespace(std::string_view ns) {
   return ns == kExNamespace || ns.starts_with("urn:oid:1.0.10303.28") ||
          ns.find("10303:part(28)") != std::string_view::npos;
@@ -725,7 +734,7 @@ void Reader::start_value_element(std::string_view local, std::string_view, bool)
   Frame f;
   f.depth = static_cast<std::uint32_t>(xmlTextReaderDepth(reader_));
   const TypePlan* expected = expected_type();
-  static constexpr std::array<std::pair<std::string_view, LiteralKind>, 8> kLiterals = {{
+  static constexpr LiteralNames<8> kLiterals = {{
       {"integer_literal", LiteralKind::Integer},
       {"real_literal", LiteralKind::Real},
       {"string_literal", LiteralKind::String},
@@ -735,14 +744,12 @@ void Reader::start_value_element(std::string_view local, std::string_view, bool)
       {"boolean_literal", LiteralKind::Logical},
       {"resource_literal", LiteralKind::Resource},
   }};
-  for (const auto& [name, kind] : kLiterals) {
-    if (local == name) {
-      f.kind = FrameKind::Literal;
-      f.literal = kind;
-      f.type = expected;
-      push(std::move(f));
-      return;
-    }
+  if (const auto kind = literal_named(kLiterals, local)) {
+    f.kind = FrameKind::Literal;
+    f.literal = *kind;
+    f.type = expected;
+    push(std::move(f));
+    return;
   }
   f.kind = FrameKind::Skip;  // the value is delivered now; the element only needs closing
   if (local == "unset_literal") {
@@ -813,10 +820,13 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
     return;
   }
   const std::string ctype = attribute_local("cType");
+  // Ed.2 names a wrapped simple value `<type>-wrapper`: the common namespace's own types
+  // (`ex:double-wrapper`), or a schema's defined type (ifcXML's `IfcLabel-wrapper`).
+  const bool wrapper = local.ends_with(kWrapperSuffix);
+  const std::string_view type_name =
+      wrapper ? local.substr(0, local.size() - kWrapperSuffix.size()) : local;
   const std::optional<LiteralKind> common_wrapper =
-      local.ends_with(kWrapperSuffix)
-          ? simple_wrapper_kind(local.substr(0, local.size() - kWrapperSuffix.size()))
-          : std::nullopt;
+      wrapper ? simple_wrapper_kind(type_name) : std::nullopt;
   if (!ex && common_wrapper && !said_foreign_wrapper_) {
     // The common namespace's own wrapper in another: the writer's namespace URI is wrong. Said
     // once per document, and each such value read as its wrapper says, so that no other error
@@ -827,7 +837,7 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
                                  "in namespace '" +
                                  std::string(ns.substr(0, 100)) + "'");
   }
-  if ((ex || common_wrapper) && local.ends_with(kWrapperSuffix) && ctype.empty()) {
+  if ((ex || common_wrapper) && wrapper && ctype.empty()) {
     f.kind = FrameKind::Literal;
     f.type = expected;
     f.literal = common_wrapper.value_or(LiteralKind::String);
@@ -842,10 +852,6 @@ void Reader::start_early_item(std::string_view local, std::string_view ns, bool)
     return;
   }
   // An element named after a type: the declared type itself (implicit), or a SELECT member.
-  // Ed.2 names a defined type of a simple type `<type>-wrapper` (ifcXML's `IfcLabel-wrapper`).
-  const std::string_view type_name = local.ends_with(kWrapperSuffix)
-                                         ? local.substr(0, local.size() - kWrapperSuffix.size())
-                                         : local;
   const std::string name = detail::lower(type_name);
   const TypePlan* named = binding_.named_type(name);
   const TypePlan* declared = expected;
